@@ -1,0 +1,43 @@
+// app/commands.h: the subcommands of the `frontier` executable.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace frontier::app
+{
+
+// Exit codes (PRODUCT.md): 0 success, 1 the run failed on its own terms, 2 bad input or usage.
+inline constexpr int cExitOk = 0;
+inline constexpr int cExitFailed = 1;
+inline constexpr int cExitBadInput = 2;
+
+struct RunOptions
+{
+    std::string scene;
+    std::optional<double> duration; // s
+    std::optional<long> steps;
+    std::optional<double> dt; // s
+    std::optional<std::string> solver;
+    std::optional<int> pgsIterations;
+    std::optional<std::string> integrator;
+    std::string trajectory; // CSV path, empty: none
+    int recordEvery = 1;
+    std::string stats;  // JSON path, empty: none
+    std::string frames; // PNG folder, empty: none
+    double fps = 30.0;
+    int width = 640;
+    int height = 480;
+    bool quiet = false;
+};
+
+struct InfoOptions
+{
+    std::string scene;
+    bool json = false;
+};
+
+int runCommand(const RunOptions& options);
+int infoCommand(const InfoOptions& options);
+
+} // namespace frontier::app

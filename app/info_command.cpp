@@ -1,0 +1,145 @@
+// app/info_command.cpp: `frontier info`: what the solver will see for a scene.
+#include "app/commands.h"
+#include "collision/contacts.h"
+#include "core/frontier_order.h"
+#include "io/scene.h"
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+namespace frontier::app
+{
+
+namespace
+{
+std::string bodyName(const core::Model& model, int body)
+{
+    return body == core::cWorld ? "world" : model.bodies[static_cast<std::size_t>(body)].name;
+}
+
+nlohmann::json describe(const core::Model& model, const std::string& scene)
+{
+    const core::FrontierLayout layout = core::buildFrontierLayout(model);
+    nlohmann::json out;
+    out["scene"] = scene;
+    out["name"] = model.name;
+    int moving = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        moving += body.isStatic ? 0 : 1;
+        out["bodies"].push_back({{"name", body.name}, {"static", body.isStatic}, {"mass_kg", body.mass}});
+    }
+    int rows = 0;
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        const core::Joint& joint = model.joints[k];
+        rows += core::jointRowCount(joint.type);
+        out["joints"].push_back({{"name", joint.name},
+                                 {"type", core::jointTypeName(joint.type)},
+                                 {"rows", core::jointRowCount(joint.type)},
+                                 {"parent", bodyName(model, joint.parent)},
+                                 {"child", bodyName(model, joint.child)},
+                                 {"loop", layout.jointBlock[k] < 0}});
+    }
+    if (model.joints.empty())
+    {
+        out["joints"] = nlohmann::json::array();
+    }
+    out["moving_bodies"] = moving;
+    out["constraint_rows"] = rows;
+    out["degrees_of_freedom"] = 6 * moving - rows;
+    out["trees"] = layout.treeCount;
+    nlohmann::json order = nlohmann::json::array();
+    for (const core::LayoutBlock& block : layout.blocks)
+    {
+        const bool node = block.kind == core::LayoutBlock::Kind::Node;
+        order.push_back(node ? "body " + model.bodies[static_cast<std::size_t>(block.index)].name
+                             : "joint " + model.joints[static_cast<std::size_t>(block.index)].name);
+    }
+    out["frontier_order"] = order;
+    nlohmann::json loops = nlohmann::json::array();
+    for (int joint : layout.loopJoints)
+    {
+        loops.push_back(model.joints[static_cast<std::size_t>(joint)].name);
+    }
+    out["loops"] = loops;
+    collision::ContactDetector detector(model);
+    nlohmann::json pairs = nlohmann::json::array();
+    for (const auto& [a, b] : detector.candidatePairs())
+    {
+        pairs.push_back({bodyName(model, a), bodyName(model, b)});
+    }
+    out["collision_pairs"] = pairs;
+    return out;
+}
+
+void printText(const nlohmann::json& info)
+{
+    std::cout << "scene: " << info["scene"].get<std::string>() << " (" << info["name"].get<std::string>()
+              << ")\n";
+    std::cout << "bodies: " << info["bodies"].size() << " (" << info["moving_bodies"].get<int>()
+              << " moving)\n";
+    for (const auto& body : info["bodies"])
+    {
+        std::cout << "  " << body["name"].get<std::string>();
+        if (body["static"].get<bool>())
+        {
+            std::cout << "  static\n";
+        }
+        else
+        {
+            std::cout << "  " << body["mass_kg"].get<double>() << " kg\n";
+        }
+    }
+    std::cout << "joints: " << info["joints"].size() << ", " << info["constraint_rows"].get<int>()
+              << " constraint rows\n";
+    for (const auto& joint : info["joints"])
+    {
+        std::cout << "  " << joint["name"].get<std::string>() << "  " << joint["type"].get<std::string>()
+                  << " (" << joint["rows"].get<int>() << " rows)  " << joint["parent"].get<std::string>()
+                  << " -> " << joint["child"].get<std::string>()
+                  << (joint["loop"].get<bool>() ? "  [closes a loop]" : "") << "\n";
+    }
+    std::cout << "degrees of freedom: " << info["degrees_of_freedom"].get<int>() << "\n";
+    std::cout << "frontier order (" << info["trees"].get<int>() << " trees):";
+    for (const auto& entry : info["frontier_order"])
+    {
+        std::cout << "\n  " << entry.get<std::string>();
+    }
+    std::cout << "\nloops: " << (info["loops"].empty() ? "none" : "");
+    for (const auto& loop : info["loops"])
+    {
+        std::cout << loop.get<std::string>() << " ";
+    }
+    std::cout << "\ncollision pairs: " << info["collision_pairs"].size() << "\n";
+    for (const auto& pair : info["collision_pairs"])
+    {
+        std::cout << "  " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>() << "\n";
+    }
+}
+} // namespace
+
+int infoCommand(const InfoOptions& options)
+{
+    try
+    {
+        const core::Model model = io::loadScene(options.scene);
+        const nlohmann::json info = describe(model, options.scene);
+        if (options.json)
+        {
+            std::cout << info.dump(2) << "\n";
+        }
+        else
+        {
+            printText(info);
+        }
+        return cExitOk;
+    }
+    catch (const io::InputError& error)
+    {
+        std::cerr << "frontier: " << error.what() << "\n";
+        return cExitBadInput;
+    }
+}
+
+} // namespace frontier::app

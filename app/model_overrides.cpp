@@ -1,0 +1,40 @@
+// app/model_overrides.cpp: flags over scene settings.
+#include "app/model_overrides.h"
+
+#include "app/run_loop.h"
+
+namespace frontier::app
+{
+
+long applyOverrides(const RunOptions& options, core::Model& model)
+{
+    core::SimulationSettings& sim = model.simulation;
+    if (options.dt)
+    {
+        sim.dt = *options.dt;
+    }
+    if (options.solver)
+    {
+        sim.solver = *core::solverFromName(*options.solver);
+    }
+    if (options.pgsIterations)
+    {
+        sim.pgsIterations = *options.pgsIterations;
+    }
+    if (options.integrator)
+    {
+        sim.integrator = *core::integratorFromName(*options.integrator);
+    }
+    if (options.steps)
+    {
+        sim.duration = static_cast<double>(*options.steps) * sim.dt;
+        return *options.steps;
+    }
+    if (options.duration)
+    {
+        sim.duration = *options.duration;
+    }
+    return std::max(1L, stepsFor(sim.duration, sim.dt));
+}
+
+} // namespace frontier::app

@@ -1,0 +1,63 @@
+// app/run_loop.cpp: the run loop with progress, statistics and recording.
+#include "app/run_loop.h"
+
+#include "app/progress.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace frontier::app
+{
+
+long stepsFor(double duration, double dt)
+{
+    return static_cast<long>(std::llround(duration / dt));
+}
+
+RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record)
+{
+    RunSummary summary;
+    core::Simulator simulator(model);
+    core::State state = core::initialState(model);
+    summary.energyInitialJ = core::totalEnergy(model, state);
+    summary.energyMaxJ = summary.energyInitialJ;
+    const auto [errorM, errorRad] = simulator.jointErrors(state);
+    summary.maxJointErrorM = errorM;
+    summary.maxJointErrorRad = errorRad;
+    if (record)
+    {
+        record(state);
+    }
+    ProgressLine progress(settings.progress, settings.steps, model.simulation.dt);
+    const auto start = std::chrono::steady_clock::now();
+    try
+    {
+        for (long k = 0; k < settings.steps; ++k)
+        {
+            simulator.step(state);
+            const core::StepStats& stats = simulator.lastStep();
+            summary.maxJointErrorM = std::max(summary.maxJointErrorM, stats.maxJointErrorM);
+            summary.maxJointErrorRad = std::max(summary.maxJointErrorRad, stats.maxJointErrorRad);
+            summary.maxPenetrationM = std::max(summary.maxPenetrationM, stats.maxPenetrationM);
+            summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
+            summary.energyMaxJ = std::max(summary.energyMaxJ, core::totalEnergy(model, state));
+            summary.steps = k + 1;
+            if (record && (k + 1) % settings.recordEvery == 0)
+            {
+                record(state);
+            }
+            progress.update(k + 1);
+        }
+    }
+    catch (const core::SimulationError& error)
+    {
+        summary.finite = false;
+        summary.failure = error.what();
+    }
+    progress.finish();
+    summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary.energyFinalJ = core::totalEnergy(model, state);
+    return summary;
+}
+
+} // namespace frontier::app

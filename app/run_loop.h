@@ -1,0 +1,43 @@
+// app/run_loop.h: drives a Simulator over a run, recording trajectory rows and statistics.
+#pragma once
+
+#include "core/model.h"
+#include "core/simulator.h"
+#include "core/state.h"
+
+#include <functional>
+#include <string>
+
+namespace frontier::app
+{
+
+struct RunSettings
+{
+    long steps = 0;        // number of steps (from --steps or duration / dt)
+    int recordEvery = 1;   // trajectory row every K steps
+    bool progress = false; // a progress line on stderr
+};
+
+struct RunSummary
+{
+    long steps = 0;
+    double wallSeconds = 0.0;
+    double maxJointErrorM = 0.0;   // largest positional joint violation over the run (m)
+    double maxJointErrorRad = 0.0; // largest angular joint violation over the run (rad)
+    double energyInitialJ = 0.0;
+    double energyFinalJ = 0.0;
+    double energyMaxJ = 0.0;
+    double maxPenetrationM = 0.0;
+    int maxContacts = 0;
+    bool finite = true;
+    std::string failure; // the SimulationError message when the run blew up
+};
+
+// Called with every state to record (the initial one and every recordEvery-th step after it).
+using Recorder = std::function<void(const core::State&)>;
+
+RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);
+
+long stepsFor(double duration, double dt);
+
+} // namespace frontier::app

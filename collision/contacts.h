@@ -1,0 +1,65 @@
+// collision/contacts.h: public API of contact detection (FCL, libccd through it).
+//
+// Convention (one for every pair): a Contact between bodyA and bodyB has a unit normal pointing
+// from A towards B (B is pushed along +normal, A along -normal), a depth > 0 when the shapes
+// overlap (m), and a world point in the middle of the overlap. bodyA is always a moving body;
+// bodyB may be moving or static. The relative normal velocity (v_B - v_A) . n at the point is
+// negative when they approach.
+#pragma once
+
+#include "core/model.h"
+#include "core/state.h"
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace frontier::collision
+{
+
+struct Contact
+{
+    int bodyA = 0;                             // moving body index (core::Model::bodies)
+    int bodyB = 0;                             // moving or static body index
+    core::Vec3 point_W = core::Vec3::Zero();   // m
+    core::Vec3 normal_W = core::Vec3::UnitZ(); // unit, from A towards B
+    double depth = 0.0;                        // m, > 0 when penetrating
+};
+
+// Counters over the detector's lifetime (for --stats and benchmarks).
+struct DetectorStats
+{
+    long detectCalls = 0;      // detect() calls
+    long planeTests = 0;       // shape-plane tests that passed the bounding-sphere check
+    long broadphasePairs = 0;  // shape pairs from the broadphase allowed by the filter
+    long narrowphaseTests = 0; // fcl::collide calls
+    long contacts = 0;         // contacts reported
+};
+
+class ContactDetector
+{
+  public:
+    // margin: contacts are reported while the shapes are closer than this (m), depth may then
+    // be negative (a gap), so that resting contact does not flicker.
+    explicit ContactDetector(const core::Model& model, double margin = 1e-3);
+    ~ContactDetector();
+    ContactDetector(const ContactDetector&) = delete;
+    ContactDetector& operator=(const ContactDetector&) = delete;
+
+    // All contacts at the given state; out is cleared first.
+    void detect(const core::State& state, std::vector<Contact>& out);
+
+    // Body index pairs that may ever collide (after joint, group, ignore and static filtering).
+    // Listed as (i, j) with i < j, bodies without collision shapes left out. Computed on the
+    // first call (O(bodies^2)), so not meant for the stepping loop.
+    const std::vector<std::pair<int, int>>& candidatePairs() const;
+
+    double margin() const;
+    const DetectorStats& stats() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+} // namespace frontier::collision

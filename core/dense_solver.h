@@ -1,0 +1,29 @@
+// core/dense_solver.h: the `dense` baseline, Moore's solve (PAPER.md §6): the whole impulse
+// system as one dense matrix, Gaussian elimination with partial pivoting, O(n^3) time and
+// O(n^2) memory. The correctness oracle for the linear solver: same equations, same layout.
+#pragma once
+
+#include "core/impulse_solver.h"
+
+#include <Eigen/Dense>
+
+namespace frontier::core
+{
+
+class DenseSolver final : public ImpulseSolver
+{
+  public:
+    void factor(const RowSystem& system) override;
+    void solve(const BlockVector& rhs, BlockVector& solution) override;
+    const char* name() const override { return "dense"; }
+
+    // The assembled KKT matrix [M J^T; J 0] in layout order (for tests and the benchmark).
+    static Eigen::MatrixXd assemble(const RowSystem& system);
+
+  private:
+    const RowSystem* mSystem = nullptr;
+    Eigen::PartialPivLU<Eigen::MatrixXd> mLu;
+    Eigen::VectorXd mRhs;
+};
+
+} // namespace frontier::core

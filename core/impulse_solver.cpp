@@ -1,0 +1,84 @@
+// core/impulse_solver.cpp: assembling the rows, shared types, and the solver factory.
+#include "core/impulse_solver.h"
+
+#include "core/dense_solver.h"
+#include "core/pgs_solver.h"
+#include "core/tree_solver.h"
+
+namespace frontier::core
+{
+
+void BlockVector::resize(std::size_t bodies, std::size_t joints)
+{
+    body.resize(bodies);
+    joint.resize(joints);
+}
+
+void BlockVector::setZero()
+{
+    for (Vec6& v : body)
+    {
+        v.setZero();
+    }
+    for (Vec6& v : joint)
+    {
+        v.setZero();
+    }
+}
+
+SingularJointError::SingularJointError(std::string jointName, const std::string& message)
+    : std::runtime_error(message), mJointName(std::move(jointName))
+{
+}
+
+void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, RowSystem& system)
+{
+    system.model = &model;
+    system.layout = &layout;
+    const std::size_t nb = model.bodies.size();
+    system.mass.resize(nb);
+    system.inertia_W.resize(nb);
+    for (std::size_t i = 0; i < nb; ++i)
+    {
+        const Body& body = model.bodies[i];
+        system.mass[i] = body.isStatic ? 0.0 : body.mass;
+        system.inertia_W[i] = body.isStatic ? Mat3::Zero() : worldInertia(body, state.bodies[i]);
+    }
+    system.joints.resize(model.joints.size());
+    system.rowCount = 0;
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        const Joint& joint = model.joints[k];
+        JointPose pose;
+        if (joint.parent != cWorld)
+        {
+            const BodyState& a = state.bodies[static_cast<std::size_t>(joint.parent)];
+            pose.x_a = a.position_W;
+            pose.q_a = a.orientation_WB;
+        }
+        const BodyState& b = state.bodies[static_cast<std::size_t>(joint.child)];
+        pose.x_b = b.position_W;
+        pose.q_b = b.orientation_WB;
+        evaluateJoint(joint, pose, !jointToWorld(model, joint), system.joints[k]);
+        if (layout.jointBlock[k] >= 0)
+        {
+            system.rowCount += system.joints[k].count;
+        }
+    }
+}
+
+std::unique_ptr<ImpulseSolver> makeSolver(SolverKind kind, int pgsIterations)
+{
+    switch (kind)
+    {
+    case SolverKind::Linear:
+        return std::make_unique<TreeSolver>();
+    case SolverKind::Dense:
+        return std::make_unique<DenseSolver>();
+    case SolverKind::Pgs:
+        return std::make_unique<PgsSolver>(pgsIterations);
+    }
+    return nullptr;
+}
+
+} // namespace frontier::core

@@ -1,0 +1,73 @@
+// core/impulse_solver.h: the impulse problem of PAPER.md §2-3 and the three ways to solve it.
+//
+// Unknowns: post-impulse velocities u_i = [v_i; w_i] of every moving body and the multipliers
+// lambda_k of every tree joint. Equations (PAPER.md eqs. (1)-(3), joint rows of §4):
+//     M_i u_i - sum_k J_ki^T lambda_k = p_i      (momentum: p = M u* + external impulses)
+//     J_ka u_a + J_kb u_b             = c_k      (joint velocity conditions; c = 0 in a plain solve)
+// In KKT form [M J^T; J 0][u; -lambda] = [p; c], symmetric and quasi-definite when the joint rows
+// are independent. `linear` eliminates it in frontier order in O(n) (PAPER.md §3); `dense` is
+// Moore's dense Gaussian elimination of the same matrix, O(n^3); `pgs` is projected Gauss-Seidel
+// over the same rows with a fixed iteration count (what game engines do: O(n) per sweep, inexact).
+#pragma once
+
+#include "core/frontier_order.h"
+#include "core/joints/joint_rows.h"
+#include "core/state.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace frontier::core
+{
+
+// The matrices of one impulse problem at one configuration.
+struct RowSystem
+{
+    const Model* model = nullptr;
+    const FrontierLayout* layout = nullptr;
+    std::vector<double> mass;      // kg, per body index (0 for static bodies)
+    std::vector<Mat3> inertia_W;   // kg m^2, per body index, world frame
+    std::vector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
+    int rowCount = 0;              // tree joint rows in all
+};
+
+// Evaluates masses and joint rows at a state (PAPER.md §2, §4). `system` keeps its storage.
+void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, RowSystem& system);
+
+// Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
+struct BlockVector
+{
+    std::vector<Vec6> body;  // per body index: p (N s, N m s) in, u (m/s, rad/s) out
+    std::vector<Vec6> joint; // per joint index: c (m/s, rad/s) in, lambda (N s or N m s) out
+    void resize(std::size_t bodies, std::size_t joints);
+    void setZero();
+};
+
+// A joint block that cannot be eliminated: dependent rows or a degenerate configuration.
+class SingularJointError : public std::runtime_error
+{
+  public:
+    SingularJointError(std::string jointName, const std::string& message);
+    const std::string& jointName() const { return mJointName; }
+
+  private:
+    std::string mJointName;
+};
+
+class ImpulseSolver
+{
+  public:
+    virtual ~ImpulseSolver() = default;
+    // Prepares for solves at this configuration (throws SingularJointError). `system` must
+    // outlive the following solve() calls.
+    virtual void factor(const RowSystem& system) = 0;
+    // One right-hand side; may be called many times per factor().
+    virtual void solve(const BlockVector& rhs, BlockVector& solution) = 0;
+    virtual const char* name() const = 0;
+};
+
+std::unique_ptr<ImpulseSolver> makeSolver(SolverKind kind, int pgsIterations = 20);
+
+} // namespace frontier::core

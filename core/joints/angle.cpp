@@ -1,0 +1,18 @@
+// core/joints/angle.cpp: angle joint as the holonomic universal (Hooke) joint, 4 rows
+// (PAPER.md §4, eq. (8)): ball rows plus no relative twist about d_k = a1 x b2.
+//   rows 0-2: C = p_b - p_a
+//   row 3:    C = a1 . b2,  J = (w_b - w_a) . (b2 x a1)
+#include "core/joints/joint_rows.h"
+
+namespace frontier::core::detail
+{
+
+void writeAngleJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+{
+    const JointGeometry g = jointGeometry(joint, pose);
+    const int row = writeBallRows(g, out, 0);
+    out.positionRows = 3;
+    out.count = writeTwistRow(joint, g, out, row);
+}
+
+} // namespace frontier::core::detail

@@ -1,0 +1,16 @@
+// core/joints/ball.cpp: point-to-point (ball) joint, 3 rows; the nail joint is the same rows
+// with the world as parent (PAPER.md §4, eq. (6)).
+//   C = p_b - p_a,  J_a = [-1, [r_a]x],  J_b = [1, -[r_b]x]
+#include "core/joints/joint_rows.h"
+
+namespace frontier::core::detail
+{
+
+void writeBallJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+{
+    const JointGeometry g = jointGeometry(joint, pose);
+    out.positionRows = 3;
+    out.count = writeBallRows(g, out, 0);
+}
+
+} // namespace frontier::core::detail

@@ -1,0 +1,16 @@
+// core/joints/fixed.cpp: fixed joint (weld; not in the paper), 6 rows.
+//   rows 0-2: C = p_b - p_a;  rows 3-5: no relative rotation, J = w_b - w_a
+#include "core/joints/joint_rows.h"
+
+namespace frontier::core::detail
+{
+
+void writeFixedJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+{
+    const JointGeometry g = jointGeometry(joint, pose);
+    const int row = writeBallRows(g, out, 0);
+    out.positionRows = 3;
+    out.count = writeWeldRotationRows(joint, pose, out, row);
+}
+
+} // namespace frontier::core::detail

@@ -1,0 +1,71 @@
+// core/joints/joint_rows.h: a joint as rows of a Jacobian between two bodies (PAPER.md §4).
+//
+// Every joint k between body a (the joint's parent, possibly the world) and body b (its child)
+// is r_k scalar velocity conditions
+//     J_a u_a + J_b u_b = 0,        u = [v; w] (world frame: m/s, rad/s)
+// and the joint impulse body a receives is J_a^T lambda, body b J_b^T lambda (N s, N m s).
+// Each row is the exact time derivative of a position-level condition C(q) = 0, so the same
+// rows drive the velocity solve and the drift correction; `error` holds C (m or rad).
+#pragma once
+
+#include "core/model.h"
+
+#include <Eigen/Core>
+
+namespace frontier::core
+{
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+struct JointRows
+{
+    int count = 0;           // r_k, 3..6
+    int positionRows = 0;    // rows 0..positionRows-1 are positions (m), the rest angles (rad)
+    Mat6 J_a = Mat6::Zero(); // rows 0..count-1 used; zero for a world parent
+    Mat6 J_b = Mat6::Zero();
+    Vec6 error = Vec6::Zero(); // C(q): position-level violation of each row (m or rad)
+};
+
+// Pose of the two bodies of a joint. For a world parent, the parent pose is the identity; for a
+// static parent, that body's fixed pose.
+struct JointPose
+{
+    Vec3 x_a = Vec3::Zero(); // centre of mass of a (m)
+    Quat q_a = Quat::Identity();
+    Vec3 x_b = Vec3::Zero();
+    Quat q_b = Quat::Identity();
+};
+
+// Fills rows for the joint's type at the given pose. parentMoves: false for world/static parents
+// (J_a is then left zero).
+void evaluateJoint(const Joint& joint, const JointPose& pose, bool parentMoves, JointRows& out);
+
+namespace detail
+{
+// Geometry shared by the per-type files, evaluated once per joint.
+struct JointGeometry
+{
+    Mat3 R_a, R_b;
+    Vec3 p_a, p_b; // anchors in world (m)
+    Vec3 r_a, r_b; // p - x: lever arms from the centres of mass (m)
+    Vec3 x_a;      // centre of mass of a (m)
+};
+JointGeometry jointGeometry(const Joint& joint, const JointPose& pose);
+
+// Row writers, each appending at row `row` and returning the next free row.
+int writeBallRows(const JointGeometry& g, JointRows& out, int row);
+int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row);
+int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row);
+int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& out, int row);
+int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, int row);
+
+void writeBallJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+void writeRevoluteJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+void writeAngleJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+void writeCylindricalJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+void writePrismaticJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+void writeFixedJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+} // namespace detail
+
+} // namespace frontier::core

@@ -1,0 +1,278 @@
+// core/model.cpp: names of the model's enums, joint frames, and mass properties of shapes.
+#include "core/model.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace frontier::core
+{
+
+int Model::findBody(const std::string& bodyName) const
+{
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        if (bodies[i].name == bodyName)
+        {
+            return static_cast<int>(i);
+        }
+    }
+    return -2;
+}
+
+int jointRowCount(JointType type)
+{
+    switch (type)
+    {
+    case JointType::Ball:
+    case JointType::Nail:
+        return 3;
+    case JointType::Revolute:
+    case JointType::Prismatic:
+        return 5;
+    case JointType::Angle:
+    case JointType::Cylindrical:
+        return 4;
+    case JointType::Fixed:
+        return 6;
+    }
+    return 0;
+}
+
+namespace
+{
+struct JointName
+{
+    JointType type;
+    const char* name;
+};
+constexpr JointName cJointNames[] = {
+    {JointType::Ball, "ball"},
+    {JointType::Nail, "nail"},
+    {JointType::Revolute, "revolute"},
+    {JointType::Angle, "angle"},
+    {JointType::Cylindrical, "cylindrical"},
+    {JointType::Prismatic, "prismatic"},
+    {JointType::Fixed, "fixed"},
+};
+} // namespace
+
+const char* jointTypeName(JointType type)
+{
+    for (const auto& entry : cJointNames)
+    {
+        if (entry.type == type)
+        {
+            return entry.name;
+        }
+    }
+    return "?";
+}
+
+std::optional<JointType> jointTypeFromName(const std::string& name)
+{
+    for (const auto& entry : cJointNames)
+    {
+        if (name == entry.name)
+        {
+            return entry.type;
+        }
+    }
+    return std::nullopt;
+}
+
+const char* solverName(SolverKind kind)
+{
+    switch (kind)
+    {
+    case SolverKind::Linear:
+        return "linear";
+    case SolverKind::Dense:
+        return "dense";
+    case SolverKind::Pgs:
+        return "pgs";
+    }
+    return "?";
+}
+
+std::optional<SolverKind> solverFromName(const std::string& name)
+{
+    for (SolverKind kind : {SolverKind::Linear, SolverKind::Dense, SolverKind::Pgs})
+    {
+        if (name == solverName(kind))
+        {
+            return kind;
+        }
+    }
+    return std::nullopt;
+}
+
+const char* integratorName(IntegratorKind kind)
+{
+    return kind == IntegratorKind::Euler ? "euler" : "rattle";
+}
+
+std::optional<IntegratorKind> integratorFromName(const std::string& name)
+{
+    if (name == "euler")
+    {
+        return IntegratorKind::Euler;
+    }
+    if (name == "rattle")
+    {
+        return IntegratorKind::Rattle;
+    }
+    return std::nullopt;
+}
+
+namespace
+{
+// Any unit vector orthogonal to the unit vector n.
+Vec3 anyPerpendicular(const Vec3& n)
+{
+    const Vec3 helper = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    return (helper - helper.dot(n) * n).normalized();
+}
+
+struct Frame
+{
+    Vec3 position = Vec3::Zero();
+    Quat rotation = Quat::Identity();
+};
+
+Frame bodyFrame(const Model& model, int body)
+{
+    if (body == cWorld)
+    {
+        return {};
+    }
+    const Body& b = model.bodies[static_cast<std::size_t>(body)];
+    return {b.position_W, b.orientation_WB};
+}
+} // namespace
+
+void setJointFrames(const Model& model, Joint& joint, const Vec3& anchor_W, const Vec3& axis_W)
+{
+    const Frame parent = bodyFrame(model, joint.parent);
+    const Frame child = bodyFrame(model, joint.child);
+    const Vec3 k_W = axis_W.normalized();
+    const Vec3 i_W = anyPerpendicular(k_W);
+    const Vec3 j_W = k_W.cross(i_W);
+
+    joint.anchorParent = parent.rotation.conjugate() * (anchor_W - parent.position);
+    joint.anchorChild = child.rotation.conjugate() * (anchor_W - child.position);
+    joint.axisParent = parent.rotation.conjugate() * k_W;
+    joint.perpParent1 = parent.rotation.conjugate() * i_W;
+    joint.perpParent2 = parent.rotation.conjugate() * j_W;
+    joint.axisChild = child.rotation.conjugate() * k_W;
+    joint.perpChild1 = child.rotation.conjugate() * i_W;
+    // Universal joint: a1 = d_i in the parent, b2 = d_k x d_i = d_j in the child, so a1 x b2 = d_k.
+    joint.angleChildAxis = child.rotation.conjugate() * j_W;
+    joint.restRotation_AB = parent.rotation.conjugate() * child.rotation;
+}
+
+double shapeVolume(const Shape& shape)
+{
+    constexpr double pi = std::numbers::pi;
+    switch (shape.type)
+    {
+    case ShapeType::Box:
+        return shape.size.prod();
+    case ShapeType::Sphere:
+        return 4.0 / 3.0 * pi * std::pow(shape.radius, 3);
+    case ShapeType::Capsule:
+        return pi * shape.radius * shape.radius * (shape.length + 4.0 / 3.0 * shape.radius);
+    case ShapeType::Cylinder:
+        return pi * shape.radius * shape.radius * shape.length;
+    case ShapeType::Plane:
+        return 0.0;
+    case ShapeType::Mesh:
+        return shapeMassProperties(shape, 1.0).mass;
+    }
+    return 0.0;
+}
+
+namespace
+{
+// Mass properties of a closed triangle mesh of unit density by signed tetrahedra from the origin
+// (the divergence theorem; Tonon 2004's canonical tetrahedron covariance).
+MassProperties meshMassProperties(const Shape& shape, double density)
+{
+    double volume = 0.0;
+    Vec3 first = Vec3::Zero();
+    Mat3 covariance = Mat3::Zero(); // integral of x x^T dV about the origin
+    const Mat3 canonical = (Mat3() << 2, 1, 1, 1, 2, 1, 1, 1, 2).finished() / 120.0;
+    for (const auto& tri : shape.triangles)
+    {
+        Mat3 a;
+        a.col(0) = shape.vertices[static_cast<std::size_t>(tri[0])];
+        a.col(1) = shape.vertices[static_cast<std::size_t>(tri[1])];
+        a.col(2) = shape.vertices[static_cast<std::size_t>(tri[2])];
+        const double det = a.determinant(); // 6 x signed volume of the tetrahedron
+        volume += det / 6.0;
+        first += det / 24.0 * (a.col(0) + a.col(1) + a.col(2));
+        covariance += det * a * canonical * a.transpose();
+    }
+    MassProperties out;
+    out.mass = density * volume;
+    if (volume <= 0.0)
+    {
+        return out;
+    }
+    out.centre = first / volume;
+    // Shift the covariance to the centre of mass, then I = trace(C) 1 - C.
+    const Mat3 c = density * covariance - out.mass * out.centre * out.centre.transpose();
+    out.inertia = c.trace() * Mat3::Identity() - c;
+    return out;
+}
+} // namespace
+
+MassProperties shapeMassProperties(const Shape& shape, double density)
+{
+    constexpr double pi = std::numbers::pi;
+    MassProperties out;
+    if (shape.type == ShapeType::Mesh)
+    {
+        return meshMassProperties(shape, density);
+    }
+    const double m = density * shapeVolume(shape);
+    out.mass = m;
+    const double r = shape.radius;
+    switch (shape.type)
+    {
+    case ShapeType::Box:
+    {
+        const Vec3 s2 = shape.size.cwiseProduct(shape.size);
+        out.inertia.diagonal() = m / 12.0 * Vec3(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
+        break;
+    }
+    case ShapeType::Sphere:
+        out.inertia.diagonal().setConstant(0.4 * m * r * r);
+        break;
+    case ShapeType::Cylinder:
+    {
+        const double h = shape.length;
+        const double ixx = m * (3.0 * r * r + h * h) / 12.0;
+        out.inertia.diagonal() = Vec3(ixx, ixx, 0.5 * m * r * r);
+        break;
+    }
+    case ShapeType::Capsule:
+    {
+        // Cylinder of height h plus two hemispheres whose centres of mass sit 3r/8 beyond the ends.
+        const double h = shape.length;
+        const double mc = density * pi * r * r * h;
+        const double mh = density * 2.0 / 3.0 * pi * r * r * r; // one hemisphere
+        const double d = 0.5 * h + 3.0 / 8.0 * r;
+        const double ixxCyl = mc * (3.0 * r * r + h * h) / 12.0;
+        const double ixxHemi = 83.0 / 320.0 * mh * r * r + mh * d * d;
+        const double izz = 0.5 * mc * r * r + 2.0 * 0.4 * mh * r * r;
+        out.inertia.diagonal() = Vec3(ixxCyl + 2.0 * ixxHemi, ixxCyl + 2.0 * ixxHemi, izz);
+        break;
+    }
+    case ShapeType::Plane:
+    case ShapeType::Mesh:
+        break;
+    }
+    return out;
+}
+
+} // namespace frontier::core

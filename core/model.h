@@ -1,0 +1,180 @@
+// core/model.h: the scene as loaded (io/ builds it, everything else reads it; const while stepping).
+//
+// Units: SI throughout (metres, kilograms, seconds, radians). Frames: "world" W is z-up unless the
+// scene's gravity says otherwise; each body's frame B has its origin at the body's centre of mass
+// and rotates with the body. Shapes carry their pose in B (a URDF collision origin is not the
+// centre of mass).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace frontier::core
+{
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Quat = Eigen::Quaterniond;
+
+enum class ShapeType
+{
+    Box,      // size = full extents along local x, y, z (m)
+    Sphere,   // radius (m)
+    Capsule,  // radius (m), length = cylindrical segment along local z (m); total height length + 2 radius
+    Cylinder, // radius (m), length = full height along local z (m)
+    Plane,    // static bodies only: the half-space n . x <= offset is solid (n unit, world frame)
+    Mesh,     // triangle mesh, vertices in the shape frame (m), already scaled
+};
+
+struct Shape
+{
+    ShapeType type = ShapeType::Box;
+    Vec3 size = Vec3::Zero();                  // Box: full extents (m)
+    double radius = 0.0;                       // Sphere, Capsule, Cylinder (m)
+    double length = 0.0;                       // Capsule (segment), Cylinder (full height) (m)
+    Vec3 normal = Vec3::UnitZ();               // Plane: unit outward normal, world frame
+    double offset = 0.0;                       // Plane: n . x = offset on the surface (m)
+    std::string meshFile;                      // Mesh: the file it was read from (for messages)
+    std::vector<Vec3> vertices;                // Mesh: vertices in the shape frame (m), nverts
+    std::vector<std::array<int, 3>> triangles; // Mesh: vertex indices, counter-clockwise seen from outside
+    Vec3 position_BS = Vec3::Zero();           // shape origin in the body frame (m)
+    Quat rotation_BS = Quat::Identity();       // shape orientation in the body frame
+};
+
+struct Body
+{
+    std::string name;
+    bool isStatic = false;         // static bodies do not move and are not nodes of the solver (PAPER.md §5)
+    double mass = 0.0;             // kg (> 0 for moving bodies)
+    Mat3 inertia_B = Mat3::Zero(); // kg m^2, about the centre of mass, in the body frame
+    std::vector<Shape> shapes;     // collision and render geometry (may be empty)
+    std::optional<Vec3> color;     // RGB in [0, 1], for the renderer
+    std::string group;             // bodies of one non-empty group never collide with each other
+    // Initial state.
+    Vec3 position_W = Vec3::Zero();         // centre of mass (m)
+    Quat orientation_WB = Quat::Identity(); // body to world
+    Vec3 velocity_W = Vec3::Zero();         // m/s, of the centre of mass
+    Vec3 angularVelocity_W = Vec3::Zero();  // rad/s
+};
+
+// PAPER.md §4. Rows: Ball 3, Nail 3, Revolute 5, Angle 4, Cylindrical 4, Prismatic 5, Fixed 6.
+enum class JointType
+{
+    Ball,
+    Nail,
+    Revolute,
+    Angle,
+    Cylindrical,
+    Prismatic,
+    Fixed,
+};
+
+// Which body is the "world": a joint's parent index when it is attached to the world.
+inline constexpr int cWorld = -1;
+
+struct Joint
+{
+    std::string name;
+    JointType type = JointType::Ball;
+    int parent = cWorld; // body index, or cWorld; a static parent acts as the world
+    int child = 0;       // body index (a moving body)
+    // Anchor in each body's frame (m). For a world or static parent, anchorParent is in that
+    // static frame (world coordinates for cWorld).
+    Vec3 anchorParent = Vec3::Zero();
+    Vec3 anchorChild = Vec3::Zero();
+    // Joint frame fixed in the parent (unit, orthonormal): axis d_k and the two directions d_i,
+    // d_j orthogonal to it, in the parent's frame. axisChild is d_k expressed in the child frame
+    // at the initial pose (the child's copy of the axis).
+    Vec3 axisParent = Vec3::UnitZ();
+    Vec3 perpParent1 = Vec3::UnitX(); // d_i
+    Vec3 perpParent2 = Vec3::UnitY(); // d_j
+    Vec3 axisChild = Vec3::UnitZ();
+    Vec3 perpChild1 = Vec3::UnitX(); // d_i in the child frame at the initial pose (angles, limits)
+    // Angle (universal) joint: a1 = perpParent1 fixed in the parent, b2 fixed in the child,
+    // with d_k = a1 x b2 (PAPER.md §4, the holonomic form).
+    Vec3 angleChildAxis = Vec3::UnitY();
+    // Relative orientation q_A^-1 q_B at the initial pose (prismatic, fixed).
+    Quat restRotation_AB = Quat::Identity();
+    // Joint limits (rad for revolute, m for prismatic); the contacts issue makes them one-sided rows.
+    std::optional<std::array<double, 2>> limits;
+    bool collideConnected = false; // the two bodies may collide with each other
+};
+
+struct Camera
+{
+    bool automatic = true; // frame the bodies when no camera is given
+    Vec3 position = Vec3(3, -3, 2);
+    Vec3 lookAt = Vec3(0, 0, 0.5);
+    double fovDegrees = 45.0;
+};
+
+struct ContactSettings
+{
+    double friction = 0.5;                  // Coulomb mu
+    double restitution = 0.0;               // Newton e
+    std::vector<std::array<int, 2>> ignore; // body index pairs that never collide
+};
+
+enum class SolverKind
+{
+    Linear,
+    Dense,
+    Pgs,
+};
+
+enum class IntegratorKind
+{
+    Euler,
+    Rattle,
+};
+
+struct SimulationSettings
+{
+    double dt = 0.001;                // s
+    double duration = 1.0;            // s
+    Vec3 gravity = Vec3(0, 0, -9.81); // m/s^2
+    SolverKind solver = SolverKind::Linear;
+    int pgsIterations = 20;
+    IntegratorKind integrator = IntegratorKind::Euler;
+};
+
+struct Model
+{
+    std::string name;
+    std::string sourceFile;
+    SimulationSettings simulation;
+    ContactSettings contact;
+    Camera camera;
+    std::vector<Body> bodies;
+    std::vector<Joint> joints;
+
+    int findBody(const std::string& bodyName) const;
+};
+
+int jointRowCount(JointType type);
+const char* jointTypeName(JointType type);
+std::optional<JointType> jointTypeFromName(const std::string& name);
+const char* solverName(SolverKind kind);
+std::optional<SolverKind> solverFromName(const std::string& name);
+const char* integratorName(IntegratorKind kind);
+std::optional<IntegratorKind> integratorFromName(const std::string& name);
+
+// Fills a joint's frames from world-space data at the model's initial pose: anchor (m) and unit
+// axis in world coordinates. Used by io/ for YAML and URDF alike.
+void setJointFrames(const Model& model, Joint& joint, const Vec3& anchor_W, const Vec3& axis_W);
+
+// Mass properties of a shape of the given density (kg/m^3) about its own origin, in its frame.
+struct MassProperties
+{
+    double mass = 0.0;           // kg
+    Mat3 inertia = Mat3::Zero(); // kg m^2 about the centre of mass, shape frame
+    Vec3 centre = Vec3::Zero();  // centre of mass in the shape frame (m); nonzero for meshes
+};
+MassProperties shapeMassProperties(const Shape& shape, double density);
+double shapeVolume(const Shape& shape);
+
+} // namespace frontier::core

@@ -1,0 +1,68 @@
+// core/state.cpp: initial state, energy and momentum.
+#include "core/state.h"
+
+namespace frontier::core
+{
+
+State initialState(const Model& model)
+{
+    State state;
+    state.bodies.reserve(model.bodies.size());
+    for (const Body& body : model.bodies)
+    {
+        BodyState s;
+        s.position_W = body.position_W;
+        s.orientation_WB = body.orientation_WB.normalized();
+        if (!body.isStatic)
+        {
+            s.velocity_W = body.velocity_W;
+            s.angularVelocity_W = body.angularVelocity_W;
+        }
+        state.bodies.push_back(s);
+    }
+    return state;
+}
+
+Mat3 worldInertia(const Body& body, const BodyState& state)
+{
+    const Mat3 r = state.orientation_WB.toRotationMatrix();
+    return r * body.inertia_B * r.transpose();
+}
+
+double totalEnergy(const Model& model, const State& state)
+{
+    double energy = 0.0;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const Body& body = model.bodies[i];
+        if (body.isStatic)
+        {
+            continue;
+        }
+        const BodyState& s = state.bodies[i];
+        energy += 0.5 * body.mass * s.velocity_W.squaredNorm();
+        energy += 0.5 * s.angularVelocity_W.dot(worldInertia(body, s) * s.angularVelocity_W);
+        energy -= body.mass * model.simulation.gravity.dot(s.position_W);
+    }
+    return energy;
+}
+
+Momentum totalMomentum(const Model& model, const State& state)
+{
+    Momentum p;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const Body& body = model.bodies[i];
+        if (body.isStatic)
+        {
+            continue;
+        }
+        const BodyState& s = state.bodies[i];
+        const Vec3 linear = body.mass * s.velocity_W;
+        p.linear += linear;
+        p.angular += s.position_W.cross(linear) + worldInertia(body, s) * s.angularVelocity_W;
+    }
+    return p;
+}
+
+} // namespace frontier::core

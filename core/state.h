@@ -1,0 +1,41 @@
+// core/state.h: what changes while stepping: poses and velocities of every body.
+#pragma once
+
+#include "core/model.h"
+
+#include <vector>
+
+namespace frontier::core
+{
+
+struct BodyState
+{
+    Vec3 position_W = Vec3::Zero();         // centre of mass (m)
+    Quat orientation_WB = Quat::Identity(); // body to world, unit
+    Vec3 velocity_W = Vec3::Zero();         // m/s
+    Vec3 angularVelocity_W = Vec3::Zero();  // rad/s
+};
+
+struct State
+{
+    double time = 0.0; // s
+    long step = 0;
+    std::vector<BodyState> bodies; // one per Model::bodies entry, static ones included (never change)
+};
+
+State initialState(const Model& model);
+
+// World-frame inertia R I_B R^T (kg m^2).
+Mat3 worldInertia(const Body& body, const BodyState& state);
+
+// Total mechanical energy: kinetic plus gravitational potential of moving bodies (J).
+double totalEnergy(const Model& model, const State& state);
+
+struct Momentum
+{
+    Vec3 linear = Vec3::Zero();  // kg m/s
+    Vec3 angular = Vec3::Zero(); // kg m^2/s, about the world origin
+};
+Momentum totalMomentum(const Model& model, const State& state);
+
+} // namespace frontier::core

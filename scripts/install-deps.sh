@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Frontier needs, only those that are missing.
+# Usage: scripts/install-deps.sh [--with-extras]
+#   --with-extras also installs gnuplot-nox (sweep charts) and ffmpeg (--video).
+# Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
+set -euo pipefail
+
+packages=(
+  cmake g++ pkg-config make
+  libeigen3-dev libfcl-dev libccd-dev liburdfdom-dev libyaml-cpp-dev
+  libosmesa6-dev libpng-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+)
+if [[ "${1:-}" == "--with-extras" ]]; then
+  packages+=(gnuplot-nox ffmpeg)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+if [[ $(id -u) -eq 0 ]]; then
+  apt_get=(apt-get)
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  apt_get=(sudo apt-get)
+else
+  echo "install-deps: not root and no passwordless sudo. Run this as root:" >&2
+  echo "  apt-get update && apt-get install -y --no-install-recommends ${missing[*]}" >&2
+  exit 2
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${apt_get[@]}" update -qq
+"${apt_get[@]}" install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Builds and runs the whole test suite: a Release build (warnings are errors) and an
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2.
+# Installs missing Debian packages first (scripts/install-deps.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${JOBS:-2}
+
+scripts/install-deps.sh
+
+echo "== Release build and tests"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFRONTIER_WERROR=ON >/dev/null
+cmake --build build -j"$jobs"
+ctest --test-dir build -j"$jobs" --output-on-failure
+
+echo "== Sanitizer build (address, undefined) and tests"
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DFRONTIER_SANITIZE=ON -DFRONTIER_BENCHMARKS=OFF \
+  -DFRONTIER_WERROR=ON >/dev/null
+cmake --build build-sanitize -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-sanitize -j"$jobs" --output-on-failure
