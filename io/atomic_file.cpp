@@ -1,0 +1,93 @@
+// io/atomic_file.cpp: temporary file in the target's directory, renamed on commit.
+#include "io/atomic_file.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+namespace frontier::io
+{
+
+namespace
+{
+std::string errnoText()
+{
+    return std::strerror(errno);
+}
+} // namespace
+
+AtomicFile::AtomicFile(std::string path) : mPath(std::move(path))
+{
+    std::string pattern = mPath + ".tmp-XXXXXX";
+    std::vector<char> buffer(pattern.begin(), pattern.end());
+    buffer.push_back('\0');
+    const int fd = ::mkstemp(buffer.data());
+    if (fd < 0)
+    {
+        throw OutputError(mPath + ": cannot create file: " + errnoText());
+    }
+    mTempPath = buffer.data();
+    // mkstemp creates mode 0600; output files are for sharing (rw-r--r--).
+    ::fchmod(fd, 0644);
+    mStream = ::fdopen(fd, "wb");
+    if (mStream == nullptr)
+    {
+        const std::string text = errnoText();
+        ::close(fd);
+        ::unlink(mTempPath.c_str());
+        throw OutputError(mPath + ": cannot open file: " + text);
+    }
+    static constexpr std::size_t cBufferBytes = 1 << 16;
+    std::setvbuf(mStream, nullptr, _IOFBF, cBufferBytes);
+}
+
+AtomicFile::~AtomicFile()
+{
+    if (mStream != nullptr)
+    {
+        std::fclose(mStream);
+    }
+    if (!mCommitted && !mTempPath.empty())
+    {
+        ::unlink(mTempPath.c_str());
+    }
+}
+
+void AtomicFile::write(const char* data, std::size_t size)
+{
+    if (mStream == nullptr)
+    {
+        throw OutputError(mPath + ": write after commit");
+    }
+    if (size > 0 && std::fwrite(data, 1, size, mStream) != size)
+    {
+        throw OutputError(mPath + ": cannot write: " + errnoText());
+    }
+}
+
+void AtomicFile::commit()
+{
+    if (mStream == nullptr)
+    {
+        throw OutputError(mPath + ": committed twice");
+    }
+    std::FILE* stream = mStream;
+    mStream = nullptr;
+    const bool flushed = std::fflush(stream) == 0 && !std::ferror(stream) && ::fsync(::fileno(stream)) == 0;
+    const std::string flushError = flushed ? std::string() : errnoText();
+    if (std::fclose(stream) != 0 || !flushed)
+    {
+        throw OutputError(mPath + ": cannot write: " + (flushed ? errnoText() : flushError));
+    }
+    if (std::rename(mTempPath.c_str(), mPath.c_str()) != 0)
+    {
+        throw OutputError(mPath + ": cannot rename " + mTempPath + ": " + errnoText());
+    }
+    mCommitted = true;
+}
+
+} // namespace frontier::io

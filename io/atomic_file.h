@@ -1,0 +1,45 @@
+// io/atomic_file.h: an output file that appears complete or not at all.
+//
+// Writes go to "PATH.tmp-XXXXXX" in the same directory; commit() flushes and renames it onto PATH
+// (atomic on POSIX file systems). Destroying it without commit() removes the temporary file, so a
+// failed run never leaves a truncated file that looks complete.
+#pragma once
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace frontier::io
+{
+
+// An output file could not be created or written (disk full, missing directory, permissions).
+class OutputError : public std::runtime_error
+{
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+class AtomicFile
+{
+  public:
+    explicit AtomicFile(std::string path); // throws OutputError
+    ~AtomicFile();
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    std::FILE* stream() { return mStream; }
+    void write(const char* data, std::size_t size); // throws OutputError
+    void write(const std::string& text) { write(text.data(), text.size()); }
+    void commit(); // throws OutputError; the file is then at path()
+    bool committed() const { return mCommitted; }
+    const std::string& path() const { return mPath; }
+    const std::string& tempPath() const { return mTempPath; }
+
+  private:
+    std::string mPath;
+    std::string mTempPath;
+    std::FILE* mStream = nullptr;
+    bool mCommitted = false;
+};
+
+} // namespace frontier::io

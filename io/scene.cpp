@@ -1,0 +1,31 @@
+// io/scene.cpp: loadScene dispatches on the file extension.
+#include "io/scene.h"
+
+#include "io/file_util.h"
+#include "io/urdf_model.h"
+#include "io/yaml_scene.h"
+
+namespace frontier::io
+{
+
+core::Model loadScene(const std::string& path)
+{
+    const std::string ext = detail::lowerExtension(path);
+    if (ext == ".urdf")
+    {
+        return detail::loadUrdfScene(path);
+    }
+    if (ext == ".yaml" || ext == ".yml")
+    {
+        return detail::loadYamlScene(detail::readTextFile(path), path);
+    }
+    throw InputError(
+        path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");
+}
+
+core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName)
+{
+    return detail::loadYamlScene(yamlText, sourceName);
+}
+
+} // namespace frontier::io

@@ -1,0 +1,215 @@
+// io/stats.cpp: stats JSON with nlohmann-json.
+#include "io/stats.h"
+
+#include "io/atomic_file.h"
+#include "io/file_util.h"
+#include "io/scene.h"
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+namespace frontier::io
+{
+
+namespace
+{
+
+using Json = nlohmann::ordered_json;
+
+Json number(double value)
+{
+    return std::isfinite(value) ? Json(value) : Json(nullptr);
+}
+
+const std::vector<std::string>& knownKeys()
+{
+    static const std::vector<std::string> keys = {"scene",
+                                                  "solver",
+                                                  "integrator",
+                                                  "pgs_iterations",
+                                                  "dt",
+                                                  "steps",
+                                                  "simulated_seconds",
+                                                  "bodies",
+                                                  "static_bodies",
+                                                  "joints",
+                                                  "constraint_rows",
+                                                  "degrees_of_freedom",
+                                                  "wall_seconds",
+                                                  "seconds_per_step",
+                                                  "max_joint_error_m",
+                                                  "max_penetration_m",
+                                                  "energy_initial_j",
+                                                  "energy_final_j",
+                                                  "max_contacts",
+                                                  "finite"};
+    return keys;
+}
+
+class Reader
+{
+  public:
+    Reader(const std::string& path, const nlohmann::json& json) : mPath(path), mJson(json) {}
+
+    const nlohmann::json& at(const std::string& key) const
+    {
+        const auto it = mJson.find(key);
+        if (it == mJson.end())
+        {
+            throw InputError(mPath, 0, 0, "missing key '" + key + "' in the stats file");
+        }
+        return *it;
+    }
+    std::string string(const std::string& key) const
+    {
+        const nlohmann::json& v = at(key);
+        if (!v.is_string())
+        {
+            throw InputError(mPath, 0, 0, "expected a string for '" + key + "', got " + v.dump());
+        }
+        return v.get<std::string>();
+    }
+    double number(const std::string& key) const
+    {
+        const nlohmann::json& v = at(key);
+        if (v.is_null())
+        {
+            return std::numeric_limits<double>::quiet_NaN();
+        }
+        if (!v.is_number())
+        {
+            throw InputError(mPath, 0, 0, "expected a number for '" + key + "', got " + v.dump());
+        }
+        return v.get<double>();
+    }
+    long integer(const std::string& key) const
+    {
+        const nlohmann::json& v = at(key);
+        if (!v.is_number_integer())
+        {
+            throw InputError(mPath, 0, 0, "expected an integer for '" + key + "', got " + v.dump());
+        }
+        return v.get<long>();
+    }
+    bool boolean(const std::string& key) const
+    {
+        const nlohmann::json& v = at(key);
+        if (!v.is_boolean())
+        {
+            throw InputError(mPath, 0, 0, "expected true or false for '" + key + "', got " + v.dump());
+        }
+        return v.get<bool>();
+    }
+
+  private:
+    const std::string& mPath;
+    const nlohmann::json& mJson;
+};
+
+} // namespace
+
+void fillModelCounts(RunStats& stats, const core::Model& model)
+{
+    stats.bodies = 0;
+    stats.staticBodies = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        (body.isStatic ? stats.staticBodies : stats.bodies) += 1;
+    }
+    stats.joints = static_cast<int>(model.joints.size());
+    stats.constraintRows = 0;
+    for (const core::Joint& joint : model.joints)
+    {
+        stats.constraintRows += core::jointRowCount(joint.type);
+    }
+    stats.degreesOfFreedom = 6 * stats.bodies - stats.constraintRows;
+}
+
+void writeStats(const std::string& path, const RunStats& stats)
+{
+    Json json;
+    json["scene"] = stats.scene;
+    json["solver"] = stats.solver;
+    json["integrator"] = stats.integrator;
+    json["pgs_iterations"] = stats.pgsIterations;
+    json["dt"] = number(stats.dt);
+    json["steps"] = stats.steps;
+    json["simulated_seconds"] = number(stats.simulatedSeconds);
+    json["bodies"] = stats.bodies;
+    json["static_bodies"] = stats.staticBodies;
+    json["joints"] = stats.joints;
+    json["constraint_rows"] = stats.constraintRows;
+    json["degrees_of_freedom"] = stats.degreesOfFreedom;
+    json["wall_seconds"] = number(stats.wallSeconds);
+    json["seconds_per_step"] = number(stats.secondsPerStep);
+    json["max_joint_error_m"] = number(stats.maxJointErrorM);
+    json["max_penetration_m"] = number(stats.maxPenetrationM);
+    json["energy_initial_j"] = number(stats.energyInitialJ);
+    json["energy_final_j"] = number(stats.energyFinalJ);
+    json["max_contacts"] = stats.maxContacts;
+    json["finite"] = stats.finite;
+    for (const auto& [key, value] : stats.extra)
+    {
+        if (!json.contains(key))
+        {
+            json[key] = number(value);
+        }
+    }
+    AtomicFile file(path);
+    file.write(json.dump(2) + "\n");
+    file.commit();
+}
+
+RunStats readStats(const std::string& path)
+{
+    const std::string text = detail::readTextFile(path);
+    nlohmann::json json;
+    try
+    {
+        json = nlohmann::json::parse(text);
+    }
+    catch (const nlohmann::json::parse_error& e)
+    {
+        const detail::TextPosition at = detail::positionOf(text, e.byte > 0 ? e.byte - 1 : 0);
+        throw InputError(path, at.line, at.column, std::string("invalid JSON: ") + e.what());
+    }
+    if (!json.is_object())
+    {
+        throw InputError(path, 1, 1, "expected a JSON object");
+    }
+    const Reader r(path, json);
+    RunStats s;
+    s.scene = r.string("scene");
+    s.solver = r.string("solver");
+    s.integrator = r.string("integrator");
+    s.pgsIterations = static_cast<int>(r.integer("pgs_iterations"));
+    s.dt = r.number("dt");
+    s.steps = r.integer("steps");
+    s.simulatedSeconds = r.number("simulated_seconds");
+    s.bodies = static_cast<int>(r.integer("bodies"));
+    s.staticBodies = static_cast<int>(r.integer("static_bodies"));
+    s.joints = static_cast<int>(r.integer("joints"));
+    s.constraintRows = static_cast<int>(r.integer("constraint_rows"));
+    s.degreesOfFreedom = static_cast<int>(r.integer("degrees_of_freedom"));
+    s.wallSeconds = r.number("wall_seconds");
+    s.secondsPerStep = r.number("seconds_per_step");
+    s.maxJointErrorM = r.number("max_joint_error_m");
+    s.maxPenetrationM = r.number("max_penetration_m");
+    s.energyInitialJ = r.number("energy_initial_j");
+    s.energyFinalJ = r.number("energy_final_j");
+    s.maxContacts = static_cast<int>(r.integer("max_contacts"));
+    s.finite = r.boolean("finite");
+    for (const auto& [key, value] : json.items())
+    {
+        const auto& known = knownKeys();
+        if (std::find(known.begin(), known.end(), key) == known.end() &&
+            (value.is_number() || value.is_null()))
+        {
+            s.extra[key] = r.number(key);
+        }
+    }
+    return s;
+}
+
+} // namespace frontier::io

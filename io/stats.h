@@ -1,0 +1,50 @@
+// io/stats.h: the stats JSON of a run (PRODUCT.md "Files", `frontier run --stats`).
+#pragma once
+
+#include "core/model.h"
+
+#include <map>
+#include <string>
+
+namespace frontier::io
+{
+
+// One run's summary. Every member is written under the JSON key in its comment. Non-finite
+// numbers are written as null and read back as NaN.
+struct RunStats
+{
+    std::string scene;                   // "scene": the scene file
+    std::string solver;                  // "solver": linear | dense | pgs
+    std::string integrator;              // "integrator": euler | rattle
+    int pgsIterations = 0;               // "pgs_iterations"
+    double dt = 0.0;                     // "dt" (s)
+    long steps = 0;                      // "steps" taken
+    double simulatedSeconds = 0.0;       // "simulated_seconds" (s)
+    int bodies = 0;                      // "bodies": moving bodies
+    int staticBodies = 0;                // "static_bodies"
+    int joints = 0;                      // "joints"
+    int constraintRows = 0;              // "constraint_rows": joint rows
+    int degreesOfFreedom = 0;            // "degrees_of_freedom": 6 bodies - joint rows
+    double wallSeconds = 0.0;            // "wall_seconds" (s)
+    double secondsPerStep = 0.0;         // "seconds_per_step" (s)
+    double maxJointErrorM = 0.0;         // "max_joint_error_m" (m): worst joint anchor separation
+    double maxPenetrationM = 0.0;        // "max_penetration_m" (m)
+    double energyInitialJ = 0.0;         // "energy_initial_j" (J)
+    double energyFinalJ = 0.0;           // "energy_final_j" (J)
+    int maxContacts = 0;                 // "max_contacts": most contacts in one step
+    bool finite = true;                  // "finite": every state stayed finite
+    std::map<std::string, double> extra; // further numeric keys, written at the top level
+};
+
+// Fills the model's counts: bodies (moving), static_bodies, joints, constraint_rows (joint rows)
+// and degrees_of_freedom (6 per moving body minus the joint rows).
+void fillModelCounts(RunStats& stats, const core::Model& model);
+
+// Writes pretty JSON atomically (temporary file + rename); throws OutputError (io/atomic_file.h).
+void writeStats(const std::string& path, const RunStats& stats);
+
+// Reads a stats file; throws InputError for unreadable JSON (with line and column), missing keys
+// or values of the wrong type. Unknown numeric keys go to `extra`.
+RunStats readStats(const std::string& path);
+
+} // namespace frontier::io

@@ -1,0 +1,314 @@
+// io/trajectory.cpp: trajectory CSV writer (atomic) and reader (located errors).
+#include "io/trajectory.h"
+
+#include "io/atomic_file.h"
+#include "io/file_util.h"
+#include "io/scene.h"
+
+#include <charconv>
+#include <cstdio>
+#include <string_view>
+
+namespace frontier::io
+{
+
+namespace
+{
+
+constexpr const char* cMetadataPrefix = "# frontier trajectory:";
+constexpr std::array<const char*, 15> cColumns = {"time", "body", "px", "py", "pz", "qw", "qx", "qy",
+                                                  "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
+
+// 17 significant digits: enough for every double to read back to the same bits.
+void appendNumber(std::string& out, double value)
+{
+    char buffer[32];
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, 17);
+    out.append(buffer, result.ptr);
+}
+
+std::string formatNumber(double value)
+{
+    std::string out;
+    appendNumber(out, value);
+    return out;
+}
+
+std::string encodeField(const std::string& text)
+{
+    static constexpr char hex[] = "0123456789ABCDEF";
+    std::string out;
+    for (const char c : text)
+    {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '%' || c == ' ' || c == '=' || c == ',' || u < 0x20 || u == 0x7f)
+        {
+            out += '%';
+            out += hex[u >> 4];
+            out += hex[u & 15];
+        }
+        else
+        {
+            out += c;
+        }
+    }
+    return out;
+}
+
+int hexDigit(char c)
+{
+    if (c >= '0' && c <= '9')
+    {
+        return c - '0';
+    }
+    if (c >= 'A' && c <= 'F')
+    {
+        return c - 'A' + 10;
+    }
+    if (c >= 'a' && c <= 'f')
+    {
+        return c - 'a' + 10;
+    }
+    return -1;
+}
+
+std::string decodeField(std::string_view text)
+{
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i)
+    {
+        if (text[i] == '%' && i + 2 < text.size() && hexDigit(text[i + 1]) >= 0 && hexDigit(text[i + 2]) >= 0)
+        {
+            out += static_cast<char>(hexDigit(text[i + 1]) * 16 + hexDigit(text[i + 2]));
+            i += 2;
+        }
+        else
+        {
+            out += text[i];
+        }
+    }
+    return out;
+}
+
+struct Field
+{
+    std::string_view text;
+    int column; // 1-based
+};
+
+std::vector<Field> splitFields(std::string_view line, char separator)
+{
+    std::vector<Field> out;
+    std::size_t start = 0;
+    while (true)
+    {
+        const std::size_t end = line.find(separator, start);
+        out.push_back(
+            {line.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start),
+             static_cast<int>(start) + 1});
+        if (end == std::string_view::npos)
+        {
+            return out;
+        }
+        start = end + 1;
+    }
+}
+
+} // namespace
+
+TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
+                                          const core::SimulationSettings& settings, long steps,
+                                          int recordEvery)
+{
+    return {
+        {"scene", scenePath},
+        {"dt", formatNumber(settings.dt)},
+        {"solver", core::solverName(settings.solver)},
+        {"pgs_iterations", std::to_string(settings.pgsIterations)},
+        {"integrator", core::integratorName(settings.integrator)},
+        {"steps", std::to_string(steps)},
+        {"record_every", std::to_string(recordEvery)},
+        {"duration", formatNumber(settings.duration)},
+    };
+}
+
+TrajectoryWriter::TrajectoryWriter(const std::string& path, const TrajectoryMetadata& metadata)
+    : mFile(std::make_unique<AtomicFile>(path))
+{
+    std::string head = cMetadataPrefix;
+    for (const auto& [key, value] : metadata)
+    {
+        head += ' ' + encodeField(key) + '=' + encodeField(value);
+    }
+    head += '\n';
+    head += cTrajectoryHeader;
+    head += '\n';
+    mFile->write(head);
+}
+
+TrajectoryWriter::~TrajectoryWriter() = default;
+
+void TrajectoryWriter::writeState(const core::Model& model, const core::State& state)
+{
+    std::string buffer;
+    buffer.reserve(512);
+    for (std::size_t i = 0; i < model.bodies.size() && i < state.bodies.size(); ++i)
+    {
+        const core::Body& body = model.bodies[i];
+        if (body.isStatic)
+        {
+            continue;
+        }
+        const core::BodyState& s = state.bodies[i];
+        buffer.clear();
+        appendNumber(buffer, state.time);
+        buffer += ',';
+        buffer += body.name;
+        const double values[13] = {s.position_W.x(),       s.position_W.y(),        s.position_W.z(),
+                                   s.orientation_WB.w(),   s.orientation_WB.x(),    s.orientation_WB.y(),
+                                   s.orientation_WB.z(),   s.velocity_W.x(),        s.velocity_W.y(),
+                                   s.velocity_W.z(),       s.angularVelocity_W.x(), s.angularVelocity_W.y(),
+                                   s.angularVelocity_W.z()};
+        for (const double v : values)
+        {
+            buffer += ',';
+            appendNumber(buffer, v);
+        }
+        buffer += '\n';
+        mFile->write(buffer);
+        ++mRows;
+    }
+}
+
+void TrajectoryWriter::commit()
+{
+    mFile->commit();
+}
+
+core::BodyState TrajectoryRow::state() const
+{
+    core::BodyState s;
+    s.position_W = core::Vec3(values[0], values[1], values[2]);
+    s.orientation_WB = core::Quat(values[3], values[4], values[5], values[6]);
+    s.velocity_W = core::Vec3(values[7], values[8], values[9]);
+    s.angularVelocity_W = core::Vec3(values[10], values[11], values[12]);
+    return s;
+}
+
+Trajectory readTrajectory(const std::string& path)
+{
+    const std::string text = detail::readTextFile(path);
+    Trajectory out;
+    bool haveHeader = false;
+    int lineNumber = 0;
+    std::size_t pos = 0;
+    while (pos < text.size())
+    {
+        const std::size_t end = text.find('\n', pos);
+        std::string_view line(text.data() + pos, (end == std::string::npos ? text.size() : end) - pos);
+        pos = end == std::string::npos ? text.size() : end + 1;
+        ++lineNumber;
+        if (!line.empty() && line.back() == '\r')
+        {
+            line.remove_suffix(1);
+        }
+        if (line.empty())
+        {
+            continue;
+        }
+        if (!haveHeader && line.front() == '#')
+        {
+            if (line.starts_with(cMetadataPrefix))
+            {
+                const std::size_t offset = std::string_view(cMetadataPrefix).size();
+                for (const Field& pair : splitFields(line.substr(offset), ' '))
+                {
+                    if (pair.text.empty())
+                    {
+                        continue;
+                    }
+                    const std::size_t eq = pair.text.find('=');
+                    if (eq == std::string_view::npos)
+                    {
+                        throw InputError(path, lineNumber, static_cast<int>(offset) + pair.column,
+                                         "expected key=value in the trajectory comment, got '" +
+                                             std::string(pair.text) + "'");
+                    }
+                    out.metadata[decodeField(pair.text.substr(0, eq))] =
+                        decodeField(pair.text.substr(eq + 1));
+                }
+            }
+            continue;
+        }
+        const std::vector<Field> fields = splitFields(line, ',');
+        if (!haveHeader)
+        {
+            for (std::size_t i = 0; i < cColumns.size(); ++i)
+            {
+                if (i >= fields.size())
+                {
+                    throw InputError(path, lineNumber, static_cast<int>(line.size()) + 1,
+                                     std::string("missing column '") + cColumns[i] +
+                                         "' in the header; expected '" + cTrajectoryHeader + "'");
+                }
+                if (fields[i].text != cColumns[i])
+                {
+                    throw InputError(path, lineNumber, fields[i].column,
+                                     std::string("expected column '") + cColumns[i] +
+                                         "' in the header, got '" + std::string(fields[i].text) + "'");
+                }
+            }
+            if (fields.size() > cColumns.size())
+            {
+                throw InputError(path, lineNumber, fields[cColumns.size()].column,
+                                 "unexpected column '" + std::string(fields[cColumns.size()].text) +
+                                     "' in the header; expected '" + cTrajectoryHeader + "'");
+            }
+            haveHeader = true;
+            continue;
+        }
+        if (fields.size() != cColumns.size())
+        {
+            const int column = fields.size() > cColumns.size() ? fields[cColumns.size()].column
+                                                               : static_cast<int>(line.size()) + 1;
+            throw InputError(path, lineNumber, column,
+                             "expected " + std::to_string(cColumns.size()) + " fields, got " +
+                                 std::to_string(fields.size()));
+        }
+        TrajectoryRow row;
+        const auto number = [&](std::size_t index)
+        {
+            const Field& field = fields[index];
+            double value = 0.0;
+            const char* first = field.text.data();
+            const char* last = first + field.text.size();
+            const auto result = std::from_chars(first, last, value);
+            if (field.text.empty() || result.ec != std::errc() || result.ptr != last)
+            {
+                throw InputError(path, lineNumber, field.column,
+                                 std::string("expected a number for '") + cColumns[index] + "', got '" +
+                                     std::string(field.text) + "'");
+            }
+            return value;
+        };
+        row.time = number(0);
+        if (fields[1].text.empty())
+        {
+            throw InputError(path, lineNumber, fields[1].column, "expected a body name, got an empty field");
+        }
+        row.body = std::string(fields[1].text);
+        for (std::size_t i = 0; i < row.values.size(); ++i)
+        {
+            row.values[i] = number(i + 2);
+        }
+        out.rows.push_back(std::move(row));
+    }
+    if (!haveHeader)
+    {
+        throw InputError(path, lineNumber, 0,
+                         std::string("no header line; expected '") + cTrajectoryHeader + "'");
+    }
+    return out;
+}
+
+} // namespace frontier::io

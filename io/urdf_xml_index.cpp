@@ -1,0 +1,143 @@
+// io/urdf_xml_index.cpp: element positions of a URDF file via TinyXML.
+#include "io/urdf_xml_index.h"
+
+#include "io/scene.h"
+
+#include <tinyxml.h>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+void indexChildren(const TiXmlElement& parent, const std::string& prefix,
+                   std::map<std::string, TextPosition>& out)
+{
+    for (const TiXmlElement* child = parent.FirstChildElement(); child != nullptr;
+         child = child->NextSiblingElement())
+    {
+        const std::string key = prefix + "/" + child->Value();
+        out.try_emplace(key, TextPosition{child->Row(), child->Column()}); // the first one of a kind
+        indexChildren(*child, key, out);
+    }
+}
+} // namespace
+
+UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : mText(text)
+{
+    TiXmlDocument document;
+    document.Parse(text.c_str());
+    if (document.Error())
+    {
+        throw InputError(file, document.ErrorRow(), document.ErrorCol(),
+                         std::string("invalid XML: ") + document.ErrorDesc());
+    }
+    const TiXmlElement* robot = document.RootElement();
+    if (robot == nullptr || std::string(robot->Value()) != "robot")
+    {
+        const int row = robot != nullptr ? robot->Row() : 0;
+        const int column = robot != nullptr ? robot->Column() : 0;
+        throw InputError(file, row, column, "expected a <robot> root element");
+    }
+    for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement())
+    {
+        const std::string kind = e->Value();
+        if (kind != "link" && kind != "joint")
+        {
+            continue;
+        }
+        const char* name = e->Attribute("name");
+        if (name == nullptr)
+        {
+            continue; // urdfdom reports it
+        }
+        const std::string key = kind + ":" + name;
+        if (!mElements.try_emplace(key, TextPosition{e->Row(), e->Column()}).second)
+        {
+            continue;
+        }
+        (kind == "link" ? mLinkNames : mJointNames).push_back(name);
+        indexChildren(*e, key, mElements);
+    }
+}
+
+TextPosition UrdfXmlIndex::element(const std::string& kind, const std::string& name,
+                                   const std::string& childPath) const
+{
+    std::string key = kind + ":" + name + (childPath.empty() ? "" : "/" + childPath);
+    while (true)
+    {
+        const auto it = mElements.find(key);
+        if (it != mElements.end())
+        {
+            return it->second;
+        }
+        const std::size_t slash = key.rfind('/');
+        if (slash == std::string::npos)
+        {
+            return {};
+        }
+        key.resize(slash);
+    }
+}
+
+TextPosition UrdfXmlIndex::find(const std::string& needle) const
+{
+    const std::size_t pos = mText.find(needle);
+    return pos == std::string::npos ? TextPosition{} : positionOf(mText, pos);
+}
+
+TextPosition UrdfXmlIndex::locateMessage(const std::string& message) const
+{
+    // Names quoted as [name] or 'name', in order.
+    std::vector<std::pair<std::string, std::size_t>> names; // name, position in message
+    for (std::size_t i = 0; i < message.size(); ++i)
+    {
+        const char open = message[i];
+        if (open != '[' && open != '\'')
+        {
+            continue;
+        }
+        const char close = open == '[' ? ']' : '\'';
+        const std::size_t end = message.find(close, i + 1);
+        if (end == std::string::npos)
+        {
+            break;
+        }
+        names.emplace_back(message.substr(i + 1, end - i - 1), i);
+        i = end;
+    }
+    for (const auto& [name, at] : names)
+    {
+        if (name.empty())
+        {
+            continue;
+        }
+        // The word just before the name says what it is: "Link [a]", "joint [j]".
+        const std::string before = message.substr(at >= 6 ? at - 6 : 0, at >= 6 ? 6 : at);
+        for (const char* kind : {"link", "joint"})
+        {
+            const std::string upper = std::string(1, static_cast<char>(kind[0] - 'a' + 'A')) + (kind + 1);
+            if (before.find(kind) != std::string::npos || before.find(upper) != std::string::npos)
+            {
+                const TextPosition p = element(kind, name);
+                if (p.line > 0)
+                {
+                    return p;
+                }
+            }
+        }
+        for (const std::string& quoted :
+             {"\"" + name + "\"", "'" + name + "'", "\"" + name + " ", " " + name + "\"", "<" + name})
+        {
+            const TextPosition p = find(quoted);
+            if (p.line > 0)
+            {
+                return p;
+            }
+        }
+    }
+    return {};
+}
+
+} // namespace frontier::io::detail

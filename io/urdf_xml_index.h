@@ -1,0 +1,47 @@
+// io/urdf_xml_index.h: where things are in a URDF file's text (urdfdom reports no line numbers).
+//
+// The text is parsed once with TinyXML (the parser urdfdom itself uses), which gives XML syntax
+// errors with their row and column, and the row/column of every <link> and <joint> element and
+// of their children.
+#pragma once
+
+#include "io/file_util.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace frontier::io::detail
+{
+
+class UrdfXmlIndex
+{
+  public:
+    // Throws InputError(file, row, column, ...) when the text is not well-formed XML.
+    UrdfXmlIndex(const std::string& file, const std::string& text);
+
+    // Position of <link name="name"> (kind "link") or <joint> (kind "joint"), or of a child
+    // element path below it ("inertial/mass"); falls back to the closest existing ancestor, and to
+    // {0, 0} when the element is unknown.
+    TextPosition element(const std::string& kind, const std::string& name,
+                         const std::string& childPath = "") const;
+
+    // Position of the first occurrence of `needle` in the text, or {0, 0}.
+    TextPosition find(const std::string& needle) const;
+
+    // Best guess for a urdfdom log message: the first name it quotes in [..] or '..' that names
+    // a link or joint (when the message says "link"/"joint") or appears as an attribute value.
+    TextPosition locateMessage(const std::string& message) const;
+
+    // Names of <link> and <joint> elements in document order.
+    const std::vector<std::string>& linkNames() const { return mLinkNames; }
+    const std::vector<std::string>& jointNames() const { return mJointNames; }
+
+  private:
+    std::string mText;
+    std::map<std::string, TextPosition> mElements; // "link:NAME/inertial/mass" -> position
+    std::vector<std::string> mLinkNames;
+    std::vector<std::string> mJointNames;
+};
+
+} // namespace frontier::io::detail

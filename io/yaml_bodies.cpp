@@ -1,0 +1,449 @@
+// io/yaml_bodies.cpp: the `bodies:` list of a YAML scene: shapes, mass properties, initial state.
+//
+// Mass properties of a moving body (scenes/README.md, "Mass properties"):
+//   mass + inertia   as given; the body frame is the frame given by position/orientation;
+//   mass only        inertia of the shapes scaled to that mass;
+//   density only     mass and inertia of the shapes at that density (kg/m^3);
+//   neither          density 1000 kg/m^3 (water) when the body has a solid shape, else an error.
+// When the mass comes from the shapes, the body's position is shifted to their centre of mass and
+// the shapes are moved by the opposite amount, so they stay where the scene put them (this matters
+// for meshes and for shapes placed off the body origin).
+#include "io/file_util.h"
+#include "io/mass_properties.h"
+#include "io/mesh_file.h"
+#include "io/scene.h"
+#include "io/suggest.h"
+#include "io/yaml_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+
+constexpr double cDefaultDensity = 1000.0; // kg/m^3
+
+const std::vector<std::string> cBodyKeys = {
+    "name",     "static",      "shape",    "shapes",           "mass",  "density", "inertia",
+    "position", "orientation", "velocity", "angular_velocity", "color", "group"};
+
+const std::vector<std::string> cShapeTypes = {"box", "sphere", "capsule", "cylinder", "plane", "mesh"};
+const std::vector<std::string> cAllShapeKeys = {"type",   "size", "radius", "length",   "normal",
+                                                "offset", "file", "scale",  "position", "orientation"};
+
+std::vector<std::string> shapeKeys(core::ShapeType type)
+{
+    switch (type)
+    {
+    case core::ShapeType::Box:
+        return {"type", "size", "position", "orientation"};
+    case core::ShapeType::Sphere:
+        return {"type", "radius", "position", "orientation"};
+    case core::ShapeType::Capsule:
+    case core::ShapeType::Cylinder:
+        return {"type", "radius", "length", "position", "orientation"};
+    case core::ShapeType::Plane:
+        return {"type", "normal", "offset"};
+    case core::ShapeType::Mesh:
+        return {"type", "file", "scale", "position", "orientation"};
+    }
+    return {};
+}
+
+struct ShapeEntry
+{
+    core::Shape shape;
+    YAML::Node typeNode; // for messages about the shape as a whole
+    YAML::Node fileNode; // meshes
+};
+
+core::Shape readMesh(const MapNode& map)
+{
+    const YAML::Node fileNode = map.require("file");
+    const std::string file = toString(map.source(), fileNode, map.what("file"));
+    core::Vec3 scale = core::Vec3::Ones();
+    if (map.has("scale"))
+    {
+        const YAML::Node scaleNode = map.get("scale");
+        if (scaleNode.IsSequence())
+        {
+            scale = toVec3(map.source(), scaleNode, map.what("scale"));
+            if (!(scale.minCoeff() > 0.0))
+            {
+                failAt(map.source(), scaleNode, "expected positive numbers for " + map.what("scale"));
+            }
+        }
+        else
+        {
+            scale.setConstant(toPositive(map.source(), scaleNode, map.what("scale")));
+        }
+    }
+    const std::string path = resolvePath(map.source().baseDir, file);
+    try
+    {
+        return loadMeshFile(path, scale);
+    }
+    catch (const InputError& e)
+    {
+        if (e.line() > 0)
+        {
+            throw; // inside the mesh file: keep its location
+        }
+        failAt(map.source(), fileNode, "cannot read mesh file '" + path + "': " + e.message());
+    }
+}
+
+ShapeEntry readShape(const YamlSource& source, const YAML::Node& node, const std::string& context)
+{
+    MapNode map(source, node, context);
+    if (!map.has("type"))
+    {
+        map.checkKeys(cAllShapeKeys);
+    }
+    ShapeEntry entry;
+    entry.typeNode = map.require("type");
+    const std::string typeName = toString(source, entry.typeNode, map.what("type"));
+    const std::size_t typeIndex = static_cast<std::size_t>(
+        std::find(cShapeTypes.begin(), cShapeTypes.end(), typeName) - cShapeTypes.begin());
+    if (typeIndex == cShapeTypes.size())
+    {
+        const std::string match = closestMatch(typeName, cShapeTypes);
+        failAt(source, entry.typeNode,
+               "unknown shape type '" + typeName + "' in " + context +
+                   (match.empty() ? "" : "; did you mean '" + match + "'?") +
+                   " (known: " + joinNames(cShapeTypes) + ")");
+    }
+    core::Shape& shape = entry.shape;
+    shape.type = static_cast<core::ShapeType>(typeIndex); // cShapeTypes follows the enum's order
+    map.setContext(typeName + " " + context);
+    map.checkKeys(shapeKeys(shape.type));
+    switch (shape.type)
+    {
+    case core::ShapeType::Box:
+    {
+        const YAML::Node size = map.require("size");
+        shape.size = toVec3(source, size, map.what("size"));
+        if (!(shape.size.minCoeff() > 0.0))
+        {
+            failAt(source, size, "expected positive numbers for " + map.what("size") + " (full extents, m)");
+        }
+        break;
+    }
+    case core::ShapeType::Sphere:
+        shape.radius = toPositive(source, map.require("radius"), map.what("radius"));
+        break;
+    case core::ShapeType::Capsule:
+    case core::ShapeType::Cylinder:
+        shape.radius = toPositive(source, map.require("radius"), map.what("radius"));
+        shape.length = toPositive(source, map.require("length"), map.what("length"));
+        break;
+    case core::ShapeType::Plane:
+        shape.normal = toDirection(source, map.require("normal"), map.what("normal"));
+        shape.offset = map.optNumber("offset").value_or(0.0);
+        break;
+    case core::ShapeType::Mesh:
+        entry.fileNode = map.get("file");
+        shape = readMesh(map);
+        break;
+    }
+    shape.position_BS = map.optVec3("position").value_or(core::Vec3::Zero());
+    shape.rotation_BS = map.optQuaternion("orientation").value_or(core::Quat::Identity());
+    return entry;
+}
+
+std::vector<ShapeEntry> readShapes(const MapNode& body)
+{
+    std::vector<ShapeEntry> out;
+    const std::string bodyContext = body.context();
+    if (body.has("shape") && body.has("shapes"))
+    {
+        body.failAtKey("shapes", "give either 'shape' or 'shapes' in " + bodyContext + ", not both");
+    }
+    if (body.has("shape"))
+    {
+        out.push_back(readShape(body.source(), body.get("shape"), "shape of " + bodyContext));
+    }
+    if (body.has("shapes"))
+    {
+        const YAML::Node list = requireSequence(body.source(), body.get("shapes"), body.what("shapes"));
+        for (std::size_t i = 0; i < list.size(); ++i)
+        {
+            out.push_back(
+                readShape(body.source(), list[i], "shape #" + std::to_string(i + 1) + " of " + bodyContext));
+        }
+    }
+    return out;
+}
+
+// [ixx, iyy, izz], [ixx, iyy, izz, ixy, ixz, iyz] or a 3x3 matrix (kg m^2); positive-definite.
+core::Mat3 readInertia(const MapNode& body)
+{
+    const YAML::Node node = body.get("inertia");
+    const std::string what = body.what("inertia");
+    core::Mat3 inertia = core::Mat3::Zero();
+    if (node.IsSequence() && node.size() == 3 && node[0].IsSequence())
+    {
+        for (std::size_t r = 0; r < 3; ++r)
+        {
+            const std::vector<double> row =
+                toNumbers(body.source(), node[r], "row " + std::to_string(r + 1) + " of " + what, 3);
+            for (std::size_t c = 0; c < 3; ++c)
+            {
+                inertia(static_cast<int>(r), static_cast<int>(c)) = row[c];
+            }
+        }
+        if ((inertia - inertia.transpose()).cwiseAbs().maxCoeff() > 1e-12 * inertia.norm())
+        {
+            failAt(body.source(), node, "expected a symmetric matrix for " + what);
+        }
+    }
+    else if (node.IsSequence() && node.size() == 6)
+    {
+        const std::vector<double> v = toNumbers(body.source(), node, what, 6);
+        inertia << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+    }
+    else if (node.IsSequence() && node.size() == 3)
+    {
+        const std::vector<double> v = toNumbers(body.source(), node, what, 3);
+        inertia.diagonal() = core::Vec3(v[0], v[1], v[2]);
+    }
+    else
+    {
+        failAt(body.source(), node,
+               "expected [ixx, iyy, izz], [ixx, iyy, izz, ixy, ixz, iyz] or a 3x3 matrix for " + what +
+                   ", got " + describeNode(node));
+    }
+    if (!isPositiveDefinite(inertia))
+    {
+        failAt(body.source(), node, "expected a positive-definite inertia for " + what + " (kg m^2)");
+    }
+    return inertia;
+}
+
+void readMassProperties(const MapNode& map, std::vector<ShapeEntry>& shapes, core::Body& body,
+                        core::Vec3& centre_D)
+{
+    const std::string& context = map.context();
+    const std::optional<double> mass = map.optPositive("mass");
+    const std::optional<double> density = map.optPositive("density");
+    if (mass && density)
+    {
+        map.failAtKey("density", "give either 'mass' or 'density' in " + context + ", not both");
+    }
+    if (map.has("inertia") && !mass)
+    {
+        map.failAtKey("inertia",
+                      "'inertia' in " + context +
+                          " needs 'mass' (with 'density' or neither, the inertia comes from the shapes)");
+    }
+    centre_D.setZero();
+    if (mass && map.has("inertia"))
+    {
+        body.mass = *mass;
+        body.inertia_B = readInertia(map);
+        return;
+    }
+    std::vector<core::Shape> solids;
+    for (const ShapeEntry& entry : shapes)
+    {
+        if (entry.shape.type == core::ShapeType::Mesh && !(core::shapeVolume(entry.shape) > 0.0))
+        {
+            failAt(
+                map.source(), entry.fileNode,
+                "mesh '" + entry.shape.meshFile + "' of " + context +
+                    " encloses no positive volume (is it closed, with triangles counter-clockwise seen from "
+                    "outside?); give 'mass' and 'inertia' instead");
+        }
+        solids.push_back(entry.shape);
+    }
+    if (solids.empty())
+    {
+        if (mass)
+        {
+            map.failAtKey("mass", context +
+                                      " has 'mass' but no solid shape to compute its inertia from; give "
+                                      "'inertia' too");
+        }
+        map.fail("missing key 'mass' in " + context +
+                 " (a moving body without a solid shape needs 'mass' and 'inertia')");
+    }
+    const CompositeMass composite = compositeMassProperties(solids, density.value_or(cDefaultDensity));
+    body.mass = mass.value_or(composite.mass);
+    body.inertia_B = composite.inertia * (body.mass / composite.mass);
+    centre_D = composite.centre;
+    if (!isPositiveDefinite(body.inertia_B))
+    {
+        map.fail("the shapes of " + context +
+                 " give an inertia that is not positive-definite; give 'inertia'");
+    }
+}
+
+core::Vec3 readColor(const MapNode& map)
+{
+    const YAML::Node node = map.get("color");
+    const std::vector<double> v = toNumbers(map.source(), node, map.what("color") + " (r, g, b)", 3);
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+        if (v[i] < 0.0 || v[i] > 1.0)
+        {
+            failAt(map.source(), node[i],
+                   "expected a number in [0, 1] for " + map.what("color") + ", got " + describeNode(node[i]));
+        }
+    }
+    return {v[0], v[1], v[2]};
+}
+
+void readBody(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+{
+    const YamlSource& source = builder.source;
+    MapNode map(source, node, "body #" + std::to_string(index + 1));
+    if (map.get("name").IsScalar())
+    {
+        map.setContext("body '" + map.get("name").Scalar() + "'");
+    }
+    map.checkKeys(cBodyKeys);
+    const std::string& context = map.context();
+    core::Body body;
+    const YAML::Node nameNode = map.require("name");
+    body.name = toString(source, nameNode, map.what("name"));
+    checkNewName(builder, nameNode, "body");
+    body.isStatic = map.optBool("static").value_or(false);
+    if (body.isStatic)
+    {
+        for (const char* key : {"mass", "density", "inertia", "velocity", "angular_velocity"})
+        {
+            if (map.has(key))
+            {
+                map.failAtKey(key,
+                              "static " + context + " cannot have '" + key + "' (static bodies do not move)");
+            }
+        }
+    }
+    const core::Vec3 position = map.optVec3("position").value_or(core::Vec3::Zero());
+    const core::Quat orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
+    body.velocity_W = map.optVec3("velocity").value_or(core::Vec3::Zero());
+    body.angularVelocity_W = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
+    if (map.has("color"))
+    {
+        body.color = readColor(map);
+    }
+    if (map.has("group"))
+    {
+        body.group = map.string("group");
+        if (body.group.empty())
+        {
+            map.failAtValue("group", "expected a non-empty name for " + map.what("group"));
+        }
+    }
+    std::vector<ShapeEntry> shapes = readShapes(map);
+    core::Vec3 centre_D = core::Vec3::Zero(); // centre of mass in the frame given by position/orientation
+    if (!body.isStatic)
+    {
+        for (const ShapeEntry& entry : shapes)
+        {
+            if (entry.shape.type == core::ShapeType::Plane)
+            {
+                failAt(source, entry.typeNode,
+                       "a plane shape needs a static body, but " + context +
+                           " is moving (add 'static: true', or use a box)");
+            }
+        }
+        readMassProperties(map, shapes, body, centre_D);
+    }
+    body.position_W = position + orientation * centre_D;
+    body.orientation_WB = orientation;
+    for (ShapeEntry& entry : shapes)
+    {
+        core::Shape& shape = entry.shape;
+        if (shape.type == core::ShapeType::Plane)
+        {
+            // normal and offset are world quantities: give the plane the world frame as its frame.
+            shape.rotation_BS = orientation.conjugate();
+            shape.position_BS = -(orientation.conjugate() * body.position_W);
+        }
+        else
+        {
+            shape.position_BS -= centre_D;
+        }
+        body.shapes.push_back(std::move(shape));
+    }
+    builder.bodyMarks[body.name] = nameNode.Mark();
+    builder.model.bodies.push_back(std::move(body));
+}
+
+} // namespace
+
+void readBodies(SceneBuilder& builder, const YAML::Node& bodies)
+{
+    requireSequence(builder.source, bodies, "'bodies'");
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        readBody(builder, bodies[i], i);
+    }
+}
+
+void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const std::string& kind)
+{
+    const std::string name = nameNode.Scalar();
+    const std::string reason = invalidNameReason(name);
+    if (!reason.empty())
+    {
+        failAt(builder.source, nameNode, "invalid " + kind + " name '" + name + "': " + reason);
+    }
+    const auto& marks = kind == "body" ? builder.bodyMarks : builder.jointMarks;
+    bool taken = false;
+    if (kind == "body")
+    {
+        taken = builder.model.findBody(name) >= 0;
+    }
+    else
+    {
+        for (const core::Joint& joint : builder.model.joints)
+        {
+            taken = taken || joint.name == name;
+        }
+    }
+    if (taken)
+    {
+        const auto it = marks.find(name);
+        failAt(builder.source, nameNode,
+               "duplicate " + kind + " name '" + name + "'" +
+                   (it != marks.end() ? " (first defined at line " + std::to_string(it->second.line + 1) + ")"
+                                      : " (already defined by a URDF model)"));
+    }
+}
+
+int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
+                    bool allowWorld)
+{
+    const std::string name = toString(builder.source, node, what);
+    if (name == "world")
+    {
+        if (!allowWorld)
+        {
+            failAt(builder.source, node, "the world cannot be " + what);
+        }
+        return core::cWorld;
+    }
+    const int index = builder.model.findBody(name);
+    if (index < 0)
+    {
+        std::vector<std::string> names;
+        for (const core::Body& body : builder.model.bodies)
+        {
+            names.push_back(body.name);
+        }
+        if (allowWorld)
+        {
+            names.emplace_back("world");
+        }
+        failAt(builder.source, node,
+               "unknown body '" + name + "' for " + what + suggestionSuffix(name, names, false));
+    }
+    return index;
+}
+
+} // namespace frontier::io::detail

@@ -1,0 +1,136 @@
+// io/yaml_joints.cpp: the `joints:` list of a YAML scene.
+//
+// Anchors and axes are world quantities at the initial pose; core::setJointFrames turns them into
+// the per-body frames. A static parent acts as the world but keeps its index.
+#include "io/scene.h"
+#include "io/suggest.h"
+#include "io/yaml_scene.h"
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+
+const std::vector<std::string> cJointKeys = {"name",   "type", "parent", "child",
+                                             "anchor", "axis", "limits", "collide"};
+const std::vector<std::string> cJointTypes = {"ball",        "nail",      "revolute", "angle",
+                                              "cylindrical", "prismatic", "fixed"};
+
+bool needsAxis(core::JointType type)
+{
+    return type == core::JointType::Revolute || type == core::JointType::Angle ||
+           type == core::JointType::Cylindrical || type == core::JointType::Prismatic;
+}
+
+bool hasLimits(core::JointType type)
+{
+    return type == core::JointType::Revolute || type == core::JointType::Prismatic;
+}
+
+void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+{
+    const YamlSource& source = builder.source;
+    core::Model& model = builder.model;
+    MapNode map(source, node, "joint #" + std::to_string(index + 1));
+    if (map.get("name").IsScalar())
+    {
+        map.setContext("joint '" + map.get("name").Scalar() + "'");
+    }
+    map.checkKeys(cJointKeys);
+    const std::string& context = map.context();
+    core::Joint joint;
+    const YAML::Node nameNode = map.require("name");
+    joint.name = toString(source, nameNode, map.what("name"));
+    checkNewName(builder, nameNode, "joint");
+
+    const YAML::Node typeNode = map.require("type");
+    const std::string typeName = toString(source, typeNode, map.what("type"));
+    const std::optional<core::JointType> type = core::jointTypeFromName(typeName);
+    if (!type)
+    {
+        const std::string match = closestMatch(typeName, cJointTypes);
+        failAt(source, typeNode,
+               "unknown joint type '" + typeName + "' in " + context +
+                   (match.empty() ? "" : "; did you mean '" + match + "'?") +
+                   " (known: " + joinNames(cJointTypes) + ")");
+    }
+    joint.type = *type;
+
+    const YAML::Node parentNode = map.require("parent");
+    const YAML::Node childNode = map.require("child");
+    joint.parent = resolveBodyName(builder, parentNode, "the parent of " + context, true);
+    joint.child = resolveBodyName(builder, childNode, "the child of " + context, false);
+    const core::Body& child = model.bodies[static_cast<std::size_t>(joint.child)];
+    if (joint.child == joint.parent)
+    {
+        failAt(source, childNode, context + " joins body '" + child.name + "' to itself (parent == child)");
+    }
+    if (child.isStatic)
+    {
+        failAt(source, childNode,
+               "the child of " + context + ", body '" + child.name +
+                   "', is static; the child must be a moving body (swap parent and child?)");
+    }
+    const bool parentIsWorldLike =
+        joint.parent == core::cWorld || model.bodies[static_cast<std::size_t>(joint.parent)].isStatic;
+    if (joint.type == core::JointType::Nail && !parentIsWorldLike)
+    {
+        failAt(source, parentNode,
+               "the parent of nail " + context +
+                   " must be 'world' or a static body (a nail pins a body to the "
+                   "world)");
+    }
+
+    core::Vec3 anchor = child.position_W; // fixed joints: the child's centre of mass by default
+    if (joint.type != core::JointType::Fixed || map.has("anchor"))
+    {
+        anchor = toVec3(source, map.require("anchor"), map.what("anchor"));
+    }
+    core::Vec3 axis = core::Vec3::UnitZ();
+    if (needsAxis(joint.type))
+    {
+        axis = toDirection(source, map.require("axis"), map.what("axis"));
+    }
+    else if (map.has("axis"))
+    {
+        map.failAtKey("axis",
+                      context + " of type " + typeName +
+                          " takes no 'axis' (only revolute, angle, cylindrical and prismatic joints do)");
+    }
+    if (map.has("limits"))
+    {
+        if (!hasLimits(joint.type))
+        {
+            map.failAtKey("limits", context + " of type " + typeName +
+                                        " takes no 'limits' (only revolute and prismatic joints do)");
+        }
+        const YAML::Node limitsNode = map.get("limits");
+        const std::vector<double> limits =
+            toNumbers(source, limitsNode, map.what("limits") + " [lower, upper]", 2);
+        if (limits[0] > limits[1])
+        {
+            failAt(source, limitsNode,
+                   "expected lower <= upper for " + map.what("limits") + ", got [" + limitsNode[0].Scalar() +
+                       ", " + limitsNode[1].Scalar() + "]");
+        }
+        joint.limits = std::array<double, 2>{limits[0], limits[1]};
+    }
+    joint.collideConnected = map.optBool("collide").value_or(false);
+    core::setJointFrames(model, joint, anchor, axis);
+    builder.jointMarks[joint.name] = nameNode.Mark();
+    model.joints.push_back(std::move(joint));
+}
+
+} // namespace
+
+void readJoints(SceneBuilder& builder, const YAML::Node& joints)
+{
+    requireSequence(builder.source, joints, "'joints'");
+    for (std::size_t i = 0; i < joints.size(); ++i)
+    {
+        readJoint(builder, joints[i], i);
+    }
+}
+
+} // namespace frontier::io::detail

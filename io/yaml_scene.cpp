@@ -1,0 +1,322 @@
+// io/yaml_scene.cpp: a YAML scene file: top-level keys, simulation, contact, camera, models.
+#include "io/yaml_scene.h"
+
+#include "io/file_util.h"
+#include "io/scene.h"
+#include "io/suggest.h"
+#include "io/urdf_model.h"
+
+#include <filesystem>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+
+const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact", "bodies",
+                                             "joints", "models",     "camera"};
+const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
+                                                  "solver", "pgs_iterations", "integrator"};
+const std::vector<std::string> cContactKeys = {"friction", "restitution", "ignore"};
+const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
+const std::vector<std::string> cModelKeys = {
+    "urdf", "position", "orientation", "velocity", "angular_velocity", "prefix", "self_collision", "fixed"};
+
+void readSimulation(const YamlSource& source, const YAML::Node& node, core::SimulationSettings& sim)
+{
+    const MapNode map(source, node, "'simulation'");
+    map.checkKeys(cSimulationKeys);
+    sim.dt = map.optPositive("dt").value_or(sim.dt);
+    sim.duration = map.optPositive("duration").value_or(sim.duration);
+    sim.gravity = map.optVec3("gravity").value_or(sim.gravity);
+    if (map.has("solver"))
+    {
+        const std::string name = map.string("solver");
+        const std::optional<core::SolverKind> kind = core::solverFromName(name);
+        if (!kind)
+        {
+            map.failAtValue("solver", "unknown solver '" + name + "' for " + map.what("solver") +
+                                          "; expected linear, dense or pgs");
+        }
+        sim.solver = *kind;
+    }
+    if (map.has("pgs_iterations"))
+    {
+        sim.pgsIterations = *map.optInteger("pgs_iterations");
+        if (sim.pgsIterations < 1)
+        {
+            map.failAtValue("pgs_iterations",
+                            "expected a positive integer for " + map.what("pgs_iterations"));
+        }
+    }
+    if (map.has("integrator"))
+    {
+        const std::string name = map.string("integrator");
+        const std::optional<core::IntegratorKind> kind = core::integratorFromName(name);
+        if (!kind)
+        {
+            map.failAtValue("integrator", "unknown integrator '" + name + "' for " + map.what("integrator") +
+                                              "; expected euler or rattle");
+        }
+        sim.integrator = *kind;
+    }
+}
+
+// Friction and restitution now; the ignore pairs once every body exists.
+YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::ContactSettings& contact)
+{
+    const MapNode map(source, node, "'contact'");
+    map.checkKeys(cContactKeys);
+    if (map.has("friction"))
+    {
+        contact.friction = map.number("friction");
+        if (contact.friction < 0.0)
+        {
+            map.failAtValue("friction", "expected a number >= 0 for " + map.what("friction"));
+        }
+    }
+    if (map.has("restitution"))
+    {
+        contact.restitution = map.number("restitution");
+        if (contact.restitution < 0.0 || contact.restitution > 1.0)
+        {
+            map.failAtValue("restitution", "expected a number in [0, 1] for " + map.what("restitution"));
+        }
+    }
+    return map.get("ignore");
+}
+
+void readIgnorePairs(const SceneBuilder& builder, const YAML::Node& node, core::ContactSettings& contact)
+{
+    const std::string what = "'ignore' in 'contact'";
+    requireSequence(builder.source, node, what);
+    for (std::size_t i = 0; i < node.size(); ++i)
+    {
+        const YAML::Node pair = node[i];
+        if (!pair.IsSequence() || pair.size() != 2)
+        {
+            failAt(builder.source, pair,
+                   "expected a pair of body names [a, b] for entry " + std::to_string(i + 1) + " of " + what +
+                       ", got " + describeNode(pair));
+        }
+        const std::string entry = "entry " + std::to_string(i + 1) + " of " + what;
+        const int a = resolveBodyName(builder, pair[0], entry, false);
+        const int b = resolveBodyName(builder, pair[1], entry, false);
+        if (a == b)
+        {
+            failAt(builder.source, pair,
+                   "a body never collides with itself: " + entry + " names '" + pair[0].Scalar() + "' twice");
+        }
+        contact.ignore.push_back({a, b});
+    }
+}
+
+void readCamera(const YamlSource& source, const YAML::Node& node, core::Camera& camera)
+{
+    const MapNode map(source, node, "'camera'");
+    map.checkKeys(cCameraKeys);
+    camera.automatic = false;
+    camera.position = map.optVec3("position").value_or(camera.position);
+    camera.lookAt = map.optVec3("look_at").value_or(camera.lookAt);
+    if (map.has("fov"))
+    {
+        camera.fovDegrees = map.number("fov");
+        if (!(camera.fovDegrees > 0.0 && camera.fovDegrees < 180.0))
+        {
+            map.failAtValue("fov", "expected a number of degrees in (0, 180) for " + map.what("fov"));
+        }
+    }
+    if ((camera.position - camera.lookAt).norm() < 1e-9)
+    {
+        map.fail("the camera's 'position' and 'look_at' coincide");
+    }
+}
+
+// Appends a URDF fragment's bodies and joints, shifting its body indices.
+void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fragment,
+                    const std::string& urdfPath)
+{
+    core::Model& model = builder.model;
+    const int offset = static_cast<int>(model.bodies.size());
+    for (core::Body& body : fragment.bodies)
+    {
+        if (model.findBody(body.name) >= 0)
+        {
+            entry.fail("the model from '" + urdfPath + "' adds body '" + body.name +
+                       "', but a body of that name exists already; give this model another 'prefix'");
+        }
+        model.bodies.push_back(std::move(body));
+    }
+    for (core::Joint& joint : fragment.joints)
+    {
+        for (const core::Joint& existing : model.joints)
+        {
+            if (existing.name == joint.name)
+            {
+                entry.fail("the model from '" + urdfPath + "' adds joint '" + joint.name +
+                           "', but a joint of that name exists already; give this model another 'prefix'");
+            }
+        }
+        joint.parent = joint.parent == core::cWorld ? core::cWorld : joint.parent + offset;
+        joint.child += offset;
+        model.joints.push_back(std::move(joint));
+    }
+}
+
+void readModels(SceneBuilder& builder, const YAML::Node& node)
+{
+    const YamlSource& source = builder.source;
+    requireSequence(source, node, "'models'");
+    for (std::size_t i = 0; i < node.size(); ++i)
+    {
+        MapNode map(source, node[i], "model #" + std::to_string(i + 1));
+        map.checkKeys(cModelKeys);
+        const YAML::Node urdfNode = map.require("urdf");
+        const std::string file = toString(source, urdfNode, map.what("urdf"));
+        map.setContext("model '" + file + "'");
+        UrdfPlacement placement;
+        placement.position = map.optVec3("position").value_or(core::Vec3::Zero());
+        placement.orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
+        placement.prefix = map.optString("prefix").value_or("");
+        placement.selfCollision = map.optBool("self_collision").value_or(true);
+        placement.fixedRoot = map.optBool("fixed").value_or(false);
+        if (map.has("prefix") && placement.prefix.find_first_of(",\"") != std::string::npos)
+        {
+            map.failAtValue("prefix", "a prefix cannot contain commas or double quotes");
+        }
+        const std::string path = resolvePath(source.baseDir, file);
+        core::Model fragment;
+        try
+        {
+            fragment = loadUrdfFragment(path, placement);
+        }
+        catch (const InputError& e)
+        {
+            if (e.file() == path && e.line() == 0 && e.message().starts_with("cannot open file"))
+            {
+                failAt(source, urdfNode, "cannot open URDF file '" + path + "'");
+            }
+            throw;
+        }
+        // A rigid motion of the whole model: v at the root link origin, w about it.
+        const core::Vec3 velocity = map.optVec3("velocity").value_or(core::Vec3::Zero());
+        const core::Vec3 angularVelocity = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
+        for (core::Body& body : fragment.bodies)
+        {
+            if (!body.isStatic)
+            {
+                body.velocity_W = velocity + angularVelocity.cross(body.position_W - placement.position);
+                body.angularVelocity_W = angularVelocity;
+            }
+        }
+        appendFragment(builder, map, std::move(fragment), path);
+    }
+}
+
+// YAML forbids tabs in indentation, and yaml-cpp's message does not say so.
+std::string tabHint(const std::string& text, const YAML::Mark& mark)
+{
+    if (mark.line < 0)
+    {
+        return {};
+    }
+    std::size_t pos = 0;
+    for (int line = 0; line < mark.line && pos != std::string::npos; ++line)
+    {
+        pos = text.find('\n', pos);
+        pos = pos == std::string::npos ? pos : pos + 1;
+    }
+    if (pos == std::string::npos)
+    {
+        return {};
+    }
+    const std::size_t end = text.find_first_not_of(" \t", pos);
+    const std::string indent = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+    return indent.find('\t') != std::string::npos ? " (tabs are not allowed in YAML indentation; use spaces)"
+                                                  : "";
+}
+
+std::string defaultName(const std::string& sourceName)
+{
+    const std::string stem = std::filesystem::path(sourceName).stem().string();
+    return stem.empty() ? sourceName : stem;
+}
+
+} // namespace
+
+core::Model loadYamlScene(const std::string& text, const std::string& sourceName)
+{
+    SceneBuilder builder;
+    builder.source = YamlSource{sourceName, directoryOf(sourceName)};
+    const YamlSource& source = builder.source;
+    core::Model& model = builder.model;
+    model.sourceFile = sourceName;
+    model.name = defaultName(sourceName);
+    try
+    {
+        const std::vector<YAML::Node> documents = YAML::LoadAll(text);
+        if (documents.size() > 1)
+        {
+            failAt(source, documents[1],
+                   "the file holds " + std::to_string(documents.size()) +
+                       " YAML documents; expected one scene");
+        }
+        if (documents.empty() || documents[0].IsNull())
+        {
+            throw InputError(sourceName, 0, 0,
+                             "empty scene; expected a map with 'bodies' (and 'joints', ...)");
+        }
+        const MapNode root(source, documents[0], "the scene");
+        root.checkKeys(cSceneKeys);
+        if (root.has("name"))
+        {
+            model.name = root.string("name");
+        }
+        if (root.has("simulation"))
+        {
+            readSimulation(source, root.get("simulation"), model.simulation);
+        }
+        YAML::Node ignore;
+        if (root.has("contact"))
+        {
+            ignore.reset(readContact(source, root.get("contact"), model.contact));
+        }
+        if (root.has("camera"))
+        {
+            readCamera(source, root.get("camera"), model.camera);
+        }
+        if (root.has("bodies"))
+        {
+            readBodies(builder, root.get("bodies"));
+        }
+        if (root.has("models"))
+        {
+            readModels(builder, root.get("models"));
+        }
+        if (model.bodies.empty())
+        {
+            root.fail("the scene has no bodies; expected 'bodies' or 'models'");
+        }
+        if (root.has("joints"))
+        {
+            readJoints(builder, root.get("joints"));
+        }
+        if (ignore.IsDefined() && !ignore.IsNull())
+        {
+            readIgnorePairs(builder, ignore, model.contact);
+        }
+    }
+    catch (const YAML::ParserException& e)
+    {
+        failAt(source, e.mark, "invalid YAML: " + e.msg + tabHint(text, e.mark));
+    }
+    catch (const YAML::Exception& e)
+    {
+        // Not expected (every access is checked), but keep the location if there is one.
+        failAt(source, e.mark, "cannot read the scene: " + e.msg);
+    }
+    return std::move(builder.model);
+}
+
+} // namespace frontier::io::detail

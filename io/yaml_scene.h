@@ -1,0 +1,38 @@
+// io/yaml_scene.h: the parts of a YAML scene (private to io/).
+#pragma once
+
+#include "core/model.h"
+#include "io/yaml_util.h"
+
+#include <map>
+#include <string>
+
+namespace frontier::io::detail
+{
+
+// What the parts share while a scene is read.
+struct SceneBuilder
+{
+    YamlSource source;
+    core::Model model;
+    std::map<std::string, YAML::Mark> bodyMarks;  // where each YAML body's name was given
+    std::map<std::string, YAML::Mark> jointMarks; // where each YAML joint's name was given
+};
+
+// Scene text to model (sourceName for messages and relative paths).
+core::Model loadYamlScene(const std::string& text, const std::string& sourceName);
+
+// `bodies:` list (each body appended to builder.model.bodies).
+void readBodies(SceneBuilder& builder, const YAML::Node& bodies);
+// `joints:` list, after all bodies (YAML and URDF) exist.
+void readJoints(SceneBuilder& builder, const YAML::Node& joints);
+
+// A body named by `node` (a string): its index, or core::cWorld for "world" when allowWorld.
+// Errors name `what` and suggest the closest body name.
+int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
+                    bool allowWorld);
+
+// Checks a new body or joint name: valid, and not taken.
+void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const std::string& kind);
+
+} // namespace frontier::io::detail

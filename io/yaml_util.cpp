@@ -1,0 +1,332 @@
+// io/yaml_util.cpp: typed, located reading of yaml-cpp nodes.
+#include "io/yaml_util.h"
+
+#include "io/scene.h"
+#include "io/suggest.h"
+
+#include <cmath>
+
+namespace frontier::io::detail
+{
+
+void failAt(const YamlSource& source, const YAML::Mark& mark, const std::string& message)
+{
+    if (mark.is_null() || mark.line < 0)
+    {
+        throw InputError(source.file, 0, 0, message);
+    }
+    throw InputError(source.file, mark.line + 1, mark.column + 1, message);
+}
+
+void failAt(const YamlSource& source, const YAML::Node& node, const std::string& message)
+{
+    failAt(source, node.IsDefined() ? node.Mark() : YAML::Mark::null_mark(), message);
+}
+
+std::string describeNode(const YAML::Node& node)
+{
+    if (!node.IsDefined() || node.IsNull())
+    {
+        return "null";
+    }
+    if (node.IsSequence())
+    {
+        return node.size() == 1 ? "a list of 1 item" : "a list of " + std::to_string(node.size()) + " items";
+    }
+    if (node.IsMap())
+    {
+        return "a map";
+    }
+    return "'" + node.Scalar() + "'";
+}
+
+double toNumber(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    if (!node.IsScalar())
+    {
+        failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
+    }
+    double value = 0.0;
+    try
+    {
+        value = node.as<double>();
+    }
+    catch (const YAML::Exception&)
+    {
+        failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
+    }
+    if (!std::isfinite(value))
+    {
+        failAt(source, node, "expected a finite number for " + what + ", got " + describeNode(node));
+    }
+    return value;
+}
+
+double toPositive(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const double value = toNumber(source, node, what);
+    if (!(value > 0.0))
+    {
+        failAt(source, node, "expected a positive number for " + what + ", got " + describeNode(node));
+    }
+    return value;
+}
+
+int toInteger(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    if (!node.IsScalar())
+    {
+        failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
+    }
+    try
+    {
+        return node.as<int>();
+    }
+    catch (const YAML::Exception&)
+    {
+        failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
+    }
+}
+
+bool toBool(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    if (!node.IsScalar())
+    {
+        failAt(source, node, "expected true or false for " + what + ", got " + describeNode(node));
+    }
+    try
+    {
+        return node.as<bool>();
+    }
+    catch (const YAML::Exception&)
+    {
+        failAt(source, node, "expected true or false for " + what + ", got " + describeNode(node));
+    }
+}
+
+std::string toString(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    if (!node.IsScalar())
+    {
+        failAt(source, node, "expected a string for " + what + ", got " + describeNode(node));
+    }
+    return node.Scalar();
+}
+
+std::vector<double> toNumbers(const YamlSource& source, const YAML::Node& node, const std::string& what,
+                              std::size_t count)
+{
+    if (!node.IsSequence() || node.size() != count)
+    {
+        failAt(source, node,
+               "expected a list of " + std::to_string(count) + " numbers for " + what + ", got " +
+                   describeNode(node));
+    }
+    std::vector<double> out;
+    out.reserve(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        out.push_back(toNumber(source, node[i], "element " + std::to_string(i + 1) + " of " + what));
+    }
+    return out;
+}
+
+core::Vec3 toVec3(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const std::vector<double> v = toNumbers(source, node, what, 3);
+    return {v[0], v[1], v[2]};
+}
+
+core::Vec3 toDirection(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const core::Vec3 v = toVec3(source, node, what);
+    const double length = v.norm();
+    if (!(length > 1e-12) || !std::isfinite(length))
+    {
+        failAt(source, node, "expected a non-zero direction for " + what + ", got [0, 0, 0]");
+    }
+    return v / length;
+}
+
+core::Quat toQuaternion(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const std::vector<double> v = toNumbers(source, node, what + " (quaternion w, x, y, z)", 4);
+    core::Quat q(v[0], v[1], v[2], v[3]);
+    const double length = q.norm();
+    if (!(length > 1e-12) || !std::isfinite(length))
+    {
+        failAt(source, node, "expected a non-zero quaternion [w, x, y, z] for " + what);
+    }
+    q.coeffs() /= length;
+    return q;
+}
+
+const YAML::Node& requireSequence(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    if (!node.IsSequence())
+    {
+        failAt(source, node, "expected a list for " + what + ", got " + describeNode(node));
+    }
+    return node;
+}
+
+MapNode::MapNode(const YamlSource& source, const YAML::Node& node, std::string context)
+    : mSource(&source), mNode(node), mMark(node.IsDefined() ? node.Mark() : YAML::Mark::null_mark()),
+      mContext(std::move(context))
+{
+    if (!node.IsMap())
+    {
+        failAt(source, node, "expected a map for " + mContext + ", got " + describeNode(node));
+    }
+    for (const auto& kv : node)
+    {
+        if (!kv.first.IsScalar())
+        {
+            failAt(source, kv.first,
+                   "expected a key name in " + mContext + ", got " + describeNode(kv.first));
+        }
+        mEntries.push_back(Entry{kv.first.Scalar(), kv.first.Mark(), kv.second});
+    }
+}
+
+void MapNode::checkKeys(const std::vector<std::string>& known) const
+{
+    for (std::size_t i = 0; i < mEntries.size(); ++i)
+    {
+        const Entry& entry = mEntries[i];
+        for (std::size_t j = 0; j < i; ++j)
+        {
+            if (mEntries[j].key == entry.key)
+            {
+                failAt(*mSource, entry.keyMark,
+                       "duplicate key '" + entry.key + "' in " + mContext + " (first given at line " +
+                           std::to_string(mEntries[j].keyMark.line + 1) + ")");
+            }
+        }
+        bool isKnown = false;
+        for (const std::string& k : known)
+        {
+            isKnown = isKnown || k == entry.key;
+        }
+        if (!isKnown)
+        {
+            failAt(*mSource, entry.keyMark,
+                   "unknown key '" + entry.key + "' in " + mContext +
+                       suggestionSuffix(entry.key, known, true));
+        }
+    }
+}
+
+const MapNode::Entry* MapNode::find(const std::string& key) const
+{
+    for (const Entry& entry : mEntries)
+    {
+        if (entry.key == key)
+        {
+            return &entry;
+        }
+    }
+    return nullptr;
+}
+
+bool MapNode::has(const std::string& key) const
+{
+    return find(key) != nullptr;
+}
+
+YAML::Node MapNode::get(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry != nullptr ? entry->value : YAML::Node();
+}
+
+YAML::Node MapNode::require(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    if (entry == nullptr)
+    {
+        fail("missing key '" + key + "' in " + mContext);
+    }
+    return entry->value;
+}
+
+YAML::Mark MapNode::keyMark(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry != nullptr ? entry->keyMark : mMark;
+}
+
+std::string MapNode::what(const std::string& key) const
+{
+    return "'" + key + "' in " + mContext;
+}
+
+void MapNode::fail(const std::string& message) const
+{
+    failAt(*mSource, mMark, message);
+}
+
+void MapNode::failAtKey(const std::string& key, const std::string& message) const
+{
+    failAt(*mSource, keyMark(key), message);
+}
+
+void MapNode::failAtValue(const std::string& key, const std::string& message) const
+{
+    const Entry* entry = find(key);
+    if (entry == nullptr)
+    {
+        fail(message);
+    }
+    failAt(*mSource, entry->value, message);
+}
+
+std::optional<double> MapNode::optNumber(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toNumber(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<double> MapNode::optPositive(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toPositive(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<int> MapNode::optInteger(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toInteger(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<bool> MapNode::optBool(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toBool(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<std::string> MapNode::optString(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toString(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<core::Vec3> MapNode::optVec3(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toVec3(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<core::Vec3> MapNode::optDirection(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toDirection(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<core::Quat> MapNode::optQuaternion(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toQuaternion(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+} // namespace frontier::io::detail

@@ -1,0 +1,190 @@
+// tests/io/trajectory_test.cpp: trajectory CSV round trip (bit-exact), atomic writing, errors.
+#include "io/atomic_file.h"
+#include "io/trajectory.h"
+#include "io_test_util.h"
+
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <limits>
+#include <random>
+
+namespace frontier::io::test
+{
+namespace
+{
+
+core::Model twoBodyModel()
+{
+    core::Model model;
+    core::Body a;
+    a.name = "a";
+    a.mass = 1;
+    core::Body floor;
+    floor.name = "floor";
+    floor.isStatic = true;
+    core::Body b;
+    b.name = "b b"; // spaces are fine in CSV
+    b.mass = 1;
+    model.bodies = {a, floor, b};
+    return model;
+}
+
+std::size_t filesIn(const std::filesystem::path& dir)
+{
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir))
+    {
+        ++n;
+    }
+    return n;
+}
+
+TEST(Trajectory, RoundTripIsBitExact)
+{
+    TempDir dir;
+    const core::Model model = twoBodyModel();
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> uniform(-1e3, 1e3);
+    std::vector<core::State> states;
+    for (int step = 0; step < 5; ++step)
+    {
+        core::State s = core::initialState(model);
+        s.time = step * 0.1; // 0.30000000000000004 and friends
+        for (auto& body : s.bodies)
+        {
+            body.position_W = core::Vec3(uniform(rng), uniform(rng) * 1e-300, std::nextafter(1.0, 2.0));
+            body.orientation_WB =
+                core::Quat(uniform(rng), uniform(rng), uniform(rng), uniform(rng)).normalized();
+            body.velocity_W = core::Vec3(uniform(rng), -0.0, 5e-324);
+            body.angularVelocity_W = core::Vec3(std::numeric_limits<double>::max(), 1.0 / 3.0, uniform(rng));
+        }
+        states.push_back(s);
+    }
+    core::SimulationSettings settings;
+    settings.dt = 0.1;
+    const std::string path = dir.file("run.csv");
+    TrajectoryWriter writer(path, makeTrajectoryMetadata("scenes/my scene=1.yaml", settings, 4, 1));
+    for (const core::State& s : states)
+    {
+        writer.writeState(model, s);
+    }
+    EXPECT_EQ(writer.rowsWritten(), 10);
+    writer.commit();
+
+    const Trajectory t = readTrajectory(path);
+    EXPECT_EQ(t.metadata.at("scene"), "scenes/my scene=1.yaml");
+    EXPECT_EQ(t.metadata.at("dt"), "0.10000000000000001");
+    EXPECT_EQ(t.metadata.at("solver"), "linear");
+    EXPECT_EQ(t.metadata.at("pgs_iterations"), "20");
+    EXPECT_EQ(t.metadata.at("integrator"), "euler");
+    EXPECT_EQ(t.metadata.at("steps"), "4");
+    EXPECT_EQ(t.metadata.at("record_every"), "1");
+    EXPECT_EQ(t.metadata.count("duration"), 1u);
+    ASSERT_EQ(t.rows.size(), 10u);
+    for (std::size_t k = 0; k < states.size(); ++k)
+    {
+        for (std::size_t j = 0; j < 2; ++j)
+        {
+            const TrajectoryRow& row = t.rows[2 * k + j];
+            const std::size_t bodyIndex = j == 0 ? 0 : 2;
+            EXPECT_EQ(row.body, model.bodies[bodyIndex].name);
+            EXPECT_EQ(std::bit_cast<std::uint64_t>(row.time), std::bit_cast<std::uint64_t>(states[k].time));
+            const core::BodyState expected = states[k].bodies[bodyIndex];
+            const core::BodyState got = row.state();
+            const double e[13] = {
+                expected.position_W.x(),       expected.position_W.y(),        expected.position_W.z(),
+                expected.orientation_WB.w(),   expected.orientation_WB.x(),    expected.orientation_WB.y(),
+                expected.orientation_WB.z(),   expected.velocity_W.x(),        expected.velocity_W.y(),
+                expected.velocity_W.z(),       expected.angularVelocity_W.x(), expected.angularVelocity_W.y(),
+                expected.angularVelocity_W.z()};
+            for (std::size_t i = 0; i < 13; ++i)
+            {
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(row.values[i]), std::bit_cast<std::uint64_t>(e[i]))
+                    << "row " << 2 * k + j << " value " << i << ": " << row.values[i] << " vs " << e[i];
+            }
+            EXPECT_EQ(got.position_W, expected.position_W);
+        }
+    }
+}
+
+TEST(Trajectory, FileStartsWithCommentAndHeader)
+{
+    TempDir dir;
+    const std::string path = dir.file("run.csv");
+    {
+        TrajectoryWriter writer(path, {{"scene", "a.yaml"}, {"dt", "0.001"}});
+        writer.commit();
+    }
+    std::ifstream in(path);
+    std::string first, second;
+    std::getline(in, first);
+    std::getline(in, second);
+    EXPECT_EQ(first, "# frontier trajectory: scene=a.yaml dt=0.001");
+    EXPECT_EQ(second, "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz");
+}
+
+TEST(Trajectory, UnfinishedWriterLeavesNoFile)
+{
+    TempDir dir;
+    const std::string path = dir.file("run.csv");
+    {
+        const core::Model model = twoBodyModel();
+        TrajectoryWriter writer(path, {});
+        writer.writeState(model, core::initialState(model));
+        EXPECT_EQ(filesIn(dir.path()), 1u); // the temporary file
+        EXPECT_FALSE(std::filesystem::exists(path));
+    }
+    EXPECT_FALSE(std::filesystem::exists(path));
+    EXPECT_EQ(filesIn(dir.path()), 0u);
+}
+
+TEST(Trajectory, CommitReplacesAnExistingFile)
+{
+    TempDir dir;
+    const std::string path = dir.write("run.csv", "old contents\n");
+    TrajectoryWriter writer(path, {});
+    EXPECT_EQ(readTextOf(path), "old contents\n");
+    writer.commit();
+    EXPECT_EQ(readTrajectory(path).rows.size(), 0u);
+    EXPECT_EQ(filesIn(dir.path()), 1u);
+}
+
+TEST(Trajectory, UnwritableDirectoryIsAnOutputError)
+{
+    EXPECT_THROW(TrajectoryWriter("/nonexistent/dir/run.csv", {}), OutputError);
+}
+
+InputError trajectoryError(const TempDir& dir, const std::string& content)
+{
+    const std::string path = dir.write("t.csv", content);
+    return captureInputError([&] { readTrajectory(path); });
+}
+
+TEST(Trajectory, ReadErrorsAreLocated)
+{
+    TempDir dir;
+    const std::string header = "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    EXPECT_INPUT_ERROR_AT(
+        trajectoryError(dir, "# frontier trajectory: dt=1\ntime,body,px,py,pz,qw,qx,qy,qz\n"),
+        dir.file("t.csv"), 2, 31, "missing column 'vx' in the header");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, "time,body,px,py,pz,qx,qw,qy,qz,vx,vy,vz,wx,wy,wz\n"),
+                          dir.file("t.csv"), 1, 20, "expected column 'qw' in the header, got 'qx'");
+    EXPECT_INPUT_ERROR_AT(
+        trajectoryError(dir, header + "0,a,1,2,3,1,0,0,0,0,0,0,0,0,0\n0,a,1,2,3,1,0,0,0,0,0,0,0,0\n"),
+        dir.file("t.csv"), 3, 28, "expected 15 fields, got 14");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1,0,0,0,0,0,0,0,0,0,9\n"),
+                          dir.file("t.csv"), 2, 31, "expected 15 fields, got 16");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2.5x,3,1,0,0,0,0,0,0,0,0,0\n"),
+                          dir.file("t.csv"), 2, 7, "expected a number for 'py', got '2.5x'");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,,3,1,0,0,0,0,0,0,0,0,0\n"), dir.file("t.csv"),
+                          2, 7, "expected a number for 'py', got ''");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, "# just a comment\n"), dir.file("t.csv"), 1, 0,
+                          "no header line");
+    EXPECT_INPUT_ERROR_AT(captureInputError([] { readTrajectory("/nonexistent/t.csv"); }),
+                          "/nonexistent/t.csv", 0, 0, "cannot open file");
+}
+
+} // namespace
+} // namespace frontier::io::test

@@ -1,0 +1,384 @@
+// tests/io/urdf_test.cpp: URDF models: errors with URDF line numbers, the link/inertial/joint
+// mapping, and equality with the equivalent YAML scene.
+#include "io/scene.h"
+#include "io_test_util.h"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <numbers>
+
+namespace frontier::io::test
+{
+namespace
+{
+
+// Three links: a floating base, an upper arm on a revolute joint, a lower arm on a prismatic
+// joint whose origin is turned 90 degrees about z. Inertial frames are offset (and turned, for
+// the upper arm), so the centre of mass is not the link origin.
+const char* const cArmUrdf = R"(
+<?xml version="1.0"?>
+<robot name="arm">
+  <material name="grey"><color rgba="0.5 0.25 0.75 1"/></material>
+  <link name="base">
+    <inertial>
+      <origin xyz="0 0 0.05"/>
+      <mass value="2"/>
+      <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.04"/>
+    </inertial>
+    <collision><origin xyz="0 0 0.05"/><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry><material name="grey"/></visual>
+  </link>
+  <link name="upper">
+    <inertial>
+      <origin xyz="0 0 0.2" rpy="0 0 1.5707963267948966"/>
+      <mass value="1"/>
+      <inertia ixx="0.01" ixy="0.001" ixz="0" iyy="0.012" iyz="0" izz="0.002"/>
+    </inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.03" length="0.4"/></geometry></collision>
+  </link>
+  <link name="lower">
+    <inertial>
+      <origin xyz="0.15 0 0"/>
+      <mass value="0.5"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.004" iyz="0" izz="0.004"/>
+    </inertial>
+    <collision><origin xyz="0.15 0 0" rpy="0 1.5707963267948966 0"/><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/>
+    <child link="upper"/>
+    <origin xyz="0 0 0.1"/>
+    <axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+  </joint>
+  <joint name="elbow" type="prismatic">
+    <parent link="upper"/>
+    <child link="lower"/>
+    <origin xyz="0 0 0.4" rpy="0 0 1.5707963267948966"/>
+    <axis xyz="2 0 0"/>
+    <limit lower="0" upper="0.1" effort="10" velocity="1"/>
+  </joint>
+</robot>
+)";
+
+// The same model written as a YAML scene, placed like `models: [{urdf: arm.urdf, position:
+// [0, 0, 1], prefix: a_}]`, worked out by hand.
+const char* const cArmYaml = R"(
+bodies:
+  - name: a_base
+    mass: 2
+    inertia: [0.02, 0.03, 0.04]
+    position: [0, 0, 1.05]
+    color: [0.5, 0.25, 0.75]
+    shape: {type: box, size: [0.2, 0.2, 0.1]}
+  - name: a_upper
+    mass: 1
+    inertia: [0.01, 0.012, 0.002, 0.001, 0, 0]
+    position: [0, 0, 1.3]
+    orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]
+    shape: {type: cylinder, radius: 0.03, length: 0.4, orientation: [0.7071067811865476, 0, 0, -0.7071067811865476]}
+  - name: a_lower
+    mass: 0.5
+    inertia: [0.001, 0.004, 0.004]
+    position: [0, 0.15, 1.5]
+    orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]
+    shape: {type: sphere, radius: 0.05, orientation: [0.7071067811865476, 0, 0.7071067811865476, 0]}
+joints:
+  - {name: a_shoulder, type: revolute, parent: a_base, child: a_upper, anchor: [0, 0, 1.1], axis: [0, 1, 0], limits: [-1, 1]}
+  - {name: a_elbow, type: prismatic, parent: a_upper, child: a_lower, anchor: [0, 0, 1.5], axis: [0, 1, 0], limits: [0, 0.1]}
+)";
+
+constexpr double cTol = 1e-12;
+
+void expectNear(const core::Vec3& a, const core::Vec3& b, const std::string& what)
+{
+    EXPECT_LT((a - b).norm(), cTol) << what << ": " << a.transpose() << " vs " << b.transpose();
+}
+
+void expectSameRotation(const core::Quat& a, const core::Quat& b, const std::string& what)
+{
+    EXPECT_LT(std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm()), cTol) << what;
+}
+
+InputError urdfError(const TempDir& dir, const std::string& urdf)
+{
+    const std::string path = dir.write("robot.urdf", urdf);
+    return captureInputError([&] { loadScene(path); });
+}
+
+// A one-link robot with the given body inside <robot>; `link` starts at line 2.
+std::string robot(const std::string& inner)
+{
+    return "<robot name=\"r\">\n" + inner + "</robot>\n";
+}
+
+const std::string cGoodInertial = "<inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" "
+                                  "iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>";
+
+TEST(Urdf, MissingInertialNamesTheLinkLine)
+{
+    TempDir dir;
+    const InputError e = urdfError(dir, robot("  <link name=\"a\">\n    " + cGoodInertial + "\n  </link>\n" +
+                                              "  <link name=\"b\"/>\n" +
+                                              "  <joint name=\"j\" type=\"continuous\">\n"
+                                              "    <parent link=\"a\"/><child link=\"b\"/>\n  </joint>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 5, 3, "link 'b' has no <inertial>");
+}
+
+TEST(Urdf, MassThatIsNotANumberIsFatal)
+{
+    TempDir dir;
+    // urdfdom logs an error and keeps the link with mass 0: we stop at the <mass> line.
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"heavy\"/>\n"
+                             "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
+                             "izz=\"1\"/>\n    </inertial>\n  </link>\n"));
+    EXPECT_EQ(e.file(), dir.file("robot.urdf"));
+    EXPECT_EQ(e.line(), 4) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mass [heavy] is not a float"), std::string::npos) << e.what();
+}
+
+TEST(Urdf, ZeroMassIsAnError)
+{
+    TempDir dir;
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"0\"/>\n"
+                             "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
+                             "izz=\"1\"/>\n    </inertial>\n  </link>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 4, 7,
+                          "link 'a' has mass 0; expected a positive <mass value>");
+}
+
+TEST(Urdf, InertiaNotPositiveDefinite)
+{
+    TempDir dir;
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"1\"/>\n"
+                             "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
+                             "izz=\"0\"/>\n    </inertial>\n  </link>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 5, 7,
+                          "link 'a' has an inertia that is not positive-definite");
+}
+
+TEST(Urdf, MissingParentLink)
+{
+    TempDir dir;
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
+                             "  <joint name=\"j\" type=\"fixed\">\n"
+                             "    <parent link=\"nope\"/>\n    <child link=\"a\"/>\n  </joint>\n"));
+    EXPECT_EQ(e.file(), dir.file("robot.urdf"));
+    EXPECT_EQ(e.line(), 4) << e.what();
+    EXPECT_NE(std::string(e.what()).find("parent link [nope] of joint [j] not found"), std::string::npos)
+        << e.what();
+}
+
+TEST(Urdf, PlanarJointIsUnsupported)
+{
+    TempDir dir;
+    const InputError e = urdfError(dir, robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
+                                              "  <link name=\"b\">" + cGoodInertial + "</link>\n" +
+                                              "  <joint name=\"slide\" type=\"planar\">\n"
+                                              "    <parent link=\"a\"/><child link=\"b\"/>\n  </joint>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 4, 3,
+                          "joint 'slide' has type planar, which is unsupported");
+}
+
+TEST(Urdf, ZeroAxis)
+{
+    TempDir dir;
+    const InputError e = urdfError(dir, robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
+                                              "  <link name=\"b\">" + cGoodInertial + "</link>\n" +
+                                              "  <joint name=\"hinge\" type=\"continuous\">\n"
+                                              "    <parent link=\"a\"/><child link=\"b\"/>\n"
+                                              "    <axis xyz=\"0 0 0\"/>\n  </joint>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 6, 5, "joint 'hinge' has a zero <axis>");
+}
+
+TEST(Urdf, BadXmlReportsRowAndColumn)
+{
+    TempDir dir;
+    const InputError e = urdfError(dir, "<robot name=\"r\">\n  <link name=\"a\">\n</robot>\n");
+    EXPECT_EQ(e.file(), dir.file("robot.urdf"));
+    EXPECT_GT(e.line(), 0) << e.what();
+    EXPECT_NE(std::string(e.what()).find("invalid XML"), std::string::npos) << e.what();
+}
+
+TEST(Urdf, DroppedCollisionIsFatal)
+{
+    TempDir dir;
+    // urdfdom drops a collision with an unreadable origin and only logs it.
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"a\">\n    " + cGoodInertial +
+                             "\n    <collision><origin xyz=\"0 zero 0\"/><geometry><box size=\"1 1 "
+                             "1\"/></geometry></collision>\n  </link>\n"));
+    EXPECT_EQ(e.line(), 2) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Could not parse collision element for Link [a]"), std::string::npos)
+        << e.what();
+}
+
+TEST(Urdf, CapsuleIsNotUrdf)
+{
+    TempDir dir;
+    const InputError e = urdfError(dir, robot("  <link name=\"a\">\n    " + cGoodInertial +
+                                              "\n    <collision><geometry><capsule radius=\"1\" "
+                                              "length=\"1\"/></geometry></collision>\n  </link>\n"));
+    EXPECT_EQ(e.line(), 4) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Unknown geometry type 'capsule'"), std::string::npos) << e.what();
+}
+
+TEST(Urdf, InertialOffsetPutsTheBodyAtTheCentreOfMass)
+{
+    TempDir dir;
+    // Link frame of `b` at (1, 0, 0) turned 90 degrees about z; inertial origin (0.2, 0, 0) in it.
+    const std::string path = dir.write(
+        "robot.urdf",
+        robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
+              "  <link name=\"b\"><inertial><origin xyz=\"0.2 0 0\" rpy=\"0 0 0\"/><mass value=\"3\"/>"
+              "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"2\" iyz=\"0\" izz=\"3\"/></inertial></link>\n"
+              "  <joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/>"
+              "<origin xyz=\"1 0 0\" rpy=\"0 0 1.5707963267948966\"/></joint>\n"));
+    const core::Model model = loadScene(path);
+    const int b = model.findBody("b");
+    ASSERT_GE(b, 0);
+    const core::Body& body = model.bodies[static_cast<std::size_t>(b)];
+    expectNear(body.position_W, core::Vec3(1, 0.2, 0), "COM = link origin + R_link * inertial origin");
+    expectSameRotation(body.orientation_WB, core::Quat(std::sqrt(0.5), 0, 0, std::sqrt(0.5)), "orientation");
+    EXPECT_EQ(body.mass, 3.0);
+    EXPECT_EQ(body.inertia_B.diagonal(), core::Vec3(1, 2, 3));
+    ASSERT_EQ(model.joints.size(), 1u);
+    EXPECT_EQ(model.joints[0].type, core::JointType::Fixed);
+    // A URDF alone gets a static floor plane.
+    ASSERT_EQ(model.bodies.size(), 3u);
+    EXPECT_TRUE(model.bodies[2].isStatic);
+    EXPECT_EQ(model.bodies[2].name, "floor");
+    EXPECT_EQ(model.bodies[2].shapes.at(0).type, core::ShapeType::Plane);
+}
+
+TEST(Urdf, SameModelAsTheEquivalentYaml)
+{
+    TempDir dir;
+    dir.write("arm.urdf", text(cArmUrdf));
+    const std::string scene =
+        dir.write("scene.yaml", "models:\n  - {urdf: arm.urdf, position: [0, 0, 1], prefix: a_}\n");
+    const core::Model fromUrdf = loadScene(scene);
+    const core::Model fromYaml = loadSceneFromString(text(cArmYaml), "arm.yaml");
+    ASSERT_EQ(fromUrdf.bodies.size(), 3u);
+    ASSERT_EQ(fromYaml.bodies.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+        const core::Body& u = fromUrdf.bodies[i];
+        const core::Body& y = fromYaml.bodies[i];
+        SCOPED_TRACE(y.name);
+        EXPECT_EQ(u.name, y.name);
+        EXPECT_NEAR(u.mass, y.mass, cTol);
+        EXPECT_LT((u.inertia_B - y.inertia_B).norm(), cTol);
+        expectNear(u.position_W, y.position_W, "position");
+        expectSameRotation(u.orientation_WB, y.orientation_WB, "orientation");
+        ASSERT_EQ(u.shapes.size(), 1u);
+        ASSERT_EQ(y.shapes.size(), 1u);
+        EXPECT_EQ(u.shapes[0].type, y.shapes[0].type);
+        EXPECT_EQ(u.shapes[0].size, y.shapes[0].size);
+        EXPECT_EQ(u.shapes[0].radius, y.shapes[0].radius);
+        EXPECT_EQ(u.shapes[0].length, y.shapes[0].length);
+        expectNear(u.shapes[0].position_BS, y.shapes[0].position_BS, "shape position");
+        expectSameRotation(u.shapes[0].rotation_BS, y.shapes[0].rotation_BS, "shape rotation");
+    }
+    ASSERT_TRUE(fromUrdf.bodies[0].color.has_value());
+    EXPECT_LT((*fromUrdf.bodies[0].color - *fromYaml.bodies[0].color).norm(),
+              1e-7); // urdfdom colours are floats
+    ASSERT_EQ(fromUrdf.joints.size(), 2u);
+    ASSERT_EQ(fromYaml.joints.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+        const core::Joint& u = fromUrdf.joints[i];
+        const core::Joint& y = fromYaml.joints[i];
+        SCOPED_TRACE(y.name);
+        EXPECT_EQ(u.name, y.name);
+        EXPECT_EQ(u.type, y.type);
+        EXPECT_EQ(u.parent, y.parent);
+        EXPECT_EQ(u.child, y.child);
+        expectNear(u.anchorParent, y.anchorParent, "anchorParent");
+        expectNear(u.anchorChild, y.anchorChild, "anchorChild");
+        expectNear(u.axisParent, y.axisParent, "axisParent");
+        expectNear(u.axisChild, y.axisChild, "axisChild");
+        expectNear(u.perpParent1, y.perpParent1, "perpParent1");
+        expectNear(u.perpParent2, y.perpParent2, "perpParent2");
+        expectNear(u.perpChild1, y.perpChild1, "perpChild1");
+        expectSameRotation(u.restRotation_AB, y.restRotation_AB, "restRotation");
+        ASSERT_TRUE(u.limits.has_value());
+        EXPECT_EQ(*u.limits, *y.limits);
+        EXPECT_FALSE(u.collideConnected);
+    }
+}
+
+TEST(Urdf, InstancedTwiceWithPrefixesGroupsAndFixedRoot)
+{
+    TempDir dir;
+    dir.write("arm.urdf", text(cArmUrdf));
+    const std::string scene = dir.write("scene.yaml", text(R"(
+models:
+  - {urdf: arm.urdf, prefix: a_, self_collision: false}
+  - {urdf: arm.urdf, prefix: b_, position: [1, 0, 0], fixed: true, angular_velocity: [1, 0, 0]}
+)"));
+    const core::Model model = loadScene(scene);
+    ASSERT_EQ(model.bodies.size(), 6u);
+    ASSERT_EQ(model.joints.size(), 4u);
+    EXPECT_EQ(model.bodies[0].group, "a_");
+    EXPECT_EQ(model.bodies[2].group, "a_");
+    EXPECT_EQ(model.bodies[3].group, "");
+    EXPECT_FALSE(model.bodies[0].isStatic);
+    // b_base is static, at its link frame (the inertial is ignored); b_shoulder keeps it as parent.
+    const int bBase = model.findBody("b_base");
+    ASSERT_EQ(bBase, 3);
+    EXPECT_TRUE(model.bodies[3].isStatic);
+    expectNear(model.bodies[3].position_W, core::Vec3(1, 0, 0), "static root at its link frame");
+    expectNear(model.bodies[3].shapes.at(0).position_BS, core::Vec3(0, 0, 0.05), "shape in the link frame");
+    EXPECT_EQ(model.joints[2].name, "b_shoulder");
+    EXPECT_EQ(model.joints[2].parent, 3);
+    EXPECT_EQ(model.joints[2].child, 4);
+    // Rigid rotation about the root link origin (1, 0, 0): b_upper's COM is at (1, 0, 0.3).
+    expectNear(model.bodies[4].velocity_W, core::Vec3(1, 0, 0).cross(core::Vec3(0, 0, 0.3)), "velocity");
+    expectNear(model.bodies[3].velocity_W, core::Vec3::Zero(), "static body does not move");
+}
+
+TEST(Urdf, SamePrefixTwiceIsAnError)
+{
+    TempDir dir;
+    dir.write("arm.urdf", text(cArmUrdf));
+    const std::string scene = dir.write("scene.yaml", text(R"(
+models:
+  - {urdf: arm.urdf, prefix: a_}
+  - {urdf: arm.urdf, prefix: a_}
+)"));
+    const InputError e = captureInputError([&] { loadScene(scene); });
+    EXPECT_INPUT_ERROR_AT(e, scene, 3, 5, "adds body 'a_base', but a body of that name exists already");
+}
+
+TEST(Urdf, YamlJointCanAttachToAUrdfLink)
+{
+    TempDir dir;
+    dir.write("arm.urdf", text(cArmUrdf));
+    const std::string scene = dir.write("scene.yaml", text(R"(
+models:
+  - {urdf: arm.urdf, prefix: a_}
+joints:
+  - {name: pin, type: ball, parent: world, child: a_base, anchor: [0, 0, 0]}
+)"));
+    const core::Model model = loadScene(scene);
+    ASSERT_EQ(model.joints.size(), 3u);
+    EXPECT_EQ(model.joints[2].name, "pin");
+    EXPECT_EQ(model.joints[2].child, 0);
+}
+
+TEST(Urdf, ErrorInAModelNamesTheUrdfFile)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("bad.urdf", robot("  <link name=\"a\"/>\n"));
+    const std::string scene = dir.write("scene.yaml", "models: [{urdf: bad.urdf}]\n");
+    const InputError e = captureInputError([&] { loadScene(scene); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 2, 3, "link 'a' has no <inertial>");
+}
+
+} // namespace
+} // namespace frontier::io::test

@@ -1,0 +1,732 @@
+// tests/io/yaml_errors_test.cpp: every kind of bad scene input gives an InputError at the right
+// line:column, saying what was expected.
+#include "io/scene.h"
+#include "io_test_util.h"
+
+#include <gtest/gtest.h>
+
+namespace frontier::io::test
+{
+namespace
+{
+
+// Three bodies for the joint cases; joints start at line 12, block style, so that a value's
+// column is the length of its key + 7.
+const char* const cJointBase = R"(
+bodies:
+  - name: upper
+    shape: {type: sphere, radius: 0.1}
+    position: [0, 0, 1]
+  - name: lower
+    shape: {type: sphere, radius: 0.1}
+    position: [0, 0, 0.5]
+  - name: floor
+    static: true
+    shape: {type: plane, normal: [0, 0, 1]}
+joints:
+)";
+
+std::string withJoints(const char* joints)
+{
+    return text(cJointBase) + text(joints);
+}
+
+TEST(YamlErrors, NumberThatIsNotANumber)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    mass: heavy
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 11, "expected a number for 'mass' in body 'a', got 'heavy'");
+    EXPECT_EQ(std::string(e.what()).rfind("scene.yaml:4:11: error: ", 0), 0u) << e.what();
+}
+
+TEST(YamlErrors, UnknownKeySuggestsClosest)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: pelvis
+    shape: {type: sphere, radius: 0.1}
+    mas: 8.0
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 5, "unknown key 'mas' in body 'pelvis'; did you mean 'mass'?");
+}
+
+TEST(YamlErrors, UnknownTopLevelKeySuggestsClosest)
+{
+    const InputError e = yamlError(text(R"(
+name: x
+bodys:
+  - name: a
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 1, "unknown key 'bodys' in the scene; did you mean 'bodies'?");
+}
+
+TEST(YamlErrors, UnknownKeyFarFromAnyListsKnownKeys)
+{
+    const InputError e = yamlError(text(R"(
+simulation:
+  zzzzzzzz: 1
+bodies: []
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 3,
+                          "(known: dt, duration, gravity, solver, pgs_iterations, integrator)");
+}
+
+TEST(YamlErrors, MissingKeyIsReportedAtTheParentMap)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - shape: {type: sphere, radius: 0.1}
+    mass: 1
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 5, "missing key 'name' in body #1");
+}
+
+TEST(YamlErrors, DuplicateKeyInAMap)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    mass: 1
+    shape: {type: sphere, radius: 0.1}
+    mass: 2
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 5, "duplicate key 'mass' in body 'a' (first given at line 3)");
+}
+
+TEST(YamlErrors, DuplicateBodyName)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 11, "duplicate body name 'a' (first defined at line 2)");
+}
+
+TEST(YamlErrors, ReservedAndInvalidBodyNames)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
+bodies:
+  - name: world
+    shape: {type: sphere, radius: 0.1}
+)")),
+                          "scene.yaml", 2, 11, "'world' is reserved");
+    EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
+bodies:
+  - name: "a,b"
+    shape: {type: sphere, radius: 0.1}
+)")),
+                          "scene.yaml", 2, 11, "cannot contain commas");
+}
+
+TEST(YamlErrors, DuplicateJointName)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - {name: j, type: ball, parent: world, child: upper, anchor: [0, 0, 1.5]}
+  - {name: j, type: ball, parent: upper, child: lower, anchor: [0, 0, 0.75]}
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 13, 12, "duplicate joint name 'j' (first defined at line 12)");
+}
+
+TEST(YamlErrors, JointReferencesMissingBody)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: world
+    child: lowr
+    anchor: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12,
+                          "unknown body 'lowr' for the child of joint 'j'; did you mean 'lower'?");
+}
+
+TEST(YamlErrors, UnknownJointTypeListsKnownTypes)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: hinge
+    parent: world
+    child: lower
+    anchor: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(
+        e, "scene.yaml", 13, 11,
+        "unknown joint type 'hinge' in joint 'j' (known: ball, nail, revolute, angle, cylindrical, "
+        "prismatic, fixed)");
+}
+
+TEST(YamlErrors, MisspelledJointTypeSuggests)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: revolut
+    parent: world
+    child: lower
+    anchor: [0, 0, 1]
+    axis: [0, 1, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 13, 11, "did you mean 'revolute'?");
+}
+
+TEST(YamlErrors, JointChildIsStatic)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: upper
+    child: floor
+    anchor: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12, "the child of joint 'j', body 'floor', is static");
+}
+
+TEST(YamlErrors, JointChildIsWorld)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: upper
+    child: world
+    anchor: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12, "the world cannot be the child of joint 'j'");
+}
+
+TEST(YamlErrors, JointParentEqualsChild)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: upper
+    child: upper
+    anchor: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12, "joins body 'upper' to itself");
+}
+
+TEST(YamlErrors, LimitsOnAJointTypeWithoutLimits)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: world
+    child: upper
+    anchor: [0, 0, 1.5]
+    limits: [-1, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 17, 5, "joint 'j' of type ball takes no 'limits'");
+}
+
+TEST(YamlErrors, LimitsLowerAboveUpper)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: revolute
+    parent: world
+    child: upper
+    anchor: [0, 0, 1.5]
+    axis: [0, 1, 0]
+    limits: [1, -1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 18, 13,
+                          "expected lower <= upper for 'limits' in joint 'j', got [1, -1]");
+}
+
+TEST(YamlErrors, AxisMissingForRevolute)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: revolute
+    parent: world
+    child: upper
+    anchor: [0, 0, 1.5]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 12, 5, "missing key 'axis' in joint 'j'");
+}
+
+TEST(YamlErrors, AxisZero)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: prismatic
+    parent: world
+    child: upper
+    anchor: [0, 0, 1.5]
+    axis: [0, 0, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 17, 11, "expected a non-zero direction for 'axis' in joint 'j'");
+}
+
+TEST(YamlErrors, AxisOnABallJoint)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: world
+    child: upper
+    anchor: [0, 0, 1.5]
+    axis: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 17, 5, "joint 'j' of type ball takes no 'axis'");
+}
+
+TEST(YamlErrors, NailParentMustBeWorldLike)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: nail
+    parent: upper
+    child: lower
+    anchor: [0, 0, 0.75]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 14, 13,
+                          "the parent of nail joint 'j' must be 'world' or a static body");
+}
+
+TEST(YamlErrors, AnchorMissing)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: world
+    child: upper
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 12, 5, "missing key 'anchor' in joint 'j'");
+}
+
+TEST(YamlErrors, MisspelledJointKey)
+{
+    const InputError e = yamlError(withJoints(R"(
+  - name: j
+    type: ball
+    parent: world
+    child: upper
+    achor: [0, 0, 1.5]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 16, 5, "unknown key 'achor' in joint 'j'; did you mean 'anchor'?");
+}
+
+TEST(YamlErrors, NonPositiveMass)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    mass: 0
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 11,
+                          "expected a positive number for 'mass' in body 'a', got '0'");
+}
+
+TEST(YamlErrors, NonPositiveDensity)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    density: -5
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 14,
+                          "expected a positive number for 'density' in body 'a', got '-5'");
+}
+
+TEST(YamlErrors, NonPositiveRadius)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: sphere
+      radius: 0
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 15,
+                          "expected a positive number for 'radius' in sphere shape of body 'a', got '0'");
+}
+
+TEST(YamlErrors, NonPositiveBoxSize)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: box
+      size: [1, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 13,
+                          "expected positive numbers for 'size' in box shape of body 'a'");
+}
+
+TEST(YamlErrors, BoxSizeWithTwoNumbers)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: box
+      size: [1, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(
+        e, "scene.yaml", 5, 13,
+        "expected a list of 3 numbers for 'size' in box shape of body 'a', got a list of 2 items");
+}
+
+TEST(YamlErrors, UnknownShapeTypeSuggests)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: bx
+      size: [1, 1, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(
+        e, "scene.yaml", 4, 13,
+        "unknown shape type 'bx' in shape of body 'a'; did you mean 'box'? (known: box, sphere, "
+        "capsule, cylinder, plane, mesh)");
+}
+
+TEST(YamlErrors, KeyOfAnotherShapeType)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: box
+      radius: 1
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 7, "unknown key 'radius' in box shape of body 'a'");
+}
+
+TEST(YamlErrors, InertiaNotPositiveDefinite)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    mass: 1
+    inertia: [1, 1, -1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 14,
+                          "expected a positive-definite inertia for 'inertia' in body 'a'");
+}
+
+TEST(YamlErrors, InertiaMatrixNotSymmetric)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    mass: 1
+    inertia: [[1, 0.1, 0], [0, 1, 0], [0, 0, 1]]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 14, "expected a symmetric matrix");
+}
+
+TEST(YamlErrors, NanInAVector)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    position: [0, .nan, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 19,
+                          "expected a finite number for element 2 of 'position' in body 'a', got '.nan'");
+}
+
+TEST(YamlErrors, InfiniteMass)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    mass: .inf
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 11,
+                          "expected a finite number for 'mass' in body 'a', got '.inf'");
+}
+
+TEST(YamlErrors, NanGravity)
+{
+    const InputError e = yamlError(text(R"(
+simulation:
+  gravity: [0, 0, .NaN]
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 19, "expected a finite number for element 3 of 'gravity'");
+}
+
+TEST(YamlErrors, StaticBodyWithVelocity)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: floor
+    static: true
+    shape: {type: plane, normal: [0, 0, 1]}
+    velocity: [1, 0, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 5, "static body 'floor' cannot have 'velocity'");
+}
+
+TEST(YamlErrors, StaticBodyWithMass)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: floor
+    static: true
+    mass: 3
+    shape: {type: plane, normal: [0, 0, 1]}
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 5, "static body 'floor' cannot have 'mass'");
+}
+
+TEST(YamlErrors, PlaneOnAMovingBody)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape:
+      type: plane
+      normal: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 13,
+                          "a plane shape needs a static body, but body 'a' is moving");
+}
+
+TEST(YamlErrors, BrokenSyntax)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1
+    mass: 1
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 9, "invalid YAML: end of map flow not found");
+}
+
+TEST(YamlErrors, TabIndentation)
+{
+    const InputError e = yamlError("bodies:\n\t- name: a\n");
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 2, "tabs are not allowed in YAML indentation");
+}
+
+TEST(YamlErrors, BrokenSyntaxBadIndentation)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+     mass: 1
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 3, 10, "invalid YAML: illegal map value");
+}
+
+TEST(YamlErrors, FileDoesNotExist)
+{
+    const InputError e = captureInputError([] { loadScene("/nonexistent/dir/scene.yaml"); });
+    EXPECT_INPUT_ERROR_AT(e, "/nonexistent/dir/scene.yaml", 0, 0, "cannot open file");
+}
+
+TEST(YamlErrors, UnknownFileExtension)
+{
+    const InputError e = captureInputError([] { loadScene("scene.txt"); });
+    EXPECT_INPUT_ERROR_AT(e, "scene.txt", 0, 0, "expected a .yaml or .yml scene or a .urdf model");
+}
+
+TEST(YamlErrors, ZeroQuaternion)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    orientation: [0, 0, 0, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 18,
+                          "expected a non-zero quaternion [w, x, y, z] for 'orientation'");
+}
+
+TEST(YamlErrors, UnknownSolverAndBadIterations)
+{
+    EXPECT_INPUT_ERROR_AT(
+        yamlError(text(R"(
+simulation:
+  solver: fast
+bodies: []
+)")),
+        "scene.yaml", 2, 11,
+        "unknown solver 'fast' for 'solver' in 'simulation'; expected linear, dense or pgs");
+    EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
+simulation:
+  pgs_iterations: 2.5
+bodies: []
+)")),
+                          "scene.yaml", 2, 19,
+                          "expected an integer for 'pgs_iterations' in 'simulation', got '2.5'");
+    EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
+simulation:
+  integrator: rk4
+bodies: []
+)")),
+                          "scene.yaml", 2, 15, "expected euler or rattle");
+    EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
+simulation:
+  dt: -0.001
+bodies: []
+)")),
+                          "scene.yaml", 2, 7, "expected a positive number for 'dt' in 'simulation'");
+}
+
+TEST(YamlErrors, MassAndDensityTogether)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    mass: 1
+    density: 1000
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 5, "give either 'mass' or 'density' in body 'a', not both");
+}
+
+TEST(YamlErrors, InertiaWithoutMass)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    inertia: [1, 1, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 5, "'inertia' in body 'a' needs 'mass'");
+}
+
+TEST(YamlErrors, MovingBodyWithoutShapeOrMass)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    position: [0, 0, 1]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 2, 5, "missing key 'mass' in body 'a'");
+}
+
+TEST(YamlErrors, MassWithoutShapeNeedsInertia)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    mass: 2
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 3, 5, "body 'a' has 'mass' but no solid shape");
+}
+
+TEST(YamlErrors, BadBoolean)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    static: maybe
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 3, 13,
+                          "expected true or false for 'static' in body 'a', got 'maybe'");
+}
+
+TEST(YamlErrors, ColorOutOfRange)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+    color: [0.5, 2, 0]
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 18,
+                          "expected a number in [0, 1] for 'color' in body 'a', got '2'");
+}
+
+TEST(YamlErrors, IgnorePairWithUnknownBody)
+{
+    const InputError e = yamlError(text(R"(
+contact:
+  ignore:
+    - [a, bb]
+bodies:
+  - name: a
+    shape: {type: sphere, radius: 0.1}
+  - name: b
+    shape: {type: sphere, radius: 0.1}
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 3, 11, "unknown body 'bb' for entry 1 of 'ignore' in 'contact'");
+}
+
+TEST(YamlErrors, WrongNodeKinds)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies: 3\n"), "scene.yaml", 1, 9,
+                          "expected a list for 'bodies', got '3'");
+    EXPECT_INPUT_ERROR_AT(yamlError("- a\n- b\n"), "scene.yaml", 1, 1,
+                          "expected a map for the scene, got a list");
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies:\n  - 7\n"), "scene.yaml", 2, 5,
+                          "expected a map for body #1, got '7'");
+}
+
+TEST(YamlErrors, EmptySceneAndNoBodies)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError(""), "scene.yaml", 0, 0, "empty scene");
+    EXPECT_INPUT_ERROR_AT(yamlError("name: nothing\n"), "scene.yaml", 1, 1, "the scene has no bodies");
+}
+
+TEST(YamlErrors, SeveralDocuments)
+{
+    const InputError e = yamlError(text(R"(
+bodies:
+  - {name: a, shape: {type: sphere, radius: 0.1}}
+---
+bodies: []
+)"));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 1, "the file holds 2 YAML documents");
+}
+
+TEST(YamlErrors, MissingMeshFileIsReportedAtTheSceneNode)
+{
+    TempDir dir;
+    const std::string scene = dir.write("scene.yaml", text(R"(
+bodies:
+  - name: a
+    shape:
+      type: mesh
+      file: nope.obj
+)"));
+    const InputError e = captureInputError([&] { loadScene(scene); });
+    EXPECT_INPUT_ERROR_AT(e, scene, 5, 13, "cannot read mesh file '" + dir.file("nope.obj") + "'");
+}
+
+TEST(YamlErrors, MissingUrdfFileIsReportedAtTheSceneNode)
+{
+    TempDir dir;
+    const std::string scene = dir.write("scene.yaml", text(R"(
+models:
+  - urdf: robot.urdf
+)"));
+    const InputError e = captureInputError([&] { loadScene(scene); });
+    EXPECT_INPUT_ERROR_AT(e, scene, 2, 11, "cannot open URDF file");
+}
+
+TEST(YamlErrors, BadMeshContentNamesTheMeshFileAndLine)
+{
+    TempDir dir;
+    dir.write("cube.obj", "v 0 0 0\nv 1 0 0\nv 0 one 0\nf 1 2 3\n");
+    const std::string scene = dir.write("scene.yaml", text(R"(
+bodies:
+  - name: a
+    shape: {type: mesh, file: cube.obj}
+)"));
+    const InputError e = captureInputError([&] { loadScene(scene); });
+    EXPECT_INPUT_ERROR_AT(e, dir.file("cube.obj"), 3, 5, "expected a finite number for vertex y, got 'one'");
+}
+
+} // namespace
+} // namespace frontier::io::test
