@@ -7,6 +7,7 @@
 // negative when they approach.
 #pragma once
 
+#include "core/contact.h"
 #include "core/model.h"
 #include "core/state.h"
 
@@ -17,14 +18,9 @@
 namespace frontier::collision
 {
 
-struct Contact
-{
-    int bodyA = 0;                             // moving body index (core::Model::bodies)
-    int bodyB = 0;                             // moving or static body index
-    core::Vec3 point_W = core::Vec3::Zero();   // m
-    core::Vec3 normal_W = core::Vec3::UnitZ(); // unit, from A towards B
-    double depth = 0.0;                        // m, > 0 when penetrating
-};
+// The contact type and its convention are core's (core/contact.h), so the step pipeline reads
+// them without depending on FCL.
+using Contact = core::Contact;
 
 // Counters over the detector's lifetime (for --stats and benchmarks).
 struct DetectorStats
@@ -36,18 +32,18 @@ struct DetectorStats
     long contacts = 0;         // contacts reported
 };
 
-class ContactDetector
+class ContactDetector final : public core::ContactSource
 {
   public:
     // margin: contacts are reported while the shapes are closer than this (m), depth may then
     // be negative (a gap), so that resting contact does not flicker.
     explicit ContactDetector(const core::Model& model, double margin = 1e-3);
-    ~ContactDetector();
+    ~ContactDetector() override;
     ContactDetector(const ContactDetector&) = delete;
     ContactDetector& operator=(const ContactDetector&) = delete;
 
     // All contacts at the given state; out is cleared first.
-    void detect(const core::State& state, std::vector<Contact>& out);
+    void detect(const core::State& state, std::vector<Contact>& out) override;
 
     // Body index pairs that may ever collide (after joint, group, ignore and static filtering).
     // Listed as (i, j) with i < j, bodies without collision shapes left out. Computed on the

@@ -1,0 +1,423 @@
+// collision/contacts.cpp: the contact detector (FCL 0.7 with its default libccd solver).
+//
+// Pipeline of detect():
+//   1. Pose every shape of a moving body (body frame at the centre of mass, shape pose in it).
+//   2. Ground: each moving shape against each static plane, directly (planes never enter the
+//      broadphase: FCL crashes on infinite AABBs in bulk registration, DEPS.md §3). These
+//      contacts are made here (plane_manifold.cpp), not by FCL, which returns one point for a
+//      box, capsule or cylinder on a half-space; we return every box vertex, both capsule end
+//      spheres, the cylinder rim points and the mesh vertices within the margin.
+//   3. Everything else: a DynamicAABBTreeCollisionManagerd holding only the shapes of bodies
+//      that have at least one allowed partner (AABBs grown by the margin). Its callback only
+//      collects allowed shape pairs; they are sorted and then tested in that order, so the
+//      result never depends on the tree's traversal order.
+//   4. Narrowphase per pair with fcl::collide. Box-box keeps FCL's manifold (up to 4 points).
+//      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
+//      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
+//      vertices, capsule end spheres, cylinder rim points and mesh vertices tested against the
+//      exact signed distance of the other shape, plus the capsule axis clipped to the other's
+//      contact face. We chose this over a persistent contact cache: it gives the full manifold
+//      in the very first step, keeps detect() free of history (same state -> same contacts),
+//      still works when FCL's single point never moves (a cache only grows when it wanders) and
+//      costs a few dozen flops per feature. FCL's own point is dropped when the features
+//      already reach its depth. Zero-normal/zero-depth FCL points (meshes) are dropped.
+//   5. Per shape pair: merge points closer than a size-relative distance and keep at most 4
+//      (manifold.cpp). Then all contacts are sorted by (bodyA, bodyB, point, depth).
+//
+// Our code does no heap allocation per step once its vectors have grown; fcl::collide itself
+// allocates a few small blocks per touching pair (measured: 1-3, about 20 for a mesh pair).
+#include "collision/contacts.h"
+
+#include "collision/internal.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/triangle.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <limits>
+#include <stdexcept>
+
+namespace frontier::collision
+{
+
+namespace
+{
+
+using detail::Mat3;
+using detail::RawContact;
+using detail::ShapeInstance;
+using detail::Vec3;
+
+// A collision object whose world AABB is grown by the margin, so that the broadphase also
+// reports pairs a little apart (the feature manifolds report gaps below the margin).
+class MarginObject : public fcl::CollisionObjectd
+{
+  public:
+    using fcl::CollisionObjectd::CollisionObjectd;
+
+    void computeInflatedAABB(double margin)
+    {
+        computeAABB();
+        aabb.min_.array() -= margin;
+        aabb.max_.array() += margin;
+    }
+};
+
+std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape)
+{
+    switch (shape.type)
+    {
+    case core::ShapeType::Box:
+        return std::make_shared<fcl::Boxd>(shape.size.x(), shape.size.y(), shape.size.z());
+    case core::ShapeType::Sphere:
+        return std::make_shared<fcl::Sphered>(shape.radius);
+    case core::ShapeType::Capsule:
+        return std::make_shared<fcl::Capsuled>(shape.radius, shape.length); // lz = segment (m)
+    case core::ShapeType::Cylinder:
+        return std::make_shared<fcl::Cylinderd>(shape.radius, shape.length); // lz = full height (m)
+    case core::ShapeType::Mesh:
+    {
+        if (shape.triangles.empty() || shape.vertices.empty())
+            return nullptr;
+        std::vector<fcl::Triangle> triangles;
+        triangles.reserve(shape.triangles.size());
+        for (const auto& t : shape.triangles)
+            triangles.emplace_back(static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]),
+                                   static_cast<std::size_t>(t[2]));
+        auto mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+        mesh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(shape.vertices.size()));
+        mesh->addSubModel(shape.vertices, triangles);
+        mesh->endModel();
+        return mesh;
+    }
+    case core::ShapeType::Plane:
+        break;
+    }
+    return nullptr;
+}
+
+void* indexToUserData(int index)
+{
+    return reinterpret_cast<void*>(static_cast<std::intptr_t>(index));
+}
+
+int userDataToIndex(const fcl::CollisionObjectd* object)
+{
+    return static_cast<int>(reinterpret_cast<std::intptr_t>(object->getUserData()));
+}
+
+bool contactLess(const Contact& a, const Contact& b)
+{
+    if (a.bodyA != b.bodyA)
+        return a.bodyA < b.bodyA;
+    if (a.bodyB != b.bodyB)
+        return a.bodyB < b.bodyB;
+    for (int k = 0; k < 3; ++k)
+        if (a.point_W[k] != b.point_W[k])
+            return a.point_W[k] < b.point_W[k];
+    if (a.depth != b.depth)
+        return a.depth < b.depth;
+    for (int k = 0; k < 3; ++k)
+        if (a.normal_W[k] != b.normal_W[k])
+            return a.normal_W[k] < b.normal_W[k];
+    return false;
+}
+
+struct PlaneInstance
+{
+    int body = 0;
+    Vec3 normal = Vec3::UnitZ(); // unit, world
+    double offset = 0.0;         // m
+};
+
+} // namespace
+
+struct ContactDetector::Impl
+{
+    double margin = 1e-3; // m
+    detail::PairFilter filter;
+    std::vector<char> bodyCollides;                     // per body: has a shape that can touch something
+    std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
+    std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
+    std::vector<PlaneInstance> planes;
+    std::vector<int> movingShapes;                        // shapes of moving bodies
+    std::vector<int> staticShapes;                        // shapes of static bodies
+    std::vector<fcl::CollisionObjectd*> movingRegistered; // moving objects in the manager
+    fcl::DynamicAABBTreeCollisionManagerd manager;
+    bool useBroadphase = false;
+    bool staticPosed = false;
+
+    // Scratch, reused every step.
+    std::vector<std::pair<int, int>> shapePairs;
+    fcl::CollisionRequestd request{8, true};
+    fcl::CollisionRequestd meshRequest{64, true};
+    fcl::CollisionResultd result;
+    std::vector<RawContact> raw;
+
+    bool candidatesReady = false;
+    std::vector<std::pair<int, int>> candidates;
+    DetectorStats stats;
+
+    Impl(const core::Model& model, double marginIn);
+    void poseShape(int index, const core::State& state);
+    void planePass(std::vector<Contact>& out);
+    void narrowphase(int i, int j, std::vector<Contact>& out);
+    void emit(int bodyA, int bodyB, std::vector<Contact>& out);
+    static bool broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
+};
+
+ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(marginIn), filter(model)
+{
+    const int bodyCount = static_cast<int>(model.bodies.size());
+    bodyCollides.assign(model.bodies.size(), 0);
+    for (int b = 0; b < bodyCount; ++b)
+    {
+        const core::Body& body = model.bodies[static_cast<std::size_t>(b)];
+        const Mat3 R_WB = body.orientation_WB.normalized().toRotationMatrix();
+        for (const core::Shape& shape : body.shapes)
+        {
+            if (shape.type == core::ShapeType::Plane)
+            {
+                if (body.isStatic && shape.normal.norm() > 0.0) // moving planes are not supported
+                {
+                    planes.push_back({b, shape.normal.normalized(), shape.offset / shape.normal.norm()});
+                    bodyCollides[static_cast<std::size_t>(b)] = 1;
+                }
+                continue;
+            }
+            const int index = static_cast<int>(shapes.size());
+            shapes.push_back(detail::makeShapeInstance(shape, b));
+            detail::setBodyPose(shapes.back(), R_WB, body.position_W);
+            bodyCollides[static_cast<std::size_t>(b)] = 1;
+            (body.isStatic ? staticShapes : movingShapes).push_back(index);
+            std::unique_ptr<MarginObject> object;
+            if (auto geometry = makeGeometry(shape))
+            {
+                fcl::Transform3d tf = fcl::Transform3d::Identity();
+                tf.linear() = shapes.back().R_WS;
+                tf.translation() = shapes.back().p_WS;
+                object = std::make_unique<MarginObject>(geometry, tf);
+                object->setUserData(indexToUserData(index));
+                object->computeInflatedAABB(margin);
+            }
+            objects.push_back(std::move(object));
+        }
+    }
+
+    // Bodies that go to the broadphase: those with an FCL shape and an allowed partner among the
+    // others with FCL shapes. The excluded-count bound avoids the O(n^2) check in large scenes.
+    std::vector<int> fclBodies;
+    for (std::size_t s = 0; s < shapes.size(); ++s)
+        if (objects[s] && (fclBodies.empty() || fclBodies.back() != shapes[s].body))
+            fclBodies.push_back(shapes[s].body);
+    std::vector<char> inBroadphase(model.bodies.size(), 0);
+    const int others = static_cast<int>(fclBodies.size()) - 1;
+    for (const int b : fclBodies)
+    {
+        bool partner = others > filter.excludedBound(b);
+        for (std::size_t k = 0; k < fclBodies.size() && !partner; ++k)
+            partner = filter.allowed(b, fclBodies[k]);
+        inBroadphase[static_cast<std::size_t>(b)] = partner ? 1 : 0;
+    }
+    for (std::size_t s = 0; s < shapes.size(); ++s)
+    {
+        if (!objects[s] || !inBroadphase[static_cast<std::size_t>(shapes[s].body)])
+            continue;
+        manager.registerObject(objects[s].get()); // one at a time (DEPS.md §3)
+        if (!filter.isStatic(shapes[s].body))
+            movingRegistered.push_back(objects[s].get());
+    }
+    useBroadphase = !movingRegistered.empty();
+    if (useBroadphase)
+        manager.setup();
+}
+
+void ContactDetector::Impl::poseShape(int index, const core::State& state)
+{
+    ShapeInstance& s = shapes[static_cast<std::size_t>(index)];
+    const core::BodyState& body = state.bodies[static_cast<std::size_t>(s.body)];
+    detail::setBodyPose(s, body.orientation_WB.normalized().toRotationMatrix(), body.position_W);
+    if (MarginObject* object = objects[static_cast<std::size_t>(index)].get())
+    {
+        fcl::Transform3d tf = fcl::Transform3d::Identity();
+        tf.linear() = s.R_WS;
+        tf.translation() = s.p_WS;
+        object->setTransform(tf);
+        object->computeInflatedAABB(margin);
+    }
+}
+
+void ContactDetector::Impl::emit(int bodyA, int bodyB, std::vector<Contact>& out)
+{
+    for (const RawContact& c : raw)
+        out.push_back({bodyA, bodyB, c.point_W, c.normal_W, c.depth});
+    raw.clear();
+}
+
+void ContactDetector::Impl::planePass(std::vector<Contact>& out)
+{
+    for (const int index : movingShapes)
+    {
+        const ShapeInstance& s = shapes[static_cast<std::size_t>(index)];
+        for (const PlaneInstance& plane : planes)
+        {
+            if (plane.normal.dot(s.p_WS) - plane.offset - s.boundingRadius >= margin)
+                continue;
+            if (!filter.allowed(s.body, plane.body))
+                continue;
+            ++stats.planeTests;
+            raw.clear();
+            detail::planeContacts(s, plane.normal, plane.offset, margin, raw);
+            detail::mergeAndReduce(raw, 0, s.mergeDistance);
+            emit(s.body, plane.body, out);
+        }
+    }
+}
+
+bool ContactDetector::Impl::broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2,
+                                               void* data)
+{
+    auto* self = static_cast<Impl*>(data);
+    int i = userDataToIndex(o1);
+    int j = userDataToIndex(o2);
+    int bi = self->shapes[static_cast<std::size_t>(i)].body;
+    int bj = self->shapes[static_cast<std::size_t>(j)].body;
+    if (bi == bj || !self->filter.allowed(bi, bj))
+        return false;
+    // A is the moving body; of two moving bodies, the lower index.
+    if (self->filter.isStatic(bi) || (!self->filter.isStatic(bj) && bj < bi))
+    {
+        std::swap(i, j);
+        std::swap(bi, bj);
+    }
+    self->shapePairs.emplace_back(i, j);
+    return false; // never stop early
+}
+
+void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
+{
+    const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
+    const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
+    const bool mesh = a.type == core::ShapeType::Mesh || b.type == core::ShapeType::Mesh;
+
+    result.clear(); // CollisionResult accumulates otherwise
+    fcl::collide(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
+                 mesh ? meshRequest : request, result);
+    ++stats.narrowphaseTests;
+
+    // FCL's points, normal from o1 (a) to o2 (b), positive depth. Drop the degenerate ones
+    // (BVH meshes give zero normals and zero depths).
+    raw.clear();
+    double fclDepth = -std::numeric_limits<double>::infinity();
+    RawContact deepest;
+    for (std::size_t k = 0; k < result.numContacts(); ++k)
+    {
+        const fcl::Contactd& c = result.getContact(k);
+        const double length = c.normal.norm();
+        if (!(length > 0.5) || !(c.penetration_depth > 0.0) || !c.pos.allFinite())
+            continue;
+        raw.push_back({c.pos, c.normal / length, c.penetration_depth});
+        if (c.penetration_depth > fclDepth)
+        {
+            fclDepth = c.penetration_depth;
+            deepest = raw.back();
+        }
+    }
+
+    if (detail::usesFeatureManifold(a.type, b.type))
+    {
+        const std::size_t fclCount = raw.size();
+        detail::featureContacts(a, b, fclCount > 0 ? &deepest : nullptr, margin, raw);
+        if (fclCount > 0 && raw.size() > fclCount)
+        {
+            double featureDepth = -std::numeric_limits<double>::infinity();
+            for (std::size_t k = fclCount; k < raw.size(); ++k)
+                featureDepth = std::max(featureDepth, raw[k].depth);
+            // FCL's single point is redundant when the features reach its depth.
+            if (fclDepth <= featureDepth + std::max(0.1 * margin, 1e-6))
+                raw.erase(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(fclCount));
+        }
+    }
+    detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
+    emit(a.body, b.body, out);
+}
+
+ContactDetector::ContactDetector(const core::Model& model, double margin)
+    : mImpl(std::make_unique<Impl>(model, margin))
+{
+}
+
+ContactDetector::~ContactDetector() = default;
+
+void ContactDetector::detect(const core::State& state, std::vector<Contact>& out)
+{
+    Impl& m = *mImpl;
+    if (state.bodies.size() != m.bodyCollides.size())
+        throw std::invalid_argument("ContactDetector::detect: the state does not match the model");
+    out.clear();
+    ++m.stats.detectCalls;
+
+    for (const int index : m.movingShapes)
+        m.poseShape(index, state);
+    if (!m.staticPosed)
+    {
+        for (const int index : m.staticShapes)
+            m.poseShape(index, state);
+        m.staticPosed = true;
+        if (m.useBroadphase)
+            m.manager.update();
+    }
+    else if (m.useBroadphase)
+        m.manager.update(m.movingRegistered);
+
+    m.planePass(out);
+
+    if (m.useBroadphase)
+    {
+        m.shapePairs.clear();
+        m.manager.collide(&m, &Impl::broadphaseCallback);
+        std::sort(m.shapePairs.begin(), m.shapePairs.end());
+        m.stats.broadphasePairs += static_cast<long>(m.shapePairs.size());
+        for (const auto& [i, j] : m.shapePairs)
+            m.narrowphase(i, j, out);
+    }
+
+    std::sort(out.begin(), out.end(), contactLess);
+    m.stats.contacts += static_cast<long>(out.size());
+}
+
+const std::vector<std::pair<int, int>>& ContactDetector::candidatePairs() const
+{
+    Impl& m = *mImpl;
+    if (!m.candidatesReady)
+    {
+        const int n = static_cast<int>(m.bodyCollides.size());
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j)
+                if (m.bodyCollides[static_cast<std::size_t>(i)] &&
+                    m.bodyCollides[static_cast<std::size_t>(j)] && m.filter.allowed(i, j))
+                    m.candidates.emplace_back(i, j);
+        m.candidatesReady = true;
+    }
+    return m.candidates;
+}
+
+double ContactDetector::margin() const
+{
+    return mImpl->margin;
+}
+
+const DetectorStats& ContactDetector::stats() const
+{
+    return mImpl->stats;
+}
+
+} // namespace frontier::collision

@@ -1,0 +1,128 @@
+// collision/internal.h: private to collision/ (never include it from other folders). Shape
+// instances in world pose, raw contacts between two shapes, and the helpers that build contact
+// manifolds without FCL: the plane manifolds, the feature-point manifolds of capsules and
+// cylinders, and the merge/reduce step. FCL stays out of this header (DEPS.md §2).
+#pragma once
+
+#include "core/model.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace frontier::collision::detail
+{
+
+using core::Mat3;
+using core::Vec3;
+
+// A contact between two shapes a and b, before it is assigned to bodies.
+struct RawContact
+{
+    Vec3 point_W = Vec3::Zero();   // m, middle of the overlap
+    Vec3 normal_W = Vec3::UnitZ(); // unit, from shape a towards shape b
+    double depth = 0.0;            // m, > 0 penetrating, < 0 a gap within the margin
+};
+
+// One non-plane shape of one body, with its geometry in its own frame S and its current pose.
+struct ShapeInstance
+{
+    int body = 0; // index in core::Model::bodies
+    core::ShapeType type = core::ShapeType::Box;
+    Vec3 halfExtents = Vec3::Zero(); // Box (m)
+    double radius = 0.0;             // Sphere, Capsule, Cylinder (m)
+    double halfLength = 0.0;         // Capsule: half segment; Cylinder: half height (m)
+    double boundingRadius = 0.0;     // of a sphere about the shape origin holding the shape (m)
+    double mergeDistance = 0.0;      // contacts of one pair closer than this are merged (m)
+    std::vector<Vec3> meshVertices;  // Mesh: unique vertices in S (m)
+    // Fixed pose in the body frame.
+    Mat3 R_BS = Mat3::Identity();
+    Vec3 p_BS = Vec3::Zero(); // m
+    // Current pose in the world.
+    Mat3 R_WS = Mat3::Identity();
+    Vec3 p_WS = Vec3::Zero(); // m
+};
+
+// Corner k (0..7, bit i set = +x_i side) of a box with the given half extents, shape frame (m).
+inline Vec3 boxCorner(const Vec3& half, int k)
+{
+    return Vec3((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),
+                (k & 4) ? half.z() : -half.z());
+}
+
+// Unit directions (cos, sin) of the points sampled on each cylinder rim.
+inline constexpr int cRimSamples = 8;
+const std::array<std::array<double, 2>, cRimSamples>& rimDirections();
+
+// Builds the instance (everything but the world pose) from a model shape of a given body.
+ShapeInstance makeShapeInstance(const core::Shape& shape, int body);
+
+// World pose from the body pose: R_WS = R_WB R_BS, p_WS = p_WB + R_WB p_BS.
+void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB);
+
+// --- plane_manifold.cpp ---------------------------------------------------------------------
+// Appends the contacts of shape s against the solid half-space n . x <= offset (n unit, world)
+// whose separation is below margin (m). Normals are -n (from the shape towards the plane).
+// Box: vertices; Sphere: one point; Capsule: both end spheres; Cylinder: rim points; Mesh:
+// vertices. The caller merges and reduces them (mergeAndReduce).
+void planeContacts(const ShapeInstance& s, const Vec3& n, double offset, double margin,
+                   std::vector<RawContact>& out);
+
+// --- feature_manifold.cpp -------------------------------------------------------------------
+// Signed distance (m, < 0 inside) from a world point to a Box, Sphere, Capsule or Cylinder
+// instance, and the unit outward direction grad_W of that distance at the point.
+double signedDistance(const ShapeInstance& s, const Vec3& p_W, Vec3& grad_W);
+
+// True for the pairs whose FCL result gets the feature points added: a capsule or a cylinder
+// against a box, capsule or cylinder (FCL gives one point), and a mesh against a box, sphere,
+// capsule or cylinder (FCL gives per-triangle points, not the mesh's corners).
+bool usesFeatureManifold(core::ShapeType a, core::ShapeType b);
+
+// Appends the feature contacts of a against b and of b against a (normals from a towards b):
+// box vertices, capsule end spheres, cylinder rim points and mesh vertices of one shape, plus the ends of the
+// capsule axis (or of a lying cylinder's contact line) clipped to the other shape's contact
+// face, each tested against the exact signed distance of the other shape and kept while the
+// separation is below margin (m). reference, when not null, is FCL's deepest contact: it
+// orients the features and, where a point sits on an edge of the other shape (where its
+// distance gradient is ambiguous), gives that point's normal and its depth below the plane
+// of the reference contact.
+void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact* reference,
+                     double margin, std::vector<RawContact>& out);
+
+// --- manifold.cpp ---------------------------------------------------------------------------
+// Cleans the contacts out[begin, end) of one shape pair in place and shrinks the vector: drops
+// non-finite ones, keeps the deepest of those closer than mergeDistance (m), and reduces the
+// rest to at most maxPoints (deepest, then the ones spanning the largest area). Deterministic.
+void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double mergeDistance,
+                    std::size_t maxPoints = 4);
+
+// --- filter.cpp -----------------------------------------------------------------------------
+// Which body pairs may collide (PRODUCT.md): not two static bodies, not two bodies of one
+// non-empty group, not the pairs in contact.ignore, not bodies joined by a joint unless the
+// joint says collideConnected. Memory O(bodies + joints + ignore pairs).
+class PairFilter
+{
+  public:
+    explicit PairFilter(const core::Model& model);
+
+    bool allowed(int a, int b) const;
+    bool isStatic(int body) const { return mStatic[static_cast<std::size_t>(body)] != 0; }
+    int bodyCount() const { return static_cast<int>(mStatic.size()); }
+
+    // An upper bound on the number of bodies that body b may not collide with.
+    int excludedBound(int body) const;
+
+  private:
+    static std::uint64_t key(int a, int b);
+
+    std::vector<char> mStatic;        // per body
+    std::vector<int> mGroup;          // per body, -1 for none
+    std::vector<int> mGroupSize;      // per group id
+    std::vector<int> mExcludedDegree; // per body: joints and ignore entries it is part of
+    int mStaticCount = 0;
+    std::vector<std::uint64_t> mExcluded; // sorted keys of (min, max) pairs
+};
+
+} // namespace frontier::collision::detail
