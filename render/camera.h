@@ -1,0 +1,36 @@
+// render/camera.h: view and projection matrices (Eigen, column-major) and automatic framing.
+#pragma once
+
+#include "core/model.h"
+
+#include <Eigen/Core>
+
+namespace frontier::render
+{
+
+using Mat4 = Eigen::Matrix4d;
+
+// An up direction usable with a view along `forward`: `preferredUp` unless it is (nearly) parallel
+// to `forward` (e.g. looking straight down), then the world axis most perpendicular to `forward`.
+core::Vec3 robustUp(const core::Vec3& forward, const core::Vec3& preferredUp);
+
+// World to camera (OpenGL convention: the camera looks along -z, y up).
+Mat4 lookAt(const core::Vec3& eye, const core::Vec3& target, const core::Vec3& preferredUp);
+// OpenGL clip matrices; fovy in degrees.
+Mat4 perspective(double fovyDegrees, double aspect, double zNear, double zFar);
+Mat4 orthographic(double left, double right, double bottom, double top, double zNear, double zFar);
+
+struct View
+{
+    core::Vec3 eye = core::Vec3(3, -3, 2);
+    core::Vec3 target = core::Vec3::Zero();
+    core::Vec3 up = core::Vec3::UnitZ(); // preferred up, made robust by lookAt
+    double fovyDegrees = 45.0;
+};
+
+// A camera that sees the whole axis-aligned box [lo, hi] from the usual three-quarter direction
+// (azimuth -45 deg, elevation about 25 deg relative to `up`), with a small margin.
+View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, double fovyDegrees,
+              double aspect);
+
+} // namespace frontier::render
