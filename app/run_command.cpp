@@ -59,14 +59,12 @@ void printSummary(const core::Model& model, const RunSummary& s)
 io::RunStats makeStats(const RunOptions& options, const core::Model& model, const RunSummary& s)
 {
     io::RunStats stats;
+    io::fillModelCounts(stats, model);
     stats.scene = options.scene;
     stats.solver = core::solverName(model.simulation.solver);
     stats.integrator = core::integratorName(model.simulation.integrator);
     stats.dt = model.simulation.dt;
     stats.steps = s.steps;
-    stats.bodies = movingBodies(model);
-    stats.joints = static_cast<int>(model.joints.size());
-    stats.constraintRows = constraintRows(model);
     stats.wallSeconds = s.wallSeconds;
     stats.secondsPerStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
     stats.maxJointErrorM = s.maxJointErrorM;

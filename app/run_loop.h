@@ -39,5 +39,6 @@ using Recorder = std::function<void(const core::State&)>;
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);
 
 long stepsFor(double duration, double dt);
+double contactMargin(double dt);
 
 } // namespace frontier::app

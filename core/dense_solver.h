@@ -21,7 +21,6 @@ class DenseSolver final : public ImpulseSolver
     static Eigen::MatrixXd assemble(const RowSystem& system);
 
   private:
-    const RowSystem* mSystem = nullptr;
     Eigen::PartialPivLU<Eigen::MatrixXd> mLu;
     Eigen::VectorXd mRhs;
 };

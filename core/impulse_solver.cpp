@@ -67,6 +67,79 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     }
 }
 
+void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,
+                        Eigen::VectorXd& out)
+{
+    int rows = 0;
+    for (const ExtraBlock& block : blocks)
+    {
+        rows = std::max(rows, block.offset + block.count);
+    }
+    out.setZero(rows);
+    for (const ExtraBlock& block : blocks)
+    {
+        auto v = out.segment(block.offset, block.count);
+        if (block.bodyA >= 0)
+        {
+            v += block.J_A.topRows(block.count) * solution.body[static_cast<std::size_t>(block.bodyA)];
+        }
+        if (block.bodyB >= 0)
+        {
+            v += block.J_B.topRows(block.count) * solution.body[static_cast<std::size_t>(block.bodyB)];
+        }
+    }
+}
+
+void ImpulseSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+{
+    G.setZero(rows, rows);
+    Eigen::VectorXd column;
+    BlockVector response;
+    response.resize(mSystem->model->bodies.size(), mSystem->model->joints.size());
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int k = 0; k < block.count; ++k)
+        {
+            Eigen::VectorXd unit = Eigen::VectorXd::Zero(rows);
+            unit(block.offset + k) = 1.0;
+            response.setZero();
+            applyExtraImpulses(blocks, unit, response);
+            extraRowVelocities(blocks, response, column);
+            G.col(block.offset + k) = column;
+        }
+    }
+}
+
+void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
+                                       BlockVector& solution)
+{
+    mExtraRhs.resize(solution.body.size(), solution.joint.size());
+    mExtraRhs.setZero();
+    for (const ExtraBlock& block : blocks)
+    {
+        const auto l = lambda.segment(block.offset, block.count);
+        if (block.bodyA >= 0)
+        {
+            mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] +=
+                block.J_A.topRows(block.count).transpose() * l;
+        }
+        if (block.bodyB >= 0)
+        {
+            mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] +=
+                block.J_B.topRows(block.count).transpose() * l;
+        }
+    }
+    solve(mExtraRhs, mExtraResponse);
+    for (std::size_t i = 0; i < solution.body.size(); ++i)
+    {
+        solution.body[i] += mExtraResponse.body[i];
+    }
+    for (std::size_t j = 0; j < solution.joint.size(); ++j)
+    {
+        solution.joint[j] += mExtraResponse.joint[j];
+    }
+}
+
 std::unique_ptr<ImpulseSolver> makeSolver(SolverKind kind, int pgsIterations)
 {
     switch (kind)

@@ -10,6 +10,7 @@
 // over the same rows with a fixed iteration count (what game engines do: O(n) per sweep, inexact).
 #pragma once
 
+#include "core/extra_rows.h"
 #include "core/frontier_order.h"
 #include "core/joints/joint_rows.h"
 #include "core/state.h"
@@ -66,7 +67,24 @@ class ImpulseSolver
     // One right-hand side; may be called many times per factor().
     virtual void solve(const BlockVector& rhs, BlockVector& solution) = 0;
     virtual const char* name() const = 0;
+
+    // Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; PAPER.md §5),
+    // rows x rows, after factor(). The default takes one solve per row; the tree solver overrides
+    // it with forward sweeps that touch only each body's path to its root.
+    virtual void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G);
+
+    // Adds the response to extra-row impulses: solution += H^-1 [J_x^T lambda; 0] (one solve).
+    void applyExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
+                            BlockVector& solution);
+
+  protected:
+    const RowSystem* mSystem = nullptr;    // set by factor()
+    BlockVector mExtraRhs, mExtraResponse; // scratch
 };
+
+// J_x u for every extra row, at velocities `solution.body`.
+void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,
+                        Eigen::VectorXd& out);
 
 std::unique_ptr<ImpulseSolver> makeSolver(SolverKind kind, int pgsIterations = 20);
 

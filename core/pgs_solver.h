@@ -30,7 +30,6 @@ class PgsSolver final : public ImpulseSolver
         double invDiag = 0.0; // 1 / (J M^-1 J^T)
     };
     int mIterations;
-    const RowSystem* mSystem = nullptr;
     std::vector<Row> mRows;
 };
 

@@ -21,23 +21,20 @@ Quat rotationFromVector(const Vec3& theta)
     return Quat(Eigen::AngleAxisd(angle, theta / angle));
 }
 
+// Anything beyond these is a blow-up even while still finite.
+constexpr double cMaxSpeed = 1e5;        // m/s
+constexpr double cMaxAngularSpeed = 1e6; // rad/s
+
 bool finite(const Vec3& v)
 {
     return v.allFinite();
 }
 } // namespace
 
-Simulator::Simulator(const Model& model, const StepOptions& options)
-    : mModel(model), mOptions(options), mLayout(buildFrontierLayout(model)),
+Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
+    : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)), mDt(model.simulation.dt)
 {
-    if (!mLayout.loopJoints.empty())
-    {
-        const Joint& joint = mModel.joints[static_cast<std::size_t>(mLayout.loopJoints.front())];
-        throw UnsupportedModelError("joint '" + joint.name +
-                                    "' closes a loop (a second path between its bodies or to the world); "
-                                    "loop-closing joints are not supported by the tree solver yet");
-    }
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
     mRhs.resize(nb, nj);
@@ -46,7 +43,14 @@ Simulator::Simulator(const Model& model, const StepOptions& options)
     mRhs.setZero();
     mSolution.setZero();
     mStart.resize(nb);
-    mMomentum.resize(nb);
+    for (std::size_t k = 0; k < nj; ++k)
+    {
+        const Joint& joint = model.joints[k];
+        if (joint.limits && (joint.type == JointType::Revolute || joint.type == JointType::Prismatic))
+        {
+            mLimitedJoints.push_back(static_cast<int>(k));
+        }
+    }
 }
 
 Simulator::~Simulator() = default;
@@ -54,11 +58,14 @@ Simulator::~Simulator() = default;
 void Simulator::step(State& state)
 {
     checkState(state, "start of step");
+    detectContacts(state);
     computeFreeVelocities(state);
     assembleRows(mModel, mLayout, state, mRows);
     mSolver->factor(mRows); // PAPER.md §3 step 2 (eliminate), once per step
-    solveImpulses(state);   // §3 step 3 (back substitute)
+    buildExtraRows(state);
+    solveImpulses(state); // §3 step 3 (back substitute), then the extra rows (§5)
     integratePositions(state);
+    removePenetration(state);
     stabilizeJoints(state);
     carryAngularMomentum(state);
     state.time += mDt;
@@ -80,11 +87,11 @@ void Simulator::checkState(const State& state, const char* where) const
         {
             quantity = "orientation";
         }
-        else if (!finite(s.velocity_W))
+        else if (!finite(s.velocity_W) || s.velocity_W.norm() > cMaxSpeed)
         {
             quantity = "velocity";
         }
-        else if (!finite(s.angularVelocity_W))
+        else if (!finite(s.angularVelocity_W) || s.angularVelocity_W.norm() > cMaxAngularSpeed)
         {
             quantity = "angular velocity";
         }
@@ -92,7 +99,8 @@ void Simulator::checkState(const State& state, const char* where) const
         {
             std::ostringstream msg;
             msg << "simulation blew up at step " << state.step << " (t = " << state.time << " s, " << where
-                << "): body '" << mModel.bodies[i].name << "' has a non-finite " << quantity;
+                << "): body '" << mModel.bodies[i].name << "' has a non-finite or runaway " << quantity
+                << " (limits " << cMaxSpeed << " m/s, " << cMaxAngularSpeed << " rad/s)";
             throw SimulationError(msg.str());
         }
     }
@@ -112,7 +120,95 @@ void Simulator::computeFreeVelocities(State& state)
     }
 }
 
-// Joint impulses at velocity level: M u' - J^T lambda = M u*, J u' = 0.
+void Simulator::detectContacts(const State& state)
+{
+    mContacts.clear();
+    if (mContactSource != nullptr)
+    {
+        mContactSource->detect(state, mContacts);
+    }
+    mStats.contacts = static_cast<int>(mContacts.size());
+    mStats.maxPenetrationM = 0.0;
+    for (const Contact& contact : mContacts)
+    {
+        mStats.maxPenetrationM = std::max(mStats.maxPenetrationM, contact.depth);
+    }
+}
+
+// Contact rows with their targets (restitution, or the gap that may close this step), the rows of
+// loop-closing joints, and limit rows near a limit. Evaluated at the start-of-step pose.
+void Simulator::buildExtraRows(const State& state)
+{
+    mExtra.clear();
+    const double e = mModel.contact.restitution;
+    for (std::size_t c = 0; c < mContacts.size(); ++c)
+    {
+        const Contact& contact = mContacts[c];
+        ExtraBlock block =
+            makeContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c));
+        // Normal velocity before this step's gravity (m/s); < 0 approaching.
+        double approach =
+            block.J_A.row(0).dot((Vec6() << mStart[static_cast<std::size_t>(block.bodyA)].velocity_W,
+                                  mStart[static_cast<std::size_t>(block.bodyA)].angularVelocity_W)
+                                     .finished());
+        if (block.bodyB >= 0)
+        {
+            const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
+            approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
+        }
+        const bool closes = contact.depth >= 0.0 || approach * mDt <= contact.depth;
+        if (!closes)
+        {
+            block.target(0) = contact.depth / mDt; // speculative: may approach by the gap, no more
+        }
+        else if (approach < -mOptions.restitutionSpeed)
+        {
+            block.target(0) = -e * approach; // Newton restitution
+        }
+        mExtra.push_back(block);
+    }
+    buildLoopRows(mRows);
+    for (const ExtraBlock& loop : mLoopBlocks)
+    {
+        mExtra.push_back(loop);
+    }
+    for (int joint : mLimitedJoints)
+    {
+        const std::size_t before = mExtra.size();
+        appendLimitBlocks(mModel, state, joint, mOptions.limitMargin, mExtra);
+        if (mExtra.size() > before && mExtra.back().error(0) < 0.0)
+        {
+            mExtra.back().target(0) = mExtra.back().error(0) / mDt; // the gap to the limit
+        }
+    }
+    mStats.extraRows = layoutExtraRows(mExtra);
+}
+
+// Loop-closing joints: all their rows bilateral, velocity target 0.
+void Simulator::buildLoopRows(const RowSystem& rows)
+{
+    mLoopBlocks.clear();
+    for (int k : mLayout.loopJoints)
+    {
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(k)];
+        const JointRows& r = rows.joints[static_cast<std::size_t>(k)];
+        ExtraBlock block;
+        block.kind = ExtraBlock::Kind::Loop;
+        block.count = r.count;
+        block.bodyA = jointToWorld(mModel, joint) ? -1 : joint.parent;
+        block.bodyB = joint.child;
+        block.J_A = r.J_a;
+        block.J_B = r.J_b;
+        block.error = r.error;
+        block.source = k;
+        mLoopBlocks.push_back(block);
+    }
+    layoutExtraRows(mLoopBlocks);
+}
+
+// Joint impulses at velocity level, M u' - J^T lambda = M u*, J u' = 0 (the tree), then the
+// extra rows in constraint space: v = J_x u_free + G lambda_x with the complementarity
+// conditions, and u' = u_free + H^-1 J_x^T lambda_x.
 void Simulator::solveImpulses(State& state)
 {
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -130,6 +226,18 @@ void Simulator::solveImpulses(State& state)
         c.setZero();
     }
     mSolver->solve(mRhs, mSolution);
+    mStats.contactSweeps = 0;
+    if (mStats.extraRows > 0)
+    {
+        mSolver->delassus(mExtra, mStats.extraRows, mG);
+        extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+        mExtraLambda.setZero(mStats.extraRows);
+        warmStart();
+        mStats.contactSweeps =
+            solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda).sweeps;
+        mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
+    }
+    rememberImpulses();
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         if (!mModel.bodies[i].isStatic)
@@ -138,6 +246,129 @@ void Simulator::solveImpulses(State& state)
             state.bodies[i].angularVelocity_W = mSolution.body[i].tail<3>();
         }
     }
+}
+
+// Contacts persist from step to step: a contact between the same bodies within cWarmDistance of
+// one of the last step's starts from that one's impulse, so resting contact needs few sweeps.
+void Simulator::warmStart()
+{
+    constexpr double cWarmDistance = 5e-3; // m
+    for (const ExtraBlock& block : mExtra)
+    {
+        if (block.kind != ExtraBlock::Kind::Contact)
+        {
+            continue;
+        }
+        const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
+        double best = cWarmDistance * cWarmDistance;
+        int match = -1;
+        for (std::size_t p = 0; p < mPreviousContacts.size(); ++p)
+        {
+            const Contact& q = mPreviousContacts[p];
+            if (q.bodyA != c.bodyA || q.bodyB != c.bodyB)
+            {
+                continue;
+            }
+            const double d = (q.point_W - c.point_W).squaredNorm();
+            if (d < best && q.normal_W.dot(c.normal_W) > 0.99)
+            {
+                best = d;
+                match = static_cast<int>(p);
+            }
+        }
+        if (match >= 0)
+        {
+            mExtraLambda.segment(block.offset, block.count) =
+                mPreviousImpulses[static_cast<std::size_t>(match)].head(block.count);
+        }
+    }
+}
+
+void Simulator::rememberImpulses()
+{
+    mPreviousContacts = mContacts;
+    mPreviousImpulses.assign(mContacts.size(), Vec3::Zero());
+    for (const ExtraBlock& block : mExtra)
+    {
+        if (block.kind == ExtraBlock::Kind::Contact)
+        {
+            mPreviousImpulses[static_cast<std::size_t>(block.source)].head(block.count) =
+                mExtraLambda.segment(block.offset, block.count);
+        }
+    }
+}
+
+// Moves positions by a displacement (m, rad) without touching velocities.
+void Simulator::displacePositions(State& state, const BlockVector& displacement)
+{
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        if (mModel.bodies[i].isStatic)
+        {
+            continue;
+        }
+        BodyState& s = state.bodies[i];
+        s.position_W += displacement.body[i].head<3>();
+        s.orientation_WB =
+            (rotationFromVector(displacement.body[i].tail<3>()) * s.orientation_WB).normalized();
+        mStart[i].position_W += displacement.body[i].head<3>();
+        mStart[i].orientation_WB =
+            (rotationFromVector(displacement.body[i].tail<3>()) * mStart[i].orientation_WB).normalized();
+    }
+}
+
+// Penetration beyond the slop (contacts) or past a limit, predicted at the end of the step, is
+// removed by a displacement H^-1 J^T mu (through the joints, so they stay together) with mu >= 0:
+// a position projection that leaves velocities, and so kinetic energy, unchanged. Loop joints
+// ride along as bilateral rows with target 0.
+void Simulator::removePenetration(State& state)
+{
+    if (mStats.extraRows == 0)
+    {
+        return;
+    }
+    std::vector<ExtraBlock> blocks;
+    std::vector<int> rows;
+    bool any = false;
+    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+    for (const ExtraBlock& block : mExtra)
+    {
+        ExtraBlock p = block;
+        p.target.setZero();
+        if (block.kind != ExtraBlock::Kind::Loop)
+        {
+            p.count = 1;
+            // Overlap predicted after this step (m or rad): now minus h times the separating speed.
+            const double predicted = block.error(0) - mDt * mExtraVelocity(block.offset);
+            const double excess =
+                predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
+            p.target(0) = std::max(0.0, excess);
+            any = any || excess > 0.0;
+        }
+        for (int k = 0; k < p.count; ++k)
+        {
+            rows.push_back(block.offset + k);
+        }
+        blocks.push_back(p);
+    }
+    if (!any)
+    {
+        return;
+    }
+    const int n = layoutExtraRows(blocks);
+    Eigen::MatrixXd G(n, n);
+    for (int r = 0; r < n; ++r)
+    {
+        for (int c = 0; c < n; ++c)
+        {
+            G(r, c) = mG(rows[static_cast<std::size_t>(r)], rows[static_cast<std::size_t>(c)]);
+        }
+    }
+    Eigen::VectorXd mu = Eigen::VectorXd::Zero(n);
+    solveExtraRows(blocks, G, Eigen::VectorXd::Zero(n), mOptions.contactSolve, mu);
+    mCorrection.setZero();
+    mSolver->applyExtraImpulses(blocks, mu, mCorrection);
+    displacePositions(state, mCorrection);
 }
 
 // x_{n+1} = x_n + h v_{n+1}; R_{n+1} = exp(h w_{n+1}) R_n, from the start-of-step pose.
@@ -182,6 +413,7 @@ void Simulator::stabilizeJoints(State& state)
     mStats.stabilizationIterations = 0;
     double previous = std::numeric_limits<double>::infinity();
     bool refactored = false;
+    bool loopsFactored = false;
     for (int iteration = 0;; ++iteration)
     {
         assembleRows(mModel, mLayout, state, mRowsAfter);
@@ -195,7 +427,22 @@ void Simulator::stabilizeJoints(State& state)
         {
             mRowsRefactored = mRowsAfter;
             mSolver->factor(mRowsRefactored);
+            buildLoopRows(mRowsRefactored);
+            loopsFactored = false;
             refactored = true;
+        }
+        if (!mLoopBlocks.empty() && !loopsFactored)
+        {
+            // Loop rows join the projection exactly: their Delassus block, once per factorization.
+            mSolver->delassus(mLoopBlocks, layoutExtraRows(mLoopBlocks), mLoopG);
+            mLoopLdlt.compute(mLoopG);
+            loopsFactored = true;
+        }
+        mLoopError.resize(mLoopG.rows());
+        for (const ExtraBlock& loop : mLoopBlocks)
+        {
+            mLoopError.segment(loop.offset, loop.count) =
+                mRowsAfter.joints[static_cast<std::size_t>(loop.source)].error.head(loop.count);
         }
         previous = error;
         mStats.stabilizationIterations = iteration + 1;
@@ -208,6 +455,10 @@ void Simulator::stabilizeJoints(State& state)
             mRhs.joint[k] = -mRowsAfter.joints[k].error / mDt;
         }
         mSolver->solve(mRhs, mCorrection);
+        if (!mLoopBlocks.empty())
+        {
+            correctLoops();
+        }
         for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
         {
             if (!mModel.bodies[i].isStatic)
@@ -222,6 +473,16 @@ void Simulator::stabilizeJoints(State& state)
         }
         integratePositions(state);
     }
+}
+
+// Loop rows in the projection: the tree correction du_0 leaves J_loop du_0 + C_loop / h; the loop
+// impulse mu = G_loop^-1 (-C_loop / h - J_loop du_0) removes it, and du += H^-1 J_loop^T mu.
+void Simulator::correctLoops()
+{
+    extraRowVelocities(mLoopBlocks, mCorrection, mExtraVelocity);
+    const Eigen::VectorXd residual = -mLoopError / mDt - mExtraVelocity;
+    const Eigen::VectorXd mu = mLoopLdlt.solve(residual);
+    mSolver->applyExtraImpulses(mLoopBlocks, mu, mCorrection);
 }
 
 // The angular momentum I_W(R_n) w that the step gave each body is kept through the rotation:

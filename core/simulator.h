@@ -2,8 +2,13 @@
 //
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
 // reads like the physics, in Simulator::step():
-//   checkState -> computeFreeVelocities -> assembleRows -> factorJoints -> solveImpulses
-//   -> integratePositions -> stabilizeJoints -> carryAngularMomentum -> checkState
+//   checkState -> detectContacts -> computeFreeVelocities -> assembleRows -> factor (O(n))
+//   -> buildExtraRows -> solveImpulses -> integratePositions -> removePenetration
+//   -> stabilizeJoints -> carryAngularMomentum -> checkState
+// Contacts, loop-closing joints and joint limits are extra rows on top of the tree factorization
+// (PAPER.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
+// restitution above cRestitutionSpeed; penetration beyond a slop is removed by a separate
+// position projection (no velocity bias, so no bodies jump).
 // Velocity level (PAPER.md §5 "Time stepping"): u* = u + h M^-1 f, then the joint impulses
 // solve M u' = M u* + J^T lambda, J u' = 0 with the chosen solver. Positions: x += h v,
 // R = exp(h w) R (a rotation-vector update, so orientations stay unit).
@@ -16,8 +21,10 @@
 // update (w = I_W(R_new)^-1 I_W(R_old) w), so a free body's angular momentum is exact.
 #pragma once
 
+#include "core/contact.h"
 #include "core/impulse_solver.h"
 
+#include <Eigen/Dense>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -43,6 +50,10 @@ struct StepOptions
 {
     double stabilizationTolerance = 1e-10; // m (rad for angular rows)
     int stabilizationIterations = 8;
+    double restitutionSpeed = 0.1;   // m/s: slower impacts do not bounce, so things come to rest
+    double penetrationSlop = 5e-4;   // m: overlap left to the next steps' contacts, not projected
+    double limitMargin = 0.02;       // rad or m: limit rows appear this close to a limit
+    ExtraSolveSettings contactSolve; // tolerance of the contact problem
 };
 
 struct StepStats
@@ -51,13 +62,17 @@ struct StepStats
     double maxJointErrorRad = 0.0; // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
     int contacts = 0;             // contact points found this step
-    double maxPenetrationM = 0.0; // deepest contact overlap this step (m)
+    int extraRows = 0;            // contact, loop and limit rows this step
+    int contactSweeps = 0;        // Gauss-Seidel sweeps of the contact problem
+    double maxPenetrationM = 0.0; // deepest contact overlap at the start of the step (m)
 };
 
 class Simulator
 {
   public:
-    Simulator(const Model& model, const StepOptions& options = {});
+    // contacts may be null: no contact detection (bodies pass through each other).
+    explicit Simulator(const Model& model, const StepOptions& options = {},
+                       ContactSource* contacts = nullptr);
     ~Simulator();
 
     // Advances the state by one time step of the model's dt (s). Throws SimulationError.
@@ -72,15 +87,36 @@ class Simulator
 
   private:
     void checkState(const State& state, const char* where) const;
+    void detectContacts(const State& state);
     void computeFreeVelocities(State& state);
+    void buildExtraRows(const State& state);
     void solveImpulses(State& state);
     void integratePositions(State& state);
+    void removePenetration(State& state);
     void stabilizeJoints(State& state);
+    void buildLoopRows(const RowSystem& rows);
+    void correctLoops();
+    void displacePositions(State& state, const BlockVector& displacement);
     void carryAngularMomentum(State& state);
     void measureJointErrors(const RowSystem& rows);
 
     const Model& mModel;
     StepOptions mOptions;
+    ContactSource* mContactSource;
+    std::vector<Contact> mContacts;
+    std::vector<ExtraBlock> mExtra; // contacts, loops, limits of this step
+    Eigen::MatrixXd mG;             // their Delassus matrix
+    Eigen::VectorXd mExtraVelocity, mExtraLambda;
+    std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, for the stabilization
+    Eigen::MatrixXd mLoopG;
+    Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
+    Eigen::VectorXd mLoopError;      // C of the loop rows (m, rad)
+    std::vector<int> mLimitedJoints; // joints with limits (revolute, prismatic)
+    // Warm start: last step's contacts and their impulses (normal, two tangents; N s).
+    std::vector<Contact> mPreviousContacts;
+    std::vector<Vec3> mPreviousImpulses;
+    void warmStart();
+    void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;
     RowSystem mRows;           // rows at the start of the step (the factored ones)

@@ -94,17 +94,130 @@ void TreeSolver::applyPivotInverse(int block, Vec6& z) const
     }
 }
 
-double TreeSolver::pivotInverseProduct(int block, const Vec6& x, const Vec6& y) const
+void TreeSolver::applyPivotInverse(int block, Mat6& z) const
 {
-    Vec6 w = y;
-    applyPivotInverse(block, w);
-    const int n = mFactors[static_cast<std::size_t>(block)].dim;
-    double sum = 0.0;
-    for (int k = 0; k < n; ++k)
+    const Factor& f = mFactors[static_cast<std::size_t>(block)];
+    auto head = z.topRows(f.dim);
+    choleskySolveInPlace(f.chol, f.dim, head);
+    if (f.negated)
     {
-        sum += x(k) * w(k);
+        head = -head;
     }
-    return sum;
+}
+
+void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+{
+    const FrontierLayout& layout = *mSystem->layout;
+    mSlotOfBody.assign(mSystem->model->bodies.size(), -1);
+    std::vector<int> bodies;
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int body : {block.bodyA, block.bodyB})
+        {
+            if (body >= 0 && mSlotOfBody[static_cast<std::size_t>(body)] < 0)
+            {
+                mSlotOfBody[static_cast<std::size_t>(body)] = static_cast<int>(bodies.size());
+                bodies.push_back(body);
+            }
+        }
+    }
+    // Forward sweeps from each body's node to its root (block indices increase along a path).
+    mPaths.resize(bodies.size());
+    for (std::size_t s = 0; s < bodies.size(); ++s)
+    {
+        std::vector<PathEntry>& path = mPaths[s];
+        path.clear();
+        int block = layout.bodyBlock[static_cast<std::size_t>(bodies[s])];
+        Mat6 z = Mat6::Identity();
+        while (block >= 0)
+        {
+            PathEntry entry;
+            entry.block = block;
+            entry.Z = z;
+            entry.W = z;
+            applyPivotInverse(block, entry.W);
+            path.push_back(entry);
+            const Factor& f = mFactors[static_cast<std::size_t>(block)];
+            if (f.parent < 0)
+            {
+                break;
+            }
+            const int pd = mFactors[static_cast<std::size_t>(f.parent)].dim;
+            Mat6 next = Mat6::Zero();
+            next.topRows(pd).noalias() = -f.coupling.topLeftCorner(f.dim, pd).transpose() * z.topRows(f.dim);
+            z = next;
+            block = f.parent;
+        }
+    }
+    // K_ij over the common suffix of the two paths.
+    const std::size_t k = bodies.size();
+    std::vector<Mat6> K(k * k, Mat6::Zero());
+    for (std::size_t i = 0; i < k; ++i)
+    {
+        for (std::size_t j = i; j < k; ++j)
+        {
+            const std::vector<PathEntry>& a = mPaths[i];
+            const std::vector<PathEntry>& b = mPaths[j];
+            std::size_t ia = 0, ib = 0;
+            while (ia < a.size() && ib < b.size() && a[ia].block != b[ib].block)
+            {
+                if (a[ia].block < b[ib].block)
+                {
+                    ++ia;
+                }
+                else
+                {
+                    ++ib;
+                }
+            }
+            Mat6 sum = Mat6::Zero();
+            for (; ia < a.size() && ib < b.size(); ++ia, ++ib)
+            {
+                const int dim = mFactors[static_cast<std::size_t>(a[ia].block)].dim;
+                sum.noalias() += a[ia].Z.topRows(dim).transpose() * b[ib].W.topRows(dim);
+            }
+            K[i * k + j] = sum;
+            K[j * k + i] = sum.transpose();
+        }
+    }
+    // G_rs = sum over the blocks' bodies of J_r,x K_xy J_s,y^T.
+    G.setZero(rows, rows);
+    for (const ExtraBlock& bi : blocks)
+    {
+        for (const ExtraBlock& bj : blocks)
+        {
+            if (bj.offset < bi.offset)
+            {
+                continue;
+            }
+            auto g = G.block(bi.offset, bj.offset, bi.count, bj.count);
+            for (int sideI = 0; sideI < 2; ++sideI)
+            {
+                const int x = sideI == 0 ? bi.bodyA : bi.bodyB;
+                if (x < 0)
+                {
+                    continue;
+                }
+                const Mat6& Ji = sideI == 0 ? bi.J_A : bi.J_B;
+                for (int sideJ = 0; sideJ < 2; ++sideJ)
+                {
+                    const int y = sideJ == 0 ? bj.bodyA : bj.bodyB;
+                    if (y < 0)
+                    {
+                        continue;
+                    }
+                    const Mat6& Jj = sideJ == 0 ? bj.J_A : bj.J_B;
+                    const std::size_t sx = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)]);
+                    const std::size_t sy = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(y)]);
+                    g.noalias() += Ji.topRows(bi.count) * K[sx * k + sy] * Jj.topRows(bj.count).transpose();
+                }
+            }
+            if (bj.offset != bi.offset)
+            {
+                G.block(bj.offset, bi.offset, bj.count, bi.count) = g.transpose();
+            }
+        }
+    }
 }
 
 void TreeSolver::factor(const RowSystem& system)

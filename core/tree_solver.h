@@ -23,15 +23,13 @@ class TreeSolver final : public ImpulseSolver
     void solve(const BlockVector& rhs, BlockVector& solution) override;
     const char* name() const override { return "linear"; }
 
-    // Partial forward substitution for one body: the forward sweep of solve() with a right-hand
-    // side that is zero except for body `body`'s 6 rows `p`. Only the blocks on the body's path
-    // to its root are touched; visit(blockIndex, z) receives each of them (the contact solver
-    // builds its Delassus matrix from these, PAPER.md §5).
-    template <typename Visit> void forwardFromBody(int body, const Vec6& p, Visit&& visit) const;
-
-    // x^T D_b^-1 y for vectors over block b (used to assemble Delassus entries).
-    double pivotInverseProduct(int block, const Vec6& x, const Vec6& y) const;
-    const FrontierLayout& layout() const { return *mSystem->layout; }
+    // G = J_x H^-1 J_x^T from partial forward sweeps: with H = L D L^T, a unit impulse on body i
+    // enters the forward sweep at i's node and reaches only the blocks on i's path to its root,
+    // Z_i = L^-1 e_i there. Then K_ij = sum over the blocks common to both paths of
+    // Z_i^T D^-1 Z_j is the 6x6 inverse effective mass between bodies i and j, and
+    // G_rs = J_r,i K_ij J_s,j^T. Cost: O(k d) sweeps plus O(k^2) products for k bodies with extra
+    // rows at depth d, instead of one O(n) solve per row.
+    void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
 
   private:
     struct Factor
@@ -43,32 +41,17 @@ class TreeSolver final : public ImpulseSolver
         bool negated = false; // edge: chol is of -D_b
     };
     void applyPivotInverse(int block, Vec6& z) const; // z <- D_b^-1 z
-    const RowSystem* mSystem = nullptr;
+    void applyPivotInverse(int block, Mat6& z) const; // on 6 columns
     std::vector<Factor> mFactors;
     std::vector<Vec6> mZ; // scratch: one vector per block
-};
-
-template <typename Visit> void TreeSolver::forwardFromBody(int body, const Vec6& p, Visit&& visit) const
-{
-    int block = mSystem->layout->bodyBlock[static_cast<std::size_t>(body)];
-    Vec6 z = p;
-    while (block >= 0)
+    struct PathEntry
     {
-        visit(block, z);
-        const Factor& f = mFactors[static_cast<std::size_t>(block)];
-        if (f.parent < 0)
-        {
-            break;
-        }
-        Vec6 w = z;
-        applyPivotInverse(block, w);
-        Vec6 next = Vec6::Zero();
-        const int pd = mFactors[static_cast<std::size_t>(f.parent)].dim;
-        // z_p = -H_bp^T D_b^-1 z_b = -L_b^T z_b (D_b symmetric)
-        next.head(pd).noalias() = -f.coupling.topLeftCorner(f.dim, pd).transpose() * z.head(f.dim);
-        z = next;
-        block = f.parent;
-    }
-}
+        int block = 0;
+        Mat6 Z; // L^-1 e_i restricted to this block: dim x 6
+        Mat6 W; // D_b^-1 Z
+    };
+    std::vector<std::vector<PathEntry>> mPaths; // scratch: per body with extra rows
+    std::vector<int> mSlotOfBody;               // scratch: body -> path slot, -1
+};
 
 } // namespace frontier::core

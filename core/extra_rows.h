@@ -1,0 +1,77 @@
+// core/extra_rows.h: rows beyond the joint tree, solved in constraint space on top of the O(n)
+// tree factorization (PAPER.md §5): contacts (one-sided normal, Coulomb friction cone), joints
+// that close a loop (bilateral), and joint limits (one-sided).
+//
+// Each block couples at most two moving bodies: rows J_A u_A + J_B u_B. After the tree solve
+// gives u_free, the block impulses lambda solve a small complementarity problem in
+//     v = J_x u_free + G lambda,    G = J_x H^-1 J_x^T (the Delassus matrix)
+// and the final velocities are u_free + H^-1 J_x^T lambda: one more O(n) solve.
+#pragma once
+
+#include "core/contact.h"
+#include "core/joints/joint_rows.h"
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace frontier::core
+{
+
+struct ExtraBlock
+{
+    enum class Kind
+    {
+        Contact, // row 0 normal (lambda >= 0), rows 1-2 friction (|lambda_t| <= mu lambda_n) when mu > 0
+        Loop,    // a loop-closing joint: all rows bilateral
+        Limit,   // a joint limit: one row, lambda >= 0
+    };
+    Kind kind = Kind::Contact;
+    int count = 0;  // rows, 1..6
+    int bodyA = -1; // moving body or -1 (world / static)
+    int bodyB = -1; // moving body or -1
+    Mat6 J_A = Mat6::Zero();
+    Mat6 J_B = Mat6::Zero();
+    Vec6 target = Vec6::Zero(); // lower bound (one-sided rows) or value (bilateral) of J u (m/s, rad/s)
+    Vec6 error = Vec6::Zero();  // position-level violation to remove (m or rad): contacts and limits > 0
+    double friction = 0.0;      // mu (contacts)
+    int source = -1;            // contact index, or joint index (loops, limits)
+    int offset = 0;             // first row of the block in G
+};
+
+// Rows for one contact (normal, and two tangents when mu > 0), PAPER.md §2 collision conditions.
+ExtraBlock makeContactBlock(const Model& model, const State& state, const Contact& contact, double friction,
+                            int source);
+
+// Joint-limit rows for a revolute (angle about its axis, rad) or prismatic joint (slide along its
+// axis, m) when the position is within `margin` of a limit; appends 0 or 1 block.
+void appendLimitBlocks(const Model& model, const State& state, int jointIndex, double margin,
+                       std::vector<ExtraBlock>& out);
+
+// Joint coordinate of a revolute (rad) or prismatic (m) joint at a state.
+double jointCoordinate(const Model& model, const State& state, int jointIndex);
+
+// Sets offsets; returns the number of rows in all.
+int layoutExtraRows(std::vector<ExtraBlock>& blocks);
+
+struct ExtraSolveSettings
+{
+    double tolerance = 1e-6; // stop when the largest impulse change of a sweep is below this
+                             // fraction of the largest impulse (or 1e-14 N s absolute)
+    int maxSweeps = 100;
+};
+
+struct ExtraSolveStats
+{
+    int sweeps = 0;
+    double lastChange = 0.0; // relative impulse change of the last sweep
+};
+
+// Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
+// given the others; a contact's normal row clamped at zero, then its two tangential rows solved
+// together and projected radially onto the friction cone |lambda_t| <= mu lambda_n; limit rows
+// clamped at zero. `lambda` is the warm start on entry (size = rows) and the result on exit.
+ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                               const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
+                               Eigen::VectorXd& lambda);
+
+} // namespace frontier::core
