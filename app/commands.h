@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace frontier::app
 {
@@ -14,8 +15,8 @@ inline constexpr int cExitBadInput = 2;
 
 struct RunOptions
 {
-    std::string scene;
-    std::optional<double> duration; // s
+    std::vector<std::string> scenes; // several: a batch, run in parallel (--jobs)
+    std::optional<double> duration;  // s
     std::optional<long> steps;
     std::optional<double> dt; // s
     std::optional<std::string> solver;
@@ -28,6 +29,21 @@ struct RunOptions
     double fps = 30.0;
     int width = 640;
     int height = 480;
+    std::string video; // MP4 assembled from the frames with ffmpeg
+    int jobs = 2;      // parallel jobs (batch) or render threads
+    bool quiet = false;
+};
+
+struct RenderCommandOptions
+{
+    std::vector<std::string> trajectories;
+    std::string scene; // empty: the scene named in each trajectory's header
+    std::string frames;
+    double fps = 30.0;
+    int width = 640;
+    int height = 480;
+    std::string video;
+    int jobs = 2;
     bool quiet = false;
 };
 
@@ -39,5 +55,6 @@ struct InfoOptions
 
 int runCommand(const RunOptions& options);
 int infoCommand(const InfoOptions& options);
+int renderCommand(const RenderCommandOptions& options);
 
 } // namespace frontier::app

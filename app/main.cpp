@@ -10,7 +10,9 @@ using namespace frontier::app;
 
 void addRunOptions(CLI::App& run, RunOptions& o)
 {
-    run.add_option("scene", o.scene, "scene .yaml or model .urdf")->required();
+    run.add_option("scenes", o.scenes, "scene .yaml or model .urdf; several make a batch run in parallel")
+        ->required()
+        ->expected(1, -1);
     auto* duration =
         run.add_option("--duration", o.duration, "simulated time (s)")->check(CLI::PositiveNumber);
     run.add_option("--steps", o.steps, "number of steps")->check(CLI::PositiveNumber)->excludes(duration);
@@ -28,6 +30,8 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_option("--fps", o.fps, "frames per simulated second")->check(CLI::PositiveNumber);
     run.add_option("--width", o.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
     run.add_option("--height", o.height, "frame height (pixels)")->check(CLI::Range(16, 16384));
+    run.add_option("--video", o.video, "assemble the frames into this MP4 with ffmpeg");
+    run.add_option("--jobs", o.jobs, "parallel jobs (a batch) or render threads")->check(CLI::Range(1, 256));
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
 }
 } // namespace
@@ -47,6 +51,24 @@ int main(int argc, char** argv)
         app.add_subcommand("info", "bodies, joints, degrees of freedom, frontier order, loops, pairs");
     info->add_option("scene", infoOptions.scene, "scene .yaml or model .urdf")->required();
     info->add_flag("--json", infoOptions.json, "machine-readable output");
+
+    RenderCommandOptions renderOptions;
+    auto* render =
+        app.add_subcommand("render", "render recorded trajectories to PNG frames without simulating");
+    render->add_option("trajectories", renderOptions.trajectories, "trajectory CSV files (several: a batch)")
+        ->required()
+        ->expected(1, -1);
+    render->add_option("--scene", renderOptions.scene,
+                       "the scene (default: the one named in each trajectory)");
+    render->add_option("--frames", renderOptions.frames, "folder for the PNG frames")->required();
+    render->add_option("--fps", renderOptions.fps, "frames per simulated second")->check(CLI::PositiveNumber);
+    render->add_option("--width", renderOptions.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
+    render->add_option("--height", renderOptions.height, "frame height (pixels)")
+        ->check(CLI::Range(16, 16384));
+    render->add_option("--video", renderOptions.video, "assemble the frames into this MP4 with ffmpeg");
+    render->add_option("--jobs", renderOptions.jobs, "parallel jobs (a batch) or render threads")
+        ->check(CLI::Range(1, 256));
+    render->add_flag("--quiet", renderOptions.quiet, "no summary, no progress");
 
     try
     {
@@ -68,6 +90,10 @@ int main(int argc, char** argv)
     if (run->parsed())
     {
         return runCommand(runOptions);
+    }
+    if (render->parsed())
+    {
+        return renderCommand(renderOptions);
     }
     return infoCommand(infoOptions);
 }

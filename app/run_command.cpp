@@ -1,6 +1,9 @@
 // app/run_command.cpp: `frontier run`: load, simulate, record, summarize.
 #include "app/commands.h"
+#include "app/frames.h"
+#include "app/job_board.h"
 #include "app/model_overrides.h"
+#include "app/outputs.h"
 #include "app/progress.h"
 #include "app/run_loop.h"
 #include "core/impulse_solver.h"
@@ -11,6 +14,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -40,27 +45,30 @@ int constraintRows(const core::Model& model)
     return rows;
 }
 
-void printSummary(const core::Model& model, const RunSummary& s)
+std::string formatSummary(const core::Model& model, const RunSummary& s)
 {
     const double simulated = static_cast<double>(s.steps) * model.simulation.dt;
     const double perStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
     const double change = s.energyFinalJ - s.energyInitialJ;
     const double scale = std::max(std::abs(s.energyInitialJ), 1e-300);
-    std::printf(
+    char text[1024];
+    std::snprintf(
+        text, sizeof text,
         "%s: %ld steps of %g s (%.3f s simulated) in %.3f s wall, %.2f us per step (%.1fx real time); "
         "%d bodies, %zu joints, %d constraint rows; largest joint error %.3g m, %.3g rad; "
-        "energy %.6g J -> %.6g J (%+.3g%%); max contacts %d, max penetration %.3g m%s\n",
+        "energy %.6g J -> %.6g J (%+.3g%%); max contacts %d, max penetration %.3g m%s",
         model.name.c_str(), s.steps, model.simulation.dt, simulated, s.wallSeconds, perStep * 1e6,
         s.wallSeconds > 0 ? simulated / s.wallSeconds : 0.0, movingBodies(model), model.joints.size(),
         constraintRows(model), s.maxJointErrorM, s.maxJointErrorRad, s.energyInitialJ, s.energyFinalJ,
         100.0 * change / scale, s.maxContacts, s.maxPenetrationM, s.finite ? "." : "; the run FAILED.");
+    return text;
 }
 
-io::RunStats makeStats(const RunOptions& options, const core::Model& model, const RunSummary& s)
+io::RunStats makeStats(const std::string& scene, const core::Model& model, const RunSummary& s)
 {
     io::RunStats stats;
     io::fillModelCounts(stats, model);
-    stats.scene = options.scene;
+    stats.scene = scene;
     stats.solver = core::solverName(model.simulation.solver);
     stats.integrator = core::integratorName(model.simulation.integrator);
     stats.dt = model.simulation.dt;
@@ -81,55 +89,93 @@ io::RunStats makeStats(const RunOptions& options, const core::Model& model, cons
 }
 } // namespace
 
-int runCommand(const RunOptions& options)
+namespace
+{
+// Ends one job's output; returns its exit code. Messages for the user go to `error`.
+int runOne(const RunOptions& options, const std::string& scene, const JobOutputs& out, int renderThreads,
+           const std::function<void(const std::string&)>& status, std::string& summaryText,
+           std::string& error)
 {
     core::Model model;
     long steps = 0;
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     try
     {
-        model = io::loadScene(options.scene);
+        model = io::loadScene(scene);
         steps = applyOverrides(options, model);
-        if (!options.trajectory.empty())
+        if (!out.trajectory.empty())
         {
+            std::filesystem::create_directories(std::filesystem::path(out.trajectory).parent_path().empty()
+                                                    ? std::filesystem::path(".")
+                                                    : std::filesystem::path(out.trajectory).parent_path());
             trajectory = std::make_unique<io::TrajectoryWriter>(
-                options.trajectory,
-                io::makeTrajectoryMetadata(options.scene, model.simulation, steps, options.recordEvery));
+                out.trajectory,
+                io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery));
+        }
+        if (!out.frames.empty())
+        {
+            prepareFrameFolder(out.frames);
         }
     }
-    catch (const io::InputError& error)
+    catch (const io::InputError& e)
     {
-        std::cerr << "frontier: " << error.what() << "\n";
+        error = e.what();
         return cExitBadInput;
     }
-    catch (const io::OutputError& error)
+    catch (const io::OutputError& e)
     {
-        std::cerr << "frontier: " << error.what() << "\n";
+        error = e.what();
+        return cExitBadInput;
+    }
+    catch (const std::filesystem::filesystem_error& e)
+    {
+        error = e.what();
         return cExitBadInput;
     }
 
+    std::vector<core::State> frames;
+    FrameSampler sampler(options.fps);
+    const Recorder record = [&](const core::State& state)
+    {
+        if (trajectory && state.step % options.recordEvery == 0)
+        {
+            trajectory->writeState(model, state);
+        }
+        if (!out.frames.empty() && sampler.due(state.time))
+        {
+            frames.push_back(state);
+        }
+    };
     RunSettings settings;
     settings.steps = steps;
-    settings.recordEvery = options.recordEvery;
-    settings.progress = !options.quiet && stderrIsTerminal();
-    Recorder record;
-    if (trajectory)
+    const double dt = model.simulation.dt;
+    long lastShown = -1;
+    settings.progress = [&](long step)
     {
-        record = [&](const core::State& state) { trajectory->writeState(model, state); };
-    }
+        const long percent = 100 * step / std::max(1L, steps);
+        if (percent != lastShown)
+        {
+            lastShown = percent;
+            char text[96];
+            std::snprintf(text, sizeof text, "simulating %3ld%%  t = %.3f / %.3f s", percent,
+                          static_cast<double>(step) * dt, static_cast<double>(steps) * dt);
+            status(text);
+        }
+    };
+
     RunSummary summary;
     try
     {
         summary = runSimulation(model, settings, record);
     }
-    catch (const core::UnsupportedModelError& error)
+    catch (const core::UnsupportedModelError& e)
     {
-        std::cerr << "frontier: " << options.scene << ": " << error.what() << "\n";
+        error = scene + ": " + e.what();
         return cExitBadInput;
     }
-    catch (const core::SingularJointError& error)
+    catch (const core::SingularJointError& e)
     {
-        std::cerr << "frontier: " << options.scene << ": " << error.what() << "\n";
+        error = scene + ": " + e.what();
         return cExitFailed;
     }
 
@@ -139,26 +185,125 @@ int runCommand(const RunOptions& options)
         {
             trajectory->commit();
         }
-        if (!options.stats.empty())
+        if (!out.stats.empty())
         {
-            io::writeStats(options.stats, makeStats(options, model, summary));
+            io::writeStats(out.stats, makeStats(scene, model, summary));
+        }
+        if (!out.frames.empty() && summary.finite)
+        {
+            renderFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
+                         [&](std::size_t done) {
+                             status("rendering " + std::to_string(done) + " / " +
+                                    std::to_string(frames.size()) + " frames");
+                         });
+            if (!out.video.empty())
+            {
+                assembleVideo(out.frames, options.fps, out.video);
+            }
         }
     }
-    catch (const io::OutputError& error)
+    catch (const io::OutputError& e)
     {
-        std::cerr << "frontier: " << error.what() << "\n";
+        error = e.what();
         return cExitBadInput;
     }
-    if (!options.quiet)
+    summaryText = formatSummary(model, summary);
+    if (!out.frames.empty() && summary.finite)
     {
-        printSummary(model, summary);
+        summaryText += " Wrote " + std::to_string(frames.size()) + " frames to " + out.frames + ".";
     }
     if (!summary.finite)
     {
-        std::cerr << "frontier: " << summary.failure << "\n";
+        error = summary.failure;
         return cExitFailed;
     }
     return cExitOk;
+}
+} // namespace
+
+int runCommand(const RunOptions& options)
+{
+    std::vector<JobOutputs> outputs;
+    try
+    {
+        outputs =
+            planOutputs(options.scenes, {options.trajectory, options.stats, options.frames, options.video});
+        if (!options.video.empty() && options.frames.empty())
+        {
+            throw io::InputError(options.video, 0, 0, "--video needs --frames (the frames it is made from)");
+        }
+        if (options.scenes.size() > 1 && !options.video.empty())
+        {
+            std::filesystem::create_directories(options.video);
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    const bool terminal = !options.quiet && stderrIsTerminal();
+    if (options.scenes.size() == 1)
+    {
+        std::string summary, error;
+        bool shown = false;
+        const int code = runOne(
+            options, options.scenes.front(), outputs.front(), options.jobs,
+            [&](const std::string& text)
+            {
+                if (terminal)
+                {
+                    std::fprintf(stderr, "\r\033[K%s", text.c_str());
+                    shown = true;
+                }
+            },
+            summary, error);
+        if (shown)
+        {
+            std::fprintf(stderr, "\r\033[K");
+        }
+        if (!options.quiet && !summary.empty())
+        {
+            std::printf("%s\n", summary.c_str());
+        }
+        if (!error.empty())
+        {
+            std::cerr << "frontier: " << error << "\n";
+        }
+        return code;
+    }
+    // A batch: scenes in parallel, one progress line each; a failing job does not stop the others.
+    std::vector<std::string> names;
+    for (const std::string& scene : options.scenes)
+    {
+        names.push_back(jobName(scene));
+    }
+    JobBoard board(names, terminal);
+    std::vector<std::string> summaries(options.scenes.size());
+    const int code = runJobs(
+        options.scenes.size(), options.jobs,
+        [&](std::size_t job)
+        {
+            std::string error;
+            const int result = runOne(
+                options, options.scenes[job], outputs[job], 1,
+                [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
+            board.finish(job, result == cExitOk ? "done"
+                                                : "FAILED (exit " + std::to_string(result) + "): " + error);
+            return result;
+        });
+    board.close();
+    if (!options.quiet)
+    {
+        for (const std::string& summary : summaries)
+        {
+            if (!summary.empty())
+            {
+                std::printf("%s\n", summary.c_str());
+            }
+        }
+    }
+    return code;
 }
 
 } // namespace frontier::app

@@ -1,7 +1,6 @@
 // app/run_loop.cpp: the run loop with progress, statistics and recording.
 #include "app/run_loop.h"
 
-#include "app/progress.h"
 #include "collision/contacts.h"
 
 #include <algorithm>
@@ -38,7 +37,6 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     {
         record(state);
     }
-    ProgressLine progress(settings.progress, settings.steps, model.simulation.dt);
     const auto start = std::chrono::steady_clock::now();
     try
     {
@@ -52,11 +50,14 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
             summary.energyMaxJ = std::max(summary.energyMaxJ, core::totalEnergy(model, state));
             summary.steps = k + 1;
-            if (record && (k + 1) % settings.recordEvery == 0)
+            if (record)
             {
                 record(state);
             }
-            progress.update(k + 1);
+            if (settings.progress)
+            {
+                settings.progress(k + 1);
+            }
         }
     }
     catch (const core::SimulationError& error)
@@ -64,7 +65,6 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
         summary.finite = false;
         summary.failure = error.what();
     }
-    progress.finish();
     summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary.energyFinalJ = core::totalEnergy(model, state);
     return summary;

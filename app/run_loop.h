@@ -13,9 +13,8 @@ namespace frontier::app
 
 struct RunSettings
 {
-    long steps = 0;        // number of steps (from --steps or duration / dt)
-    int recordEvery = 1;   // trajectory row every K steps
-    bool progress = false; // a progress line on stderr
+    long steps = 0;                          // number of steps (from --steps or duration / dt)
+    std::function<void(long step)> progress; // called after every step (may be empty)
 };
 
 struct RunSummary
@@ -33,7 +32,7 @@ struct RunSummary
     std::string failure; // the SimulationError message when the run blew up
 };
 
-// Called with every state to record (the initial one and every recordEvery-th step after it).
+// Called with the initial state and the state after every step.
 using Recorder = std::function<void(const core::State&)>;
 
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);

@@ -379,6 +379,20 @@ struct Renderer::Impl
         glBindVertexArray(0);
     }
 
+    void frameOnce(const core::State& state)
+    {
+        if (state.bodies.size() != model.bodies.size())
+        {
+            throw std::invalid_argument("render: the state has " + std::to_string(state.bodies.size()) +
+                                        " bodies but the model has " + std::to_string(model.bodies.size()));
+        }
+        if (!framed)
+        {
+            context.makeCurrent();
+            frame(state);
+        }
+    }
+
     Image render(const core::State& state)
     {
         if (state.bodies.size() != model.bodies.size())
@@ -441,6 +455,11 @@ Renderer::~Renderer() = default;
 Image Renderer::render(const core::State& state)
 {
     return impl_->render(state);
+}
+
+void Renderer::frameFrom(const core::State& state)
+{
+    impl_->frameOnce(state);
 }
 
 core::Vec3 Renderer::lightDirection() const

@@ -51,6 +51,11 @@ class Renderer
     // Throws std::invalid_argument when the state does not match the model.
     Image render(const core::State& state);
 
+    // Fixes the camera framing (and floor placement) from this state, as the first render() would.
+    // Several renderers framed from the same state draw any frame identically, so the frames of
+    // one run can be rendered in parallel. No effect once framed.
+    void frameFrom(const core::State& state);
+
     // The unit direction the light travels, world frame.
     core::Vec3 lightDirection() const;
 

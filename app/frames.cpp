@@ -1,0 +1,190 @@
+// app/frames.cpp: frame sampling, parallel rendering, video assembly.
+#include "app/frames.h"
+
+#include "io/atomic_file.h"
+#include "render/renderer.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+namespace frontier::app
+{
+
+bool FrameSampler::due(double time)
+{
+    constexpr double cTimeTolerance = 1e-9; // s: round-off of accumulated step times
+    if (time + cTimeTolerance < static_cast<double>(mNext) / mFps)
+    {
+        return false;
+    }
+    while (static_cast<double>(mNext) / mFps <= time + cTimeTolerance)
+    {
+        ++mNext;
+    }
+    return true;
+}
+
+void prepareFrameFolder(const std::string& folder)
+{
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error || !std::filesystem::is_directory(folder))
+    {
+        throw io::OutputError(folder + ": cannot create the frames folder" +
+                              (error ? " (" + error.message() + ")" : std::string(" (not a folder)")));
+    }
+    const std::string probe = folder + "/.frontier-write-test";
+    {
+        std::ofstream out(probe);
+        if (!out)
+        {
+            throw io::OutputError(folder + ": the frames folder is not writable");
+        }
+    }
+    std::filesystem::remove(probe, error);
+}
+
+namespace
+{
+std::string framePath(const std::string& folder, std::size_t index)
+{
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%05zu.png", index);
+    return folder + name;
+}
+} // namespace
+
+void renderFrames(const core::Model& model, const std::vector<core::State>& frames,
+                  const FrameSettings& settings, const std::function<void(std::size_t)>& progress)
+{
+    if (frames.empty())
+    {
+        return;
+    }
+    render::RenderOptions options;
+    options.width = settings.width;
+    options.height = settings.height;
+    std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> done{0};
+    std::mutex failureMutex;
+    std::string failure;
+    auto worker = [&]()
+    {
+        try
+        {
+            render::Renderer renderer(model, options);
+            renderer.frameFrom(frames.front());
+            for (std::size_t k = next++; k < frames.size(); k = next++)
+            {
+                render::writePng(framePath(settings.folder, k), renderer.render(frames[k]));
+                ++done;
+            }
+        }
+        catch (const std::exception& e)
+        {
+            std::lock_guard<std::mutex> lock(failureMutex);
+            if (failure.empty())
+            {
+                failure = e.what();
+            }
+            next = frames.size(); // stop the others
+        }
+    };
+    const int threads = std::max(1, std::min<int>(settings.threads, static_cast<int>(frames.size())));
+    std::atomic<int> running{threads};
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+    {
+        pool.emplace_back(
+            [&]()
+            {
+                worker();
+                --running;
+            });
+    }
+    while (running > 0)
+    {
+        if (progress)
+        {
+            progress(done);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    for (std::thread& t : pool)
+    {
+        t.join();
+    }
+    if (!failure.empty())
+    {
+        throw io::OutputError(failure);
+    }
+    if (progress)
+    {
+        progress(done);
+    }
+}
+
+namespace
+{
+bool onPath(const std::string& program)
+{
+    const char* path = std::getenv("PATH");
+    if (path == nullptr)
+    {
+        return false;
+    }
+    std::string paths = path;
+    std::size_t start = 0;
+    while (start <= paths.size())
+    {
+        const std::size_t end = std::min(paths.find(':', start), paths.size());
+        const std::filesystem::path candidate =
+            std::filesystem::path(paths.substr(start, end - start)) / program;
+        std::error_code error;
+        if (std::filesystem::is_regular_file(candidate, error))
+        {
+            return true;
+        }
+        start = end + 1;
+    }
+    return false;
+}
+
+std::string shellQuote(const std::string& text)
+{
+    std::string out = "'";
+    for (char c : text)
+    {
+        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    }
+    return out + "'";
+}
+} // namespace
+
+void assembleVideo(const std::string& folder, double fps, const std::string& video)
+{
+    if (!onPath("ffmpeg"))
+    {
+        throw io::OutputError(video +
+                              ": ffmpeg is not installed, so no video was made (the PNG frames are in " +
+                              folder + "); install it with `apt-get install ffmpeg`");
+    }
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%.9g", fps);
+    const std::string command = "ffmpeg -y -loglevel error -framerate " + std::string(rate) + " -i " +
+                                shellQuote(folder + "/frame_%05d.png") +
+                                " -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p " + shellQuote(video);
+    if (std::system(command.c_str()) != 0)
+    {
+        throw io::OutputError(video + ": ffmpeg failed (" + command + ")");
+    }
+}
+
+} // namespace frontier::app

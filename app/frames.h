@@ -1,0 +1,50 @@
+// app/frames.h: frames sampled from simulated time and rendered to PNG, in parallel.
+//
+// Frame k shows the first state whose time is at or after k / fps (s), for every k with
+// k / fps within the run. `frontier run --frames` and `frontier render` use the same rule, so a
+// trajectory recorded at every step renders to the same images as the run did, pixel for pixel.
+#pragma once
+
+#include "core/model.h"
+#include "core/state.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace frontier::app
+{
+
+class FrameSampler
+{
+  public:
+    explicit FrameSampler(double fps) : mFps(fps) {}
+    // True when `time` (s) reaches the next frame's time; advances past every frame it covers.
+    bool due(double time);
+
+  private:
+    double mFps;
+    long mNext = 0;
+};
+
+struct FrameSettings
+{
+    std::string folder;
+    int width = 640;
+    int height = 480;
+    int threads = 1;
+};
+
+// Creates the folder and checks it can be written (throws io::OutputError naming it).
+void prepareFrameFolder(const std::string& folder);
+
+// Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers framed from
+// frames[0]. progress(done) is called from the calling thread. Throws io::OutputError.
+void renderFrames(const core::Model& model, const std::vector<core::State>& frames,
+                  const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
+
+// Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
+// not installed or fails.
+void assembleVideo(const std::string& folder, double fps, const std::string& video);
+
+} // namespace frontier::app

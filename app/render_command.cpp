@@ -1,0 +1,188 @@
+// app/render_command.cpp: `frontier render`: frames from recorded trajectories, no simulation.
+#include "app/commands.h"
+#include "app/frames.h"
+#include "app/job_board.h"
+#include "app/outputs.h"
+#include "app/progress.h"
+#include "io/atomic_file.h"
+#include "io/scene.h"
+#include "io/trajectory.h"
+
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+namespace frontier::app
+{
+
+namespace
+{
+// The recorded states, one per recorded time, with static bodies at their scene pose. Throws
+// io::InputError when the trajectory does not fit the scene.
+std::vector<core::State> statesOf(const core::Model& model, const io::Trajectory& trajectory,
+                                  const std::string& path)
+{
+    std::map<std::string, int> bodyIndex;
+    int moving = 0;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (!model.bodies[i].isStatic)
+        {
+            bodyIndex[model.bodies[i].name] = static_cast<int>(i);
+            ++moving;
+        }
+    }
+    const core::State initial = core::initialState(model);
+    std::vector<core::State> states;
+    std::vector<bool> seen;
+    auto closeState = [&](double time)
+    {
+        for (const auto& [name, index] : bodyIndex)
+        {
+            if (!seen[static_cast<std::size_t>(index)])
+            {
+                throw io::InputError(path, 0, 0,
+                                     "the scene's body '" + name +
+                                         "' is missing at t = " + std::to_string(time) +
+                                         " s: the trajectory does not fit the scene " + model.sourceFile);
+            }
+        }
+    };
+    for (const io::TrajectoryRow& row : trajectory.rows)
+    {
+        if (states.empty() || row.time != states.back().time)
+        {
+            if (!states.empty())
+            {
+                closeState(states.back().time);
+            }
+            states.push_back(initial);
+            states.back().time = row.time;
+            states.back().step = static_cast<long>(states.size()) - 1;
+            seen.assign(model.bodies.size(), false);
+        }
+        const auto found = bodyIndex.find(row.body);
+        if (found == bodyIndex.end())
+        {
+            throw io::InputError(path, 0, 0,
+                                 "body '" + row.body + "' at t = " + std::to_string(row.time) +
+                                     " s is not a moving body of the scene " + model.sourceFile);
+        }
+        states.back().bodies[static_cast<std::size_t>(found->second)] = row.state();
+        seen[static_cast<std::size_t>(found->second)] = true;
+    }
+    if (states.empty())
+    {
+        throw io::InputError(path, 0, 0, "the trajectory has no rows");
+    }
+    closeState(states.back().time);
+    (void)moving;
+    return states;
+}
+
+int renderOne(const RenderCommandOptions& options, const std::string& path, const JobOutputs& out,
+              int threads, const std::function<void(const std::string&)>& status, std::string& summary,
+              std::string& error)
+{
+    try
+    {
+        const io::Trajectory trajectory = io::readTrajectory(path);
+        std::string scenePath = options.scene;
+        if (scenePath.empty())
+        {
+            const auto found = trajectory.metadata.find("scene");
+            if (found == trajectory.metadata.end())
+            {
+                throw io::InputError(path, 1, 0, "the trajectory names no scene: give --scene");
+            }
+            scenePath = found->second;
+        }
+        const core::Model model = io::loadScene(scenePath);
+        const std::vector<core::State> states = statesOf(model, trajectory, path);
+        std::vector<core::State> frames;
+        FrameSampler sampler(options.fps);
+        for (const core::State& state : states)
+        {
+            if (sampler.due(state.time))
+            {
+                frames.push_back(state);
+            }
+        }
+        prepareFrameFolder(out.frames);
+        renderFrames(model, frames, {out.frames, options.width, options.height, threads},
+                     [&](std::size_t done) {
+                         status("rendering " + std::to_string(done) + " / " + std::to_string(frames.size()) +
+                                " frames");
+                     });
+        if (!out.video.empty())
+        {
+            assembleVideo(out.frames, options.fps, out.video);
+        }
+        summary = path + ": wrote " + std::to_string(frames.size()) + " frames to " + out.frames +
+                  (out.video.empty() ? "" : " and " + out.video);
+        return cExitOk;
+    }
+    catch (const io::InputError& e)
+    {
+        error = e.what();
+    }
+    catch (const io::OutputError& e)
+    {
+        error = e.what();
+    }
+    return cExitBadInput;
+}
+} // namespace
+
+int renderCommand(const RenderCommandOptions& options)
+{
+    std::vector<JobOutputs> outputs;
+    try
+    {
+        outputs = planOutputs(options.trajectories, {"", "", options.frames, options.video});
+    }
+    catch (const io::InputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    const bool terminal = !options.quiet && stderrIsTerminal();
+    std::vector<std::string> names;
+    for (const std::string& path : options.trajectories)
+    {
+        names.push_back(jobName(path));
+    }
+    JobBoard board(names, terminal);
+    std::vector<std::string> summaries(options.trajectories.size());
+    const bool batch = options.trajectories.size() > 1;
+    const int code =
+        runJobs(options.trajectories.size(), batch ? options.jobs : 1,
+                [&](std::size_t job)
+                {
+                    std::string error;
+                    const int result = renderOne(
+                        options, options.trajectories[job], outputs[job], batch ? 1 : options.jobs,
+                        [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
+                    if (batch || result != cExitOk)
+                    {
+                        board.finish(job, result == cExitOk
+                                              ? "done"
+                                              : "FAILED (exit " + std::to_string(result) + "): " + error);
+                    }
+                    return result;
+                });
+    board.close();
+    if (!options.quiet)
+    {
+        for (const std::string& summary : summaries)
+        {
+            if (!summary.empty())
+            {
+                std::printf("%s\n", summary.c_str());
+            }
+        }
+    }
+    return code;
+}
+
+} // namespace frontier::app
