@@ -1,26 +1,10 @@
-// app/progress.h: a one-line progress display on stderr, only when stderr is a terminal.
+// app/progress.h: whether progress lines go to the terminal.
 #pragma once
-
-#include <chrono>
 
 namespace frontier::app
 {
 
-class ProgressLine
-{
-  public:
-    ProgressLine(bool enabled, long totalSteps, double dt);
-    void update(long step);
-    void finish();
-
-  private:
-    bool mEnabled;
-    long mTotal;
-    double mDt;
-    std::chrono::steady_clock::time_point mLast;
-    bool mShown = false;
-};
-
+// Progress is shown only when stderr is a terminal (never in logs or pipes).
 bool stderrIsTerminal();
 
 } // namespace frontier::app

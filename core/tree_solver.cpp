@@ -1,8 +1,21 @@
 // core/tree_solver.cpp: O(n) factor and solve in frontier order (PAPER.md §3 steps 2 and 3).
+//
+// The per-block work is a handful of small dense operations whose sizes follow from the block
+// kind: a node has 6 rows, an edge r = 1..6, an edge's parent is a node. The kernels below are
+// templates on those sizes (one switch per block picks the instance), so they compile to
+// unrolled fixed-size code. Symmetric pivots are kept as their lower triangle only.
+//
+// Memory: at large n the sweeps are bound by memory, not arithmetic. Layout order makes a
+// block's own data (its factors, its node/edge neighbour) sequential; what is not sequential is
+// the parent-side block of an edge (anywhere later in the layout for a branching tree) and the
+// body/joint-indexed inputs and outputs. Those are prefetched a few blocks ahead.
 #include "core/tree_solver.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 namespace frontier::core
 {
@@ -10,98 +23,319 @@ namespace frontier::core
 namespace
 {
 
-// In-place lower Cholesky of the top-left n x n of a. Returns false when a pivot falls below
+// In-place lower Cholesky of the N x N column-major matrix a (only its lower triangle is read).
+// The factor's diagonal is stored as reciprocals 1 / l_jj. Returns false when a pivot falls below
 // cRelativePivot times its own row's diagonal entry (cancellation: dependent rows), never
 // producing NaN. Per row, not against the largest diagonal entry: a positive definite pivot may
 // span many decades (a long revolute chain's articulated inertia about its free axis vs its
 // constrained axes; a light body carrying a heavy subtree) without being singular.
 constexpr double cRelativePivot = 1e-12;
 
-bool choleskyInPlace(Mat6& a, int n)
+template <int N> inline bool choleskyInPlace(double* a)
 {
     double scale = 0.0;
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < N; ++i)
     {
-        scale = std::max(scale, std::abs(a(i, i)));
+        scale = std::max(scale, std::abs(a[i * (N + 1)]));
     }
     if (!(scale > 0.0) || !std::isfinite(scale))
     {
         return false;
     }
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j < N; ++j)
     {
-        const double diagonal = a(j, j);
+        const double diagonal = a[j + j * N];
         double d = diagonal;
         for (int k = 0; k < j; ++k)
         {
-            d -= a(j, k) * a(j, k);
+            d -= a[j + k * N] * a[j + k * N];
         }
         if (!(d > cRelativePivot * diagonal))
         {
             return false;
         }
-        const double ljj = std::sqrt(d);
-        a(j, j) = ljj;
-        for (int i = j + 1; i < n; ++i)
+        const double inverse = 1.0 / std::sqrt(d);
+        a[j + j * N] = inverse;
+        for (int i = j + 1; i < N; ++i)
         {
-            double s = a(i, j);
+            double s = a[i + j * N];
             for (int k = 0; k < j; ++k)
             {
-                s -= a(i, k) * a(j, k);
+                s -= a[i + k * N] * a[j + k * N];
             }
-            a(i, j) = s / ljj;
+            a[i + j * N] = s * inverse;
         }
     }
     return true;
 }
 
-// x <- (L L^T)^-1 x for the top-left n x n lower factor l, on `cols` columns of x.
-template <typename Derived> void choleskySolveInPlace(const Mat6& l, int n, Eigen::MatrixBase<Derived>& x)
+// x <- (L L^T)^-1 x for the N x N factor l of choleskyInPlace, on the C columns of the N x C
+// column-major x.
+template <int N, int C> inline void choleskySolveInPlace(const double* l, double* x)
 {
-    for (int c = 0; c < x.cols(); ++c)
+    for (int i = 0; i < N; ++i)
+    {
+        for (int c = 0; c < C; ++c)
+        {
+            double s = x[i + c * N];
+            for (int k = 0; k < i; ++k)
+            {
+                s -= l[i + k * N] * x[k + c * N];
+            }
+            x[i + c * N] = s * l[i + i * N];
+        }
+    }
+    for (int i = N - 1; i >= 0; --i)
+    {
+        for (int c = 0; c < C; ++c)
+        {
+            double s = x[i + c * N];
+            for (int k = i + 1; k < N; ++k)
+            {
+                s -= l[k + i * N] * x[k + c * N];
+            }
+            x[i + c * N] = s * l[i + i * N];
+        }
+    }
+}
+
+// The same for any n (delassus): on the top n rows of z.
+void choleskySolveInPlace(const double* l, int n, Mat6& z)
+{
+    for (int c = 0; c < 6; ++c)
     {
         for (int i = 0; i < n; ++i)
         {
-            double s = x(i, c);
+            double s = z(i, c);
             for (int k = 0; k < i; ++k)
             {
-                s -= l(i, k) * x(k, c);
+                s -= l[i + k * n] * z(k, c);
             }
-            x(i, c) = s / l(i, i);
+            z(i, c) = s * l[i + i * n];
         }
         for (int i = n - 1; i >= 0; --i)
         {
-            double s = x(i, c);
+            double s = z(i, c);
             for (int k = i + 1; k < n; ++k)
             {
-                s -= l(k, i) * x(k, c);
+                s -= l[k + i * n] * z(k, c);
             }
-            x(i, c) = s / l(i, i);
+            z(i, c) = s * l[i + i * n];
         }
     }
 }
 
-} // namespace
-
-void TreeSolver::applyPivotInverse(int block, Vec6& z) const
+// Calls f(std::integral_constant<int, rows>) for rows = 1..6.
+template <typename F> inline void withRows(int rows, F&& f)
 {
-    const Factor& f = mFactors[static_cast<std::size_t>(block)];
-    auto head = z.head(f.dim);
-    choleskySolveInPlace(f.chol, f.dim, head);
-    if (f.negated)
+    switch (rows)
     {
-        head = -head;
+    case 1:
+        f(std::integral_constant<int, 1>{});
+        return;
+    case 2:
+        f(std::integral_constant<int, 2>{});
+        return;
+    case 3:
+        f(std::integral_constant<int, 3>{});
+        return;
+    case 4:
+        f(std::integral_constant<int, 4>{});
+        return;
+    case 5:
+        f(std::integral_constant<int, 5>{});
+        return;
+    case 6:
+        f(std::integral_constant<int, 6>{});
+        return;
+    default:
+        throw std::logic_error("tree solver: a joint block must have 1 to 6 rows");
     }
 }
 
+inline void prefetch(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+}
+
+inline void prefetchForWrite(const void* p)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 1);
+#else
+    (void)p;
+#endif
+}
+
+// Every cache line of [p, p + bytes).
+inline void prefetchRange(const void* p, std::size_t bytes)
+{
+    const char* c = static_cast<const char*>(p);
+    for (std::size_t offset = 0; offset < bytes; offset += 64)
+    {
+        prefetch(c + offset);
+    }
+    prefetch(c + bytes - 1);
+}
+
+// A node's pivot before any child edge is eliminated: its mass matrix (lower triangle).
+inline void setMassMatrix(double* pivot, double mass, const Mat3& inertia)
+{
+    for (int j = 0; j < 6; ++j)
+    {
+        for (int i = j; i < 6; ++i)
+        {
+            pivot[i + j * 6] = 0.0;
+        }
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+        pivot[i * 7] = mass;
+        for (int k = i; k < 3; ++k)
+        {
+            pivot[(3 + k) + (3 + i) * 6] = inertia(k, i);
+        }
+    }
+}
+
+// §3 step 2 for node b (6 rows) whose edge e has R rows (R = 0: no edge, a free root). `block`
+// holds D_b on entry; on exit its Cholesky factor, then L_b = D_b^-1 J^T (6 x R). The edge's
+// pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: 6 x 6
+// column-major, rows 0..R-1 used.
+template <int R> inline bool factorNode(double* block, const double* J, double* edgePivot)
+{
+    if (!choleskyInPlace<6>(block))
+    {
+        return false;
+    }
+    if constexpr (R > 0)
+    {
+        double* l = block + 36;
+        for (int c = 0; c < R; ++c)
+        {
+            for (int i = 0; i < 6; ++i)
+            {
+                l[i + c * 6] = J[c + i * 6];
+            }
+        }
+        choleskySolveInPlace<6, R>(block, l);
+        for (int j = 0; j < R; ++j)
+        {
+            for (int i = j; i < R; ++i)
+            {
+                double s = 0.0;
+                for (int k = 0; k < 6; ++k)
+                {
+                    s += J[i + k * 6] * l[k + j * 6];
+                }
+                edgePivot[i + j * R] = s;
+            }
+        }
+    }
+    return true;
+}
+
+// §3 step 2 for edge e (R rows) with (HasParent) or without a parent node. `block` holds -D_e on
+// entry; on exit its Cholesky factor, then L_e = D_e^-1 J (R x 6). The parent node's pivot
+// (6 x 6 at parentPivot) loses J^T D_e^-1 J; it starts from its mass matrix when e is its first
+// child.
+template <int R, bool HasParent>
+inline bool factorEdge(double* block, const double* J, double* parentPivot, bool firstChild, double mass,
+                       const Mat3* inertia)
+{
+    if (!choleskyInPlace<R>(block))
+    {
+        return false;
+    }
+    if constexpr (HasParent)
+    {
+        double* l = block + R * R;
+        for (int c = 0; c < 6; ++c)
+        {
+            for (int i = 0; i < R; ++i)
+            {
+                l[i + c * R] = -J[i + c * 6];
+            }
+        }
+        choleskySolveInPlace<R, 6>(block, l); // L_e = D_e^-1 J = -(-D_e)^-1 J
+        if (firstChild)
+        {
+            setMassMatrix(parentPivot, mass, *inertia);
+        }
+        for (int j = 0; j < 6; ++j)
+        {
+            for (int i = j; i < 6; ++i)
+            {
+                double s = 0.0;
+                for (int k = 0; k < R; ++k)
+                {
+                    s += J[k + i * 6] * l[k + j * R];
+                }
+                parentPivot[i + j * 6] -= s;
+            }
+        }
+    }
+    return true;
+}
+
+// §3 step 3, forward sweep at block b (N rows, parent P rows, P = 0 without a parent): z_b is
+// final, so z_p -= L_b^T z_b, then z_b <- D_b^-1 z_b (Negated: the factor is of -D_b).
+template <int N, int P, bool Negated> inline void forwardBlock(const double* block, double* zb, double* zp)
+{
+    if constexpr (P > 0)
+    {
+        const double* l = block + N * N;
+        for (int j = 0; j < P; ++j)
+        {
+            double s = 0.0;
+            for (int k = 0; k < N; ++k)
+            {
+                s += l[k + j * N] * zb[k];
+            }
+            zp[j] -= s;
+        }
+    }
+    choleskySolveInPlace<N, 1>(block, zb);
+    if constexpr (Negated)
+    {
+        for (int i = 0; i < N; ++i)
+        {
+            zb[i] = -zb[i];
+        }
+    }
+}
+
+// Backward sweep at block b: x_b -= L_b x_p.
+template <int N, int P> inline void backwardBlock(const double* block, double* xb, const double* xp)
+{
+    const double* l = block + N * N;
+    for (int i = 0; i < N; ++i)
+    {
+        double s = 0.0;
+        for (int k = 0; k < P; ++k)
+        {
+            s += l[i + k * N] * xp[k];
+        }
+        xb[i] -= s;
+    }
+}
+
+// How many blocks ahead the sweeps prefetch (twice that for the parent's block table entry).
+constexpr std::size_t cAhead = 8;
+
+} // namespace
+
 void TreeSolver::applyPivotInverse(int block, Mat6& z) const
 {
-    const Factor& f = mFactors[static_cast<std::size_t>(block)];
-    auto head = z.topRows(f.dim);
-    choleskySolveInPlace(f.chol, f.dim, head);
-    if (f.negated)
+    const BlockInfo& info = mBlocks[static_cast<std::size_t>(block)];
+    choleskySolveInPlace(mArena.data() + info.offset, info.dim, z);
+    if (info.flags & cEdge)
     {
-        head = -head;
+        z.topRows(info.dim) = -z.topRows(info.dim);
     }
 }
 
@@ -137,16 +371,18 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             entry.W = z;
             applyPivotInverse(block, entry.W);
             path.push_back(entry);
-            const Factor& f = mFactors[static_cast<std::size_t>(block)];
-            if (f.parent < 0)
+            const BlockInfo& info = mBlocks[static_cast<std::size_t>(block)];
+            if (info.parent < 0)
             {
                 break;
             }
-            const int pd = mFactors[static_cast<std::size_t>(f.parent)].dim;
+            const int pd = info.parentDim;
+            const Eigen::Map<const Eigen::MatrixXd> coupling(mArena.data() + info.offset + info.dim * info.dim,
+                                                             info.dim, pd);
             Mat6 next = Mat6::Zero();
-            next.topRows(pd).noalias() = -f.coupling.topLeftCorner(f.dim, pd).transpose() * z.topRows(f.dim);
+            next.topRows(pd).noalias() = -coupling.transpose() * z.topRows(info.dim);
             z = next;
-            block = f.parent;
+            block = info.parent;
         }
     }
     // K_ij over the common suffix of the two paths.
@@ -173,7 +409,7 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             Mat6 sum = Mat6::Zero();
             for (; ia < a.size() && ib < b.size(); ++ia, ++ib)
             {
-                const int dim = mFactors[static_cast<std::size_t>(a[ia].block)].dim;
+                const int dim = mBlocks[static_cast<std::size_t>(a[ia].block)].dim;
                 sum.noalias() += a[ia].Z.topRows(dim).transpose() * b[ib].W.topRows(dim);
             }
             K[i * k + j] = sum;
@@ -226,131 +462,308 @@ void TreeSolver::factor(const RowSystem& system)
     const Model& model = *system.model;
     const FrontierLayout& layout = *system.layout;
     const std::size_t nblocks = layout.blocks.size();
-    mFactors.resize(nblocks);
-    mZ.resize(nblocks);
 
-    // Pivots start as the diagonal blocks H_bb: M_i for nodes, 0 for edges.
+    // Block table and arena offsets: one pass over the layout. A node's pivot starts as M_i, an
+    // edge's as 0; rather than a pass that writes them, each pivot is set by its first child (or
+    // by the block itself when it has none), so the arena is written once, in layout order.
+    mBlocks.resize(nblocks);
+    mSeen.assign(nblocks, 0);
+    std::size_t offset = 0;
     for (std::size_t b = 0; b < nblocks; ++b)
     {
         const LayoutBlock& block = layout.blocks[b];
-        Factor& f = mFactors[b];
-        f.dim = block.dim;
-        f.parent = block.parent;
-        f.negated = block.kind == LayoutBlock::Kind::Edge;
-        f.chol.setZero();
-        if (block.kind == LayoutBlock::Kind::Node)
+        BlockInfo& info = mBlocks[b];
+        const bool edge = block.kind == LayoutBlock::Kind::Edge;
+        // An edge's parent is a node (6 rows, checked below); a node's parent is its edge.
+        const int parentDim =
+            block.parent < 0 ? 0 : edge ? 6 : layout.blocks[static_cast<std::size_t>(block.parent)].dim;
+        if (block.dim < 1 || block.dim > 6 || (!edge && block.dim != 6) || parentDim < 0 || parentDim > 6)
         {
-            const std::size_t i = static_cast<std::size_t>(block.index);
-            f.chol.topLeftCorner<3, 3>() = system.mass[i] * Mat3::Identity();
-            f.chol.bottomRightCorner<3, 3>() = system.inertia_W[i];
+            throw std::logic_error("tree solver: malformed frontier layout");
+        }
+        info.offset = static_cast<std::uint32_t>(offset);
+        info.parent = block.parent;
+        info.index = block.index;
+        info.dim = static_cast<std::uint8_t>(block.dim);
+        info.parentDim = static_cast<std::uint8_t>(parentDim);
+        info.flags = edge ? cEdge : 0;
+        if (mSeen[b])
+        {
+            info.flags |= cHasChildren;
+        }
+        if (block.parent >= 0 && !mSeen[static_cast<std::size_t>(block.parent)])
+        {
+            mSeen[static_cast<std::size_t>(block.parent)] = 1;
+            info.flags |= cFirstChild;
+        }
+        offset += static_cast<std::size_t>(block.dim) * static_cast<std::size_t>(block.dim + parentDim);
+        if (offset > std::numeric_limits<std::uint32_t>::max())
+        {
+            throw std::length_error("tree solver: system too large");
+        }
+    }
+    mArena.resize(offset);
+    mZ.resize(nblocks);
+    mUnmappedBodies.clear();
+    for (std::size_t i = 0; i < layout.bodyBlock.size(); ++i)
+    {
+        if (layout.bodyBlock[i] < 0)
+        {
+            mUnmappedBodies.push_back(static_cast<int>(i));
+        }
+    }
+    mUnmappedJoints.clear();
+    for (std::size_t j = 0; j < layout.jointBlock.size(); ++j)
+    {
+        if (layout.jointBlock[j] < 0)
+        {
+            mUnmappedJoints.push_back(static_cast<int>(j));
         }
     }
 
-    // §3 step 2: eliminate in layout order. f.chol holds D_b (edges: -D_b) until factored.
+    // §3 step 2: eliminate in layout order.
+    double* arena = mArena.data();
+    const BlockInfo* blocks = mBlocks.data();
     for (std::size_t b = 0; b < nblocks; ++b)
     {
-        const LayoutBlock& block = layout.blocks[b];
-        Factor& f = mFactors[b];
-        if (!choleskyInPlace(f.chol, f.dim))
+        if (b + 2 * cAhead < nblocks && blocks[b + 2 * cAhead].parent >= 0)
         {
-            std::ostringstream msg;
-            if (block.kind == LayoutBlock::Kind::Edge)
-            {
-                const Joint& joint = model.joints[static_cast<std::size_t>(block.index)];
-                msg << "joint '" << joint.name << "' (" << jointTypeName(joint.type)
-                    << "): its constraint rows are dependent or degenerate at this configuration";
-                throw SingularJointError(joint.name, msg.str());
-            }
-            const Body& body = model.bodies[static_cast<std::size_t>(block.index)];
-            msg << "body '" << body.name << "': mass matrix is not positive definite";
-            throw SingularJointError(body.name, msg.str());
+            prefetch(&blocks[blocks[b + 2 * cAhead].parent]);
         }
-        if (f.parent < 0)
+        if (b + cAhead < nblocks)
         {
+            const BlockInfo& ahead = blocks[b + cAhead];
+            if (ahead.flags & cEdge)
+            {
+                if (ahead.parent >= 0)
+                {
+                    const BlockInfo& node = blocks[ahead.parent];
+                    prefetchRange(arena + node.offset, 36 * sizeof(double));
+                    if (ahead.flags & cFirstChild)
+                    {
+                        prefetch(&system.mass[static_cast<std::size_t>(node.index)]);
+                        prefetchRange(&system.inertia_W[static_cast<std::size_t>(node.index)], sizeof(Mat3));
+                    }
+                }
+            }
+            else
+            {
+                if (!(ahead.flags & cHasChildren))
+                {
+                    prefetch(&system.mass[static_cast<std::size_t>(ahead.index)]);
+                    prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
+                }
+                if (ahead.parent >= 0)
+                {
+                    const std::size_t joint = static_cast<std::size_t>(blocks[ahead.parent].index);
+                    prefetch(&model.joints[joint].child);
+                    prefetchRange(&system.joints[joint], sizeof(JointRows));
+                }
+            }
+        }
+
+        const BlockInfo& info = blocks[b];
+        double* own = arena + info.offset;
+        const std::size_t index = static_cast<std::size_t>(info.index);
+        bool ok = true;
+        if (!(info.flags & cEdge))
+        {
+            if (!(info.flags & cHasChildren))
+            {
+                setMassMatrix(own, system.mass[index], system.inertia_W[index]);
+            }
+            if (info.parent < 0)
+            {
+                ok = factorNode<0>(own, nullptr, nullptr);
+            }
+            else
+            {
+                // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
+                const BlockInfo& edge = blocks[info.parent];
+                const std::size_t joint = static_cast<std::size_t>(edge.index);
+                const JointRows& rows = system.joints[joint];
+                const double* J = (model.joints[joint].child == info.index ? rows.J_b : rows.J_a).data();
+                withRows(info.parentDim,
+                         [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, arena + edge.offset); });
+            }
+            if (!ok)
+            {
+                const Body& body = model.bodies[index];
+                std::ostringstream msg;
+                msg << "body '" << body.name << "': mass matrix is not positive definite";
+                throw SingularJointError(body.name, msg.str());
+            }
             continue;
         }
-        Factor& pf = mFactors[static_cast<std::size_t>(f.parent)];
-        const int pd = pf.dim;
-        // H_bp: the coupling between this block and its parent block.
-        if (block.kind == LayoutBlock::Kind::Node)
+        // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J.
+        const Joint& joint = model.joints[index];
+        if (info.parent < 0)
         {
-            // Node i -> its edge e: H_ie = J_ei^T (6 x r); D_e -= J D_i^-1 J^T, i.e. -D_e += ...
-            const LayoutBlock& edge = layout.blocks[static_cast<std::size_t>(f.parent)];
-            const Joint& joint = model.joints[static_cast<std::size_t>(edge.index)];
-            const JointRows& rows = system.joints[static_cast<std::size_t>(edge.index)];
-            const Mat6& J = joint.child == block.index ? rows.J_b : rows.J_a;
-            f.coupling.topLeftCorner(6, pd) = J.topRows(pd).transpose();
-            auto lb = f.coupling.topLeftCorner(6, pd);
-            choleskySolveInPlace(f.chol, 6, lb);
-            pf.chol.topLeftCorner(pd, pd).noalias() += J.topRows(pd) * f.coupling.topLeftCorner(6, pd);
+            withRows(info.dim, [&](auto r)
+                     { ok = factorEdge<decltype(r)::value, false>(own, nullptr, nullptr, false, 0.0, nullptr); });
         }
         else
         {
-            // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J.
-            const Joint& joint = model.joints[static_cast<std::size_t>(block.index)];
-            const JointRows& rows = system.joints[static_cast<std::size_t>(block.index)];
-            const int parentBody = layout.blocks[static_cast<std::size_t>(f.parent)].index;
-            const Mat6& J = joint.child == parentBody ? rows.J_b : rows.J_a;
-            f.coupling.topLeftCorner(f.dim, 6) = -J.topRows(f.dim);
-            auto le = f.coupling.topLeftCorner(f.dim, 6);
-            choleskySolveInPlace(f.chol, f.dim, le); // L_e = D_e^-1 J = -(-D_e)^-1 J
-            pf.chol.noalias() -= J.topRows(f.dim).transpose() * f.coupling.topLeftCorner(f.dim, 6);
+            const BlockInfo& node = blocks[info.parent];
+            if ((node.flags & cEdge) || node.dim != 6)
+            {
+                throw std::logic_error("tree solver: malformed frontier layout");
+            }
+            const std::size_t parentBody = static_cast<std::size_t>(node.index);
+            const JointRows& rows = system.joints[index];
+            const double* J = (joint.child == node.index ? rows.J_b : rows.J_a).data();
+            const bool first = info.flags & cFirstChild;
+            withRows(info.dim,
+                     [&](auto r)
+                     {
+                         ok = factorEdge<decltype(r)::value, true>(
+                             own, J, arena + node.offset, first, first ? system.mass[parentBody] : 0.0,
+                             first ? &system.inertia_W[parentBody] : nullptr);
+                     });
+        }
+        if (!ok)
+        {
+            std::ostringstream msg;
+            msg << "joint '" << joint.name << "' (" << jointTypeName(joint.type)
+                << "): its constraint rows are dependent or degenerate at this configuration";
+            throw SingularJointError(joint.name, msg.str());
         }
     }
 }
 
 void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
 {
-    const FrontierLayout& layout = *mSystem->layout;
-    const std::size_t nblocks = layout.blocks.size();
-    // KKT right-hand side: p for nodes, c for edges.
+    const std::size_t nblocks = mBlocks.size();
+    const BlockInfo* blocks = mBlocks.data();
+    const double* arena = mArena.data();
+    Vec6* z = mZ.data();
+    // Forward, front to back. The KKT right-hand side (p for nodes, c for edges) enters a block's
+    // z when the block is reached (a leaf) or when its first child is (every rhs read happens
+    // here, before `solution` is written, so the two may be the same object).
+    auto rhsOf = [&](const BlockInfo& info) -> const Vec6&
+    {
+        return (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
+                                    : rhs.body[static_cast<std::size_t>(info.index)];
+    };
     for (std::size_t b = 0; b < nblocks; ++b)
     {
-        const LayoutBlock& block = layout.blocks[b];
-        mZ[b] = block.kind == LayoutBlock::Kind::Node ? rhs.body[static_cast<std::size_t>(block.index)]
-                                                      : rhs.joint[static_cast<std::size_t>(block.index)];
-    }
-    // Forward: z_p -= L_b^T z_b.
-    for (std::size_t b = 0; b < nblocks; ++b)
-    {
-        const Factor& f = mFactors[b];
-        if (f.parent >= 0)
+        if (b + 2 * cAhead < nblocks && (blocks[b + 2 * cAhead].flags & cFirstChild))
         {
-            const int pd = mFactors[static_cast<std::size_t>(f.parent)].dim;
-            mZ[static_cast<std::size_t>(f.parent)].head(pd).noalias() -=
-                f.coupling.topLeftCorner(f.dim, pd).transpose() * mZ[b].head(f.dim);
+            prefetch(&blocks[blocks[b + 2 * cAhead].parent]);
         }
-    }
-    // Diagonal: x_b = D_b^-1 z_b.
-    for (std::size_t b = 0; b < nblocks; ++b)
-    {
-        applyPivotInverse(static_cast<int>(b), mZ[b]);
-    }
-    // Backward (§3 step 3): x_b -= L_b x_p, from the last block to the first.
-    for (std::size_t b = nblocks; b-- > 0;)
-    {
-        const Factor& f = mFactors[b];
-        if (f.parent >= 0)
+        if (b + cAhead < nblocks)
         {
-            const int pd = mFactors[static_cast<std::size_t>(f.parent)].dim;
-            mZ[b].head(f.dim).noalias() -=
-                f.coupling.topLeftCorner(f.dim, pd) * mZ[static_cast<std::size_t>(f.parent)].head(pd);
+            const BlockInfo& ahead = blocks[b + cAhead];
+            if (!(ahead.flags & cHasChildren))
+            {
+                prefetchRange(&rhsOf(ahead), sizeof(Vec6));
+            }
+            if (ahead.parent >= 0)
+            {
+                prefetchRange(&z[ahead.parent], sizeof(Vec6));
+                if (ahead.flags & cFirstChild)
+                {
+                    prefetchRange(&rhsOf(blocks[ahead.parent]), sizeof(Vec6));
+                }
+            }
         }
-    }
-    solution.resize(rhs.body.size(), rhs.joint.size());
-    solution.setZero();
-    for (std::size_t b = 0; b < nblocks; ++b)
-    {
-        const LayoutBlock& block = layout.blocks[b];
-        if (block.kind == LayoutBlock::Kind::Node)
+
+        const BlockInfo& info = blocks[b];
+        const double* own = arena + info.offset;
+        double* zb = z[b].data();
+        if (!(info.flags & cHasChildren))
         {
-            solution.body[static_cast<std::size_t>(block.index)] = mZ[b];
+            z[b] = rhsOf(info);
+        }
+        double* zp = nullptr;
+        if (info.parent >= 0)
+        {
+            Vec6& parent = z[static_cast<std::size_t>(info.parent)];
+            if (info.flags & cFirstChild)
+            {
+                parent = rhsOf(blocks[info.parent]);
+            }
+            zp = parent.data();
+        }
+        if (!(info.flags & cEdge))
+        {
+            if (zp == nullptr)
+            {
+                forwardBlock<6, 0, false>(own, zb, nullptr);
+            }
+            else
+            {
+                withRows(info.parentDim,
+                         [&](auto r) { forwardBlock<6, decltype(r)::value, false>(own, zb, zp); });
+            }
+        }
+        else if (zp == nullptr)
+        {
+            withRows(info.dim, [&](auto r) { forwardBlock<decltype(r)::value, 0, true>(own, zb, nullptr); });
         }
         else
         {
-            // The KKT unknown is -lambda.
-            solution.joint[static_cast<std::size_t>(block.index)].head(block.dim) = -mZ[b].head(block.dim);
+            withRows(info.dim, [&](auto r) { forwardBlock<decltype(r)::value, 6, true>(own, zb, zp); });
         }
+    }
+    // Backward (§3 step 3): x_b -= L_b x_p from the last block to the first, each x_b written
+    // out as soon as it is final. The KKT unknown of an edge is -lambda.
+    solution.resize(rhs.body.size(), rhs.joint.size());
+    for (std::size_t b = nblocks; b-- > 0;)
+    {
+        if (b >= cAhead)
+        {
+            const BlockInfo& ahead = blocks[b - cAhead];
+            if (ahead.parent >= 0)
+            {
+                prefetchRange(&z[ahead.parent], sizeof(Vec6));
+            }
+            prefetchForWrite((ahead.flags & cEdge) ? &solution.joint[static_cast<std::size_t>(ahead.index)]
+                                                   : &solution.body[static_cast<std::size_t>(ahead.index)]);
+        }
+        const BlockInfo& info = blocks[b];
+        const double* own = arena + info.offset;
+        double* xb = z[b].data();
+        const double* xp = info.parent >= 0 ? z[static_cast<std::size_t>(info.parent)].data() : nullptr;
+        if (!(info.flags & cEdge))
+        {
+            if (xp != nullptr)
+            {
+                withRows(info.parentDim, [&](auto r) { backwardBlock<6, decltype(r)::value>(own, xb, xp); });
+            }
+            solution.body[static_cast<std::size_t>(info.index)] = z[b];
+            continue;
+        }
+        withRows(info.dim,
+                 [&](auto r)
+                 {
+                     constexpr int R = decltype(r)::value;
+                     if (xp != nullptr)
+                     {
+                         backwardBlock<R, 6>(own, xb, xp);
+                     }
+                     Vec6 lambda = Vec6::Zero();
+                     lambda.head<R>() = -z[b].head<R>();
+                     solution.joint[static_cast<std::size_t>(info.index)] = lambda;
+                 });
+    }
+    // Bodies and joints without a block (static bodies, loop joints) get zero.
+    const FrontierLayout& layout = *mSystem->layout;
+    for (int i : mUnmappedBodies)
+    {
+        solution.body[static_cast<std::size_t>(i)].setZero();
+    }
+    for (std::size_t i = layout.bodyBlock.size(); i < solution.body.size(); ++i)
+    {
+        solution.body[i].setZero();
+    }
+    for (int j : mUnmappedJoints)
+    {
+        solution.joint[static_cast<std::size_t>(j)].setZero();
+    }
+    for (std::size_t j = layout.jointBlock.size(); j < solution.joint.size(); ++j)
+    {
+        solution.joint[j].setZero();
     }
 }
 

@@ -7,11 +7,20 @@
 //   §3 step 3 (back substitute): forward z_p -= L_b^T z_b; x_b = D_b^-1 z_b; backward x_b -= L_b x_p
 // Node pivots stay positive definite (M plus J^T S^-1 J terms), edge pivots negative definite
 // (-J D^-1 J^T), so no pivoting is needed; a pivot that vanishes means dependent or degenerate
-// joint rows and is reported with the joint's name (PAPER.md §3 "Pivots"). Memory: one 6x6 pivot
-// and one 6x6 coupling per block, O(n); no fill-in.
+// joint rows and is reported with the joint's name (PAPER.md §3 "Pivots").
+//
+// Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (dim x dim) and
+// L_b (dim x dim_p) at their real sizes, packed in layout order into one arena that is reused
+// across factor() calls. Because the layout is also the elimination order, factor() and both
+// sweeps of solve() stream through the arena front to back (or back to front); only the
+// parent-side block is touched out of order. solve() fuses x_b = D_b^-1 z_b into the forward
+// sweep (z_b is final once b's children are in) and reads/writes the BlockVectors in the sweeps
+// themselves, so a solve is two passes over the factors.
 #pragma once
 
 #include "core/impulse_solver.h"
+
+#include <cstdint>
 
 namespace frontier::core
 {
@@ -32,18 +41,31 @@ class TreeSolver final : public ImpulseSolver
     void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
 
   private:
-    struct Factor
+    // One block in layout order (16 bytes, so the sweeps read little besides the factors).
+    struct BlockInfo
     {
-        Mat6 chol;     // lower Cholesky factor of D_b (node) or of -D_b (edge), top-left dim x dim
-        Mat6 coupling; // L_b = D_b^-1 H_bp, dim_b x dim_p
-        int dim = 0;
-        int parent = -1;
-        bool negated = false; // edge: chol is of -D_b
+        std::uint32_t offset = 0; // first double of the block in mArena: chol (dim x dim,
+                                  // lower Cholesky factor of D_b, of -D_b for edges), then
+                                  // L_b = D_b^-1 H_bp (dim x parentDim), both column-major
+        int parent = -1;          // layout index of p(b), -1 for the last block of a tree
+        int index = 0;            // body (node) or joint (edge) index
+        std::uint8_t dim = 0;
+        std::uint8_t parentDim = 0; // 0 without a parent
+        std::uint8_t flags = 0;     // cEdge, cHasChildren, cFirstChild
+        std::uint8_t unused = 0;
     };
-    void applyPivotInverse(int block, Vec6& z) const; // z <- D_b^-1 z
-    void applyPivotInverse(int block, Mat6& z) const; // on 6 columns
-    std::vector<Factor> mFactors;
-    std::vector<Vec6> mZ; // scratch: one vector per block
+    static constexpr std::uint8_t cEdge = 1;        // a joint block; its pivot factor is of -D_b
+    static constexpr std::uint8_t cHasChildren = 2; // some earlier block has this one as parent
+    static constexpr std::uint8_t cFirstChild = 4;  // the first (in layout order) child of its parent
+
+    void applyPivotInverse(int block, Mat6& z) const; // top dim rows: z <- D_b^-1 z
+
+    std::vector<BlockInfo> mBlocks;     // layout order
+    std::vector<double> mArena;         // the factors, see BlockInfo::offset
+    std::vector<std::uint8_t> mSeen;    // scratch: per block, a child was met
+    std::vector<int> mUnmappedBodies;   // bodies without a block (static): zero in a solution
+    std::vector<int> mUnmappedJoints;   // joints without a block (loops): zero in a solution
+    std::vector<Vec6> mZ;               // scratch: one vector per block
     struct PathEntry
     {
         int block = 0;
