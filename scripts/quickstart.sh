@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Frontier (Release), and runs the doll: trajectory, stats and
-# PNG frames land in out/.
+# Installs what is missing, builds Frontier (Release), and runs the falling doll (PAPER.md figure 8):
+# trajectory, stats and PNG frames land in out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j2 --target frontier
 mkdir -p out
-build/app/frontier run scenes/doll_zero_g.yaml --duration 3 \
-  --trajectory out/doll.csv --stats out/doll.json --frames out/frames
-echo "wrote out/doll.csv, out/doll.json and out/frames/"
+build/app/frontier run scenes/falling_doll.yaml \
+  --trajectory out/falling_doll.csv --stats out/falling_doll.json --frames out/frames
+echo "wrote out/falling_doll.csv, out/falling_doll.json and out/frames/"
