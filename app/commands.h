@@ -53,7 +53,21 @@ struct InfoOptions
     bool json = false;
 };
 
+// Default tolerances of `frontier check`: loose enough for another build of the same code
+// (round-off grows along a trajectory), tight enough to catch a changed result.
+struct CheckOptions
+{
+    std::string scene;
+    std::string reference;
+    double positionTolerance = 1e-6;        // m
+    double orientationTolerance = 1e-5;     // rad
+    double velocityTolerance = 1e-5;        // m/s
+    double angularVelocityTolerance = 1e-4; // rad/s
+    bool quiet = false;
+};
+
 int runCommand(const RunOptions& options);
+int checkCommand(const CheckOptions& options);
 int infoCommand(const InfoOptions& options);
 int renderCommand(const RenderCommandOptions& options);
 

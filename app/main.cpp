@@ -70,6 +70,23 @@ int main(int argc, char** argv)
         ->check(CLI::Range(1, 256));
     render->add_flag("--quiet", renderOptions.quiet, "no summary, no progress");
 
+    CheckOptions checkOptions;
+    auto* check =
+        app.add_subcommand("check", "re-simulate a scene and compare with a recorded reference trajectory");
+    check->add_option("scene", checkOptions.scene, "scene .yaml or model .urdf")->required();
+    check->add_option("--reference", checkOptions.reference, "reference trajectory CSV")->required();
+    check->add_option("--tol", checkOptions.positionTolerance, "position tolerance (m)")
+        ->check(CLI::PositiveNumber);
+    check->add_option("--tol-orientation", checkOptions.orientationTolerance, "orientation tolerance (rad)")
+        ->check(CLI::PositiveNumber);
+    check->add_option("--tol-velocity", checkOptions.velocityTolerance, "velocity tolerance (m/s)")
+        ->check(CLI::PositiveNumber);
+    check
+        ->add_option("--tol-angular-velocity", checkOptions.angularVelocityTolerance,
+                     "angular velocity tolerance (rad/s)")
+        ->check(CLI::PositiveNumber);
+    check->add_flag("--quiet", checkOptions.quiet, "no progress line");
+
     try
     {
         app.parse(argc, argv);
@@ -90,6 +107,10 @@ int main(int argc, char** argv)
     if (run->parsed())
     {
         return runCommand(runOptions);
+    }
+    if (check->parsed())
+    {
+        return checkCommand(checkOptions);
     }
     if (render->parsed())
     {
