@@ -23,12 +23,31 @@ namespace frontier::core
 namespace
 {
 
-// In-place lower Cholesky of the N x N column-major matrix a (only its lower triangle is read).
-// The factor's diagonal is stored as reciprocals 1 / l_jj. Returns false when a pivot falls below
-// cRelativePivot times its own row's diagonal entry (cancellation: dependent rows), never
-// producing NaN. Per row, not against the largest diagonal entry: a positive definite pivot may
-// span many decades (a long revolute chain's articulated inertia about its free axis vs its
-// constrained axes; a light body carrying a heavy subtree) without being singular.
+// Symmetric pivots and their Cholesky factors are stored as lower triangles packed by columns.
+// Doubles in an n x n lower triangle:
+constexpr int triSize(int n)
+{
+    return n * (n + 1) / 2;
+}
+constexpr int cTri6 = triSize(6);
+
+// Index of (i, j), i >= j, in an N x N packed lower triangle.
+template <int N> constexpr int tri(int i, int j)
+{
+    return i + j * (2 * N - j - 1) / 2;
+}
+inline int tri(int n, int i, int j)
+{
+    return i + j * (2 * n - j - 1) / 2;
+}
+
+// In-place lower Cholesky of the N x N packed symmetric matrix a; the factor's diagonal is
+// stored as reciprocals 1 / l_jj (the solves multiply instead of divide). Returns false when a
+// pivot falls below cRelativePivot times its own row's diagonal entry (cancellation: dependent
+// rows), never producing NaN. Per row, not against the largest diagonal entry: a positive
+// definite pivot may span many decades (a long revolute chain's articulated inertia about its
+// free axis vs its constrained axes; a light body carrying a heavy subtree) without being
+// singular.
 constexpr double cRelativePivot = 1e-12;
 
 template <int N> inline bool choleskyInPlace(double* a)
@@ -36,7 +55,7 @@ template <int N> inline bool choleskyInPlace(double* a)
     double scale = 0.0;
     for (int i = 0; i < N; ++i)
     {
-        scale = std::max(scale, std::abs(a[i * (N + 1)]));
+        scale = std::max(scale, std::abs(a[tri<N>(i, i)]));
     }
     if (!(scale > 0.0) || !std::isfinite(scale))
     {
@@ -44,26 +63,26 @@ template <int N> inline bool choleskyInPlace(double* a)
     }
     for (int j = 0; j < N; ++j)
     {
-        const double diagonal = a[j + j * N];
+        const double diagonal = a[tri<N>(j, j)];
         double d = diagonal;
         for (int k = 0; k < j; ++k)
         {
-            d -= a[j + k * N] * a[j + k * N];
+            d -= a[tri<N>(j, k)] * a[tri<N>(j, k)];
         }
         if (!(d > cRelativePivot * diagonal))
         {
             return false;
         }
         const double inverse = 1.0 / std::sqrt(d);
-        a[j + j * N] = inverse;
+        a[tri<N>(j, j)] = inverse;
         for (int i = j + 1; i < N; ++i)
         {
-            double s = a[i + j * N];
+            double s = a[tri<N>(i, j)];
             for (int k = 0; k < j; ++k)
             {
-                s -= a[i + k * N] * a[j + k * N];
+                s -= a[tri<N>(i, k)] * a[tri<N>(j, k)];
             }
-            a[i + j * N] = s * inverse;
+            a[tri<N>(i, j)] = s * inverse;
         }
     }
     return true;
@@ -80,9 +99,9 @@ template <int N, int C> inline void choleskySolveInPlace(const double* l, double
             double s = x[i + c * N];
             for (int k = 0; k < i; ++k)
             {
-                s -= l[i + k * N] * x[k + c * N];
+                s -= l[tri<N>(i, k)] * x[k + c * N];
             }
-            x[i + c * N] = s * l[i + i * N];
+            x[i + c * N] = s * l[tri<N>(i, i)];
         }
     }
     for (int i = N - 1; i >= 0; --i)
@@ -92,9 +111,9 @@ template <int N, int C> inline void choleskySolveInPlace(const double* l, double
             double s = x[i + c * N];
             for (int k = i + 1; k < N; ++k)
             {
-                s -= l[k + i * N] * x[k + c * N];
+                s -= l[tri<N>(k, i)] * x[k + c * N];
             }
-            x[i + c * N] = s * l[i + i * N];
+            x[i + c * N] = s * l[tri<N>(i, i)];
         }
     }
 }
@@ -109,18 +128,18 @@ void choleskySolveInPlace(const double* l, int n, Mat6& z)
             double s = z(i, c);
             for (int k = 0; k < i; ++k)
             {
-                s -= l[i + k * n] * z(k, c);
+                s -= l[tri(n, i, k)] * z(k, c);
             }
-            z(i, c) = s * l[i + i * n];
+            z(i, c) = s * l[tri(n, i, i)];
         }
         for (int i = n - 1; i >= 0; --i)
         {
             double s = z(i, c);
             for (int k = i + 1; k < n; ++k)
             {
-                s -= l[k + i * n] * z(k, c);
+                s -= l[tri(n, k, i)] * z(k, c);
             }
-            z(i, c) = s * l[i + i * n];
+            z(i, c) = s * l[tri(n, i, i)];
         }
     }
 }
@@ -182,22 +201,35 @@ inline void prefetchRange(const void* p, std::size_t bytes)
     prefetch(c + bytes - 1);
 }
 
-// A node's pivot before any child edge is eliminated: its mass matrix (lower triangle).
+// A node's pivot: its mass matrix M_i (lower triangle), set (a leaf) or added to the terms of its
+// eliminated child edges.
 inline void setMassMatrix(double* pivot, double mass, const Mat3& inertia)
 {
     for (int j = 0; j < 6; ++j)
     {
         for (int i = j; i < 6; ++i)
         {
-            pivot[i + j * 6] = 0.0;
+            pivot[tri<6>(i, j)] = 0.0;
         }
     }
     for (int i = 0; i < 3; ++i)
     {
-        pivot[i * 7] = mass;
+        pivot[tri<6>(i, i)] = mass;
         for (int k = i; k < 3; ++k)
         {
-            pivot[(3 + k) + (3 + i) * 6] = inertia(k, i);
+            pivot[tri<6>(3 + k, 3 + i)] = inertia(k, i);
+        }
+    }
+}
+
+inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
+{
+    for (int i = 0; i < 3; ++i)
+    {
+        pivot[tri<6>(i, i)] += mass;
+        for (int k = i; k < 3; ++k)
+        {
+            pivot[tri<6>(3 + k, 3 + i)] += inertia(k, i);
         }
     }
 }
@@ -214,7 +246,7 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
     }
     if constexpr (R > 0)
     {
-        double* l = block + 36;
+        double* l = block + cTri6;
         for (int c = 0; c < R; ++c)
         {
             for (int i = 0; i < 6; ++i)
@@ -232,7 +264,7 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
                 {
                     s += J[i + k * 6] * l[k + j * 6];
                 }
-                edgePivot[i + j * R] = s;
+                edgePivot[tri<R>(i, j)] = s;
             }
         }
     }
@@ -241,11 +273,10 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
 
 // §3 step 2 for edge e (R rows) with (HasParent) or without a parent node. `block` holds -D_e on
 // entry; on exit its Cholesky factor, then L_e = D_e^-1 J (R x 6). The parent node's pivot
-// (6 x 6 at parentPivot) loses J^T D_e^-1 J; it starts from its mass matrix when e is its first
-// child.
+// (6 x 6 at parentPivot) loses J^T D_e^-1 J; its first child sets it, its mass matrix is added
+// when the node itself is reached (factorNode's caller).
 template <int R, bool HasParent>
-inline bool factorEdge(double* block, const double* J, double* parentPivot, bool firstChild, double mass,
-                       const Mat3* inertia)
+inline bool factorEdge(double* block, const double* J, double* parentPivot, bool firstChild)
 {
     if (!choleskyInPlace<R>(block))
     {
@@ -253,7 +284,7 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
     }
     if constexpr (HasParent)
     {
-        double* l = block + R * R;
+        double* l = block + triSize(R);
         for (int c = 0; c < 6; ++c)
         {
             for (int i = 0; i < R; ++i)
@@ -262,10 +293,6 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
             }
         }
         choleskySolveInPlace<R, 6>(block, l); // L_e = D_e^-1 J = -(-D_e)^-1 J
-        if (firstChild)
-        {
-            setMassMatrix(parentPivot, mass, *inertia);
-        }
         for (int j = 0; j < 6; ++j)
         {
             for (int i = j; i < 6; ++i)
@@ -275,7 +302,14 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
                 {
                     s += J[k + i * 6] * l[k + j * R];
                 }
-                parentPivot[i + j * 6] -= s;
+                if (firstChild)
+                {
+                    parentPivot[tri<6>(i, j)] = -s;
+                }
+                else
+                {
+                    parentPivot[tri<6>(i, j)] -= s;
+                }
             }
         }
     }
@@ -283,12 +317,14 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
 }
 
 // §3 step 3, forward sweep at block b (N rows, parent P rows, P = 0 without a parent): z_b is
-// final, so z_p -= L_b^T z_b, then z_b <- D_b^-1 z_b (Negated: the factor is of -D_b).
-template <int N, int P, bool Negated> inline void forwardBlock(const double* block, double* zb, double* zp)
+// final, so z_p -= L_b^T z_b (the first child sets z_p = -L_b^T z_b; the parent adds its own
+// right-hand side when it is reached), then z_b <- D_b^-1 z_b (Negated: the factor is of -D_b).
+template <int N, int P, bool Negated>
+inline void forwardBlock(const double* block, double* zb, double* zp, bool firstChild)
 {
     if constexpr (P > 0)
     {
-        const double* l = block + N * N;
+        const double* l = block + triSize(N);
         for (int j = 0; j < P; ++j)
         {
             double s = 0.0;
@@ -296,7 +332,7 @@ template <int N, int P, bool Negated> inline void forwardBlock(const double* blo
             {
                 s += l[k + j * N] * zb[k];
             }
-            zp[j] -= s;
+            zp[j] = firstChild ? -s : zp[j] - s;
         }
     }
     choleskySolveInPlace<N, 1>(block, zb);
@@ -312,7 +348,7 @@ template <int N, int P, bool Negated> inline void forwardBlock(const double* blo
 // Backward sweep at block b: x_b -= L_b x_p.
 template <int N, int P> inline void backwardBlock(const double* block, double* xb, const double* xp)
 {
-    const double* l = block + N * N;
+    const double* l = block + triSize(N);
     for (int i = 0; i < N; ++i)
     {
         double s = 0.0;
@@ -324,7 +360,7 @@ template <int N, int P> inline void backwardBlock(const double* block, double* x
     }
 }
 
-// How many blocks ahead the sweeps prefetch (twice that for the parent's block table entry).
+// How many blocks ahead the sweeps prefetch.
 constexpr std::size_t cAhead = 8;
 
 } // namespace
@@ -332,7 +368,7 @@ constexpr std::size_t cAhead = 8;
 void TreeSolver::applyPivotInverse(int block, Mat6& z) const
 {
     const BlockInfo& info = mBlocks[static_cast<std::size_t>(block)];
-    choleskySolveInPlace(mArena.data() + info.offset, info.dim, z);
+    choleskySolveInPlace(mArena.data() + mOffsets[static_cast<std::size_t>(block)], info.dim, z);
     if (info.flags & cEdge)
     {
         z.topRows(info.dim) = -z.topRows(info.dim);
@@ -377,8 +413,8 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
                 break;
             }
             const int pd = info.parentDim;
-            const Eigen::Map<const Eigen::MatrixXd> coupling(mArena.data() + info.offset + info.dim * info.dim,
-                                                             info.dim, pd);
+            const Eigen::Map<const Eigen::MatrixXd> coupling(
+                mArena.data() + mOffsets[static_cast<std::size_t>(block)] + triSize(info.dim), info.dim, pd);
             Mat6 next = Mat6::Zero();
             next.topRows(pd).noalias() = -coupling.transpose() * z.topRows(info.dim);
             z = next;
@@ -463,10 +499,12 @@ void TreeSolver::factor(const RowSystem& system)
     const FrontierLayout& layout = *system.layout;
     const std::size_t nblocks = layout.blocks.size();
 
-    // Block table and arena offsets: one pass over the layout. A node's pivot starts as M_i, an
-    // edge's as 0; rather than a pass that writes them, each pivot is set by its first child (or
-    // by the block itself when it has none), so the arena is written once, in layout order.
+    // Block table and arena offsets: one pass over the layout. Pivots are not initialized in a
+    // pass of their own: a block's first child sets its pivot, and a node adds its mass matrix
+    // when it is reached, so the arena is written in layout order and only the parent's pivot is
+    // touched out of order.
     mBlocks.resize(nblocks);
+    mOffsets.resize(nblocks);
     mSeen.assign(nblocks, 0);
     std::size_t offset = 0;
     for (std::size_t b = 0; b < nblocks; ++b)
@@ -475,13 +513,16 @@ void TreeSolver::factor(const RowSystem& system)
         BlockInfo& info = mBlocks[b];
         const bool edge = block.kind == LayoutBlock::Kind::Edge;
         // An edge's parent is a node (6 rows, checked below); a node's parent is its edge.
-        const int parentDim =
-            block.parent < 0 ? 0 : edge ? 6 : layout.blocks[static_cast<std::size_t>(block.parent)].dim;
-        if (block.dim < 1 || block.dim > 6 || (!edge && block.dim != 6) || parentDim < 0 || parentDim > 6)
+        const int parentDim = block.parent < 0 ? 0
+                              : edge           ? 6
+                                               : layout.blocks[static_cast<std::size_t>(block.parent)].dim;
+        if (block.dim < 1 || block.dim > 6 || (!edge && block.dim != 6) || parentDim < 0 || parentDim > 6 ||
+            block.parent >= static_cast<int>(nblocks) ||
+            (block.parent >= 0 && block.parent <= static_cast<int>(b)))
         {
             throw std::logic_error("tree solver: malformed frontier layout");
         }
-        info.offset = static_cast<std::uint32_t>(offset);
+        mOffsets[b] = static_cast<std::uint32_t>(offset);
         info.parent = block.parent;
         info.index = block.index;
         info.dim = static_cast<std::uint8_t>(block.dim);
@@ -496,7 +537,7 @@ void TreeSolver::factor(const RowSystem& system)
             mSeen[static_cast<std::size_t>(block.parent)] = 1;
             info.flags |= cFirstChild;
         }
-        offset += static_cast<std::size_t>(block.dim) * static_cast<std::size_t>(block.dim + parentDim);
+        offset += static_cast<std::size_t>(triSize(block.dim) + block.dim * parentDim);
         if (offset > std::numeric_limits<std::uint32_t>::max())
         {
             throw std::length_error("tree solver: system too large");
@@ -523,13 +564,10 @@ void TreeSolver::factor(const RowSystem& system)
 
     // §3 step 2: eliminate in layout order.
     double* arena = mArena.data();
-    const BlockInfo* blocks = mBlocks.data();
+    BlockInfo* blocks = mBlocks.data();
+    const std::uint32_t* offsets = mOffsets.data();
     for (std::size_t b = 0; b < nblocks; ++b)
     {
-        if (b + 2 * cAhead < nblocks && blocks[b + 2 * cAhead].parent >= 0)
-        {
-            prefetch(&blocks[blocks[b + 2 * cAhead].parent]);
-        }
         if (b + cAhead < nblocks)
         {
             const BlockInfo& ahead = blocks[b + cAhead];
@@ -537,22 +575,13 @@ void TreeSolver::factor(const RowSystem& system)
             {
                 if (ahead.parent >= 0)
                 {
-                    const BlockInfo& node = blocks[ahead.parent];
-                    prefetchRange(arena + node.offset, 36 * sizeof(double));
-                    if (ahead.flags & cFirstChild)
-                    {
-                        prefetch(&system.mass[static_cast<std::size_t>(node.index)]);
-                        prefetchRange(&system.inertia_W[static_cast<std::size_t>(node.index)], sizeof(Mat3));
-                    }
+                    prefetchRange(arena + offsets[ahead.parent], cTri6 * sizeof(double));
                 }
             }
             else
             {
-                if (!(ahead.flags & cHasChildren))
-                {
-                    prefetch(&system.mass[static_cast<std::size_t>(ahead.index)]);
-                    prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
-                }
+                prefetch(&system.mass[static_cast<std::size_t>(ahead.index)]);
+                prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
                 if (ahead.parent >= 0)
                 {
                     const std::size_t joint = static_cast<std::size_t>(blocks[ahead.parent].index);
@@ -562,13 +591,17 @@ void TreeSolver::factor(const RowSystem& system)
             }
         }
 
-        const BlockInfo& info = blocks[b];
-        double* own = arena + info.offset;
+        BlockInfo& info = blocks[b];
+        double* own = arena + offsets[b];
         const std::size_t index = static_cast<std::size_t>(info.index);
         bool ok = true;
         if (!(info.flags & cEdge))
         {
-            if (!(info.flags & cHasChildren))
+            if (info.flags & cHasChildren)
+            {
+                addMassMatrix(own, system.mass[index], system.inertia_W[index]);
+            }
+            else
             {
                 setMassMatrix(own, system.mass[index], system.inertia_W[index]);
             }
@@ -579,12 +612,18 @@ void TreeSolver::factor(const RowSystem& system)
             else
             {
                 // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
-                const BlockInfo& edge = blocks[info.parent];
+                BlockInfo& edge = blocks[info.parent];
                 const std::size_t joint = static_cast<std::size_t>(edge.index);
                 const JointRows& rows = system.joints[joint];
-                const double* J = (model.joints[joint].child == info.index ? rows.J_b : rows.J_a).data();
+                const bool jointChild = model.joints[joint].child == info.index;
+                if (jointChild)
+                {
+                    edge.flags |= cChildIsJointChild;
+                }
+                const double* J = (jointChild ? rows.J_b : rows.J_a).data();
+                double* edgePivot = arena + offsets[info.parent];
                 withRows(info.parentDim,
-                         [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, arena + edge.offset); });
+                         [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
             }
             if (!ok)
             {
@@ -595,34 +634,29 @@ void TreeSolver::factor(const RowSystem& system)
             }
             continue;
         }
-        // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J.
-        const Joint& joint = model.joints[index];
+        // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
+        // the joint is the one its child node is not on.
         if (info.parent < 0)
         {
             withRows(info.dim, [&](auto r)
-                     { ok = factorEdge<decltype(r)::value, false>(own, nullptr, nullptr, false, 0.0, nullptr); });
+                     { ok = factorEdge<decltype(r)::value, false>(own, nullptr, nullptr, false); });
         }
         else
         {
-            const BlockInfo& node = blocks[info.parent];
-            if ((node.flags & cEdge) || node.dim != 6)
+            if (info.parentDim != 6 || !(info.flags & cHasChildren))
             {
                 throw std::logic_error("tree solver: malformed frontier layout");
             }
-            const std::size_t parentBody = static_cast<std::size_t>(node.index);
             const JointRows& rows = system.joints[index];
-            const double* J = (joint.child == node.index ? rows.J_b : rows.J_a).data();
+            const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
+            double* parentPivot = arena + offsets[info.parent];
             const bool first = info.flags & cFirstChild;
             withRows(info.dim,
-                     [&](auto r)
-                     {
-                         ok = factorEdge<decltype(r)::value, true>(
-                             own, J, arena + node.offset, first, first ? system.mass[parentBody] : 0.0,
-                             first ? &system.inertia_W[parentBody] : nullptr);
-                     });
+                     [&](auto r) { ok = factorEdge<decltype(r)::value, true>(own, J, parentPivot, first); });
         }
         if (!ok)
         {
+            const Joint& joint = model.joints[index];
             std::ostringstream msg;
             msg << "joint '" << joint.name << "' (" << jointTypeName(joint.type)
                 << "): its constraint rows are dependent or degenerate at this configuration";
@@ -635,75 +669,65 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
 {
     const std::size_t nblocks = mBlocks.size();
     const BlockInfo* blocks = mBlocks.data();
+    const std::uint32_t* offsets = mOffsets.data();
     const double* arena = mArena.data();
     Vec6* z = mZ.data();
-    // Forward, front to back. The KKT right-hand side (p for nodes, c for edges) enters a block's
-    // z when the block is reached (a leaf) or when its first child is (every rhs read happens
-    // here, before `solution` is written, so the two may be the same object).
     auto rhsOf = [&](const BlockInfo& info) -> const Vec6&
     {
         return (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
                                     : rhs.body[static_cast<std::size_t>(info.index)];
     };
+    // Forward, front to back. The KKT right-hand side (p for nodes, c for edges) is added to a
+    // block's z when the block is reached; every rhs read happens here, before `solution` is
+    // written, so the two may be the same object.
     for (std::size_t b = 0; b < nblocks; ++b)
     {
-        if (b + 2 * cAhead < nblocks && (blocks[b + 2 * cAhead].flags & cFirstChild))
-        {
-            prefetch(&blocks[blocks[b + 2 * cAhead].parent]);
-        }
         if (b + cAhead < nblocks)
         {
             const BlockInfo& ahead = blocks[b + cAhead];
-            if (!(ahead.flags & cHasChildren))
-            {
-                prefetchRange(&rhsOf(ahead), sizeof(Vec6));
-            }
+            prefetchRange(&rhsOf(ahead), sizeof(Vec6));
             if (ahead.parent >= 0)
             {
-                prefetchRange(&z[ahead.parent], sizeof(Vec6));
-                if (ahead.flags & cFirstChild)
-                {
-                    prefetchRange(&rhsOf(blocks[ahead.parent]), sizeof(Vec6));
-                }
+                prefetchForWrite(&z[ahead.parent]);
+                prefetchForWrite(z[ahead.parent].data() + 5);
             }
         }
 
         const BlockInfo& info = blocks[b];
-        const double* own = arena + info.offset;
+        const double* own = arena + offsets[b];
         double* zb = z[b].data();
-        if (!(info.flags & cHasChildren))
+        const Vec6& rb = rhsOf(info);
+        if (info.flags & cHasChildren)
         {
-            z[b] = rhsOf(info);
+            z[b] += rb;
         }
-        double* zp = nullptr;
-        if (info.parent >= 0)
+        else
         {
-            Vec6& parent = z[static_cast<std::size_t>(info.parent)];
-            if (info.flags & cFirstChild)
-            {
-                parent = rhsOf(blocks[info.parent]);
-            }
-            zp = parent.data();
+            z[b] = rb;
         }
+        double* zp = info.parent >= 0 ? z[static_cast<std::size_t>(info.parent)].data() : nullptr;
+        const bool first = info.flags & cFirstChild;
         if (!(info.flags & cEdge))
         {
             if (zp == nullptr)
             {
-                forwardBlock<6, 0, false>(own, zb, nullptr);
+                forwardBlock<6, 0, false>(own, zb, nullptr, false);
             }
             else
             {
                 withRows(info.parentDim,
-                         [&](auto r) { forwardBlock<6, decltype(r)::value, false>(own, zb, zp); });
+                         [&](auto r) { forwardBlock<6, decltype(r)::value, false>(own, zb, zp, first); });
             }
         }
         else if (zp == nullptr)
         {
-            withRows(info.dim, [&](auto r) { forwardBlock<decltype(r)::value, 0, true>(own, zb, nullptr); });
+            withRows(info.dim,
+                     [&](auto r) { forwardBlock<decltype(r)::value, 0, true>(own, zb, nullptr, false); });
         }
         else
         {
-            withRows(info.dim, [&](auto r) { forwardBlock<decltype(r)::value, 6, true>(own, zb, zp); });
+            withRows(info.dim,
+                     [&](auto r) { forwardBlock<decltype(r)::value, 6, true>(own, zb, zp, first); });
         }
     }
     // Backward (§3 step 3): x_b -= L_b x_p from the last block to the first, each x_b written
@@ -722,7 +746,7 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
                                                    : &solution.body[static_cast<std::size_t>(ahead.index)]);
         }
         const BlockInfo& info = blocks[b];
-        const double* own = arena + info.offset;
+        const double* own = arena + offsets[b];
         double* xb = z[b].data();
         const double* xp = info.parent >= 0 ? z[static_cast<std::size_t>(info.parent)].data() : nullptr;
         if (!(info.flags & cEdge))

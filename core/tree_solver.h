@@ -9,13 +9,14 @@
 // (-J D^-1 J^T), so no pivoting is needed; a pivot that vanishes means dependent or degenerate
 // joint rows and is reported with the joint's name (PAPER.md §3 "Pivots").
 //
-// Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (dim x dim) and
-// L_b (dim x dim_p) at their real sizes, packed in layout order into one arena that is reused
-// across factor() calls. Because the layout is also the elimination order, factor() and both
-// sweeps of solve() stream through the arena front to back (or back to front); only the
-// parent-side block is touched out of order. solve() fuses x_b = D_b^-1 z_b into the forward
-// sweep (z_b is final once b's children are in) and reads/writes the BlockVectors in the sweeps
-// themselves, so a solve is two passes over the factors.
+// Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (a packed
+// dim x dim lower triangle) and L_b (dim x dim_p) at their real sizes, in layout order in one
+// arena that is reused across factor() calls. Because the layout is also the elimination order,
+// factor() and both sweeps of solve() stream through the arena front to back (or back to
+// front); only the parent-side block is touched out of order. No pass initializes pivots or
+// right-hand sides: a block's first child writes them, and a block adds its own M_i or rhs when
+// it is reached. solve() fuses x_b = D_b^-1 z_b into the forward sweep (z_b is final once b's
+// children are in) and writes the solution during the backward sweep, so a solve is two passes.
 #pragma once
 
 #include "core/impulse_solver.h"
@@ -41,31 +42,34 @@ class TreeSolver final : public ImpulseSolver
     void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
 
   private:
-    // One block in layout order (16 bytes, so the sweeps read little besides the factors).
+    // One block in layout order (12 bytes, so the sweeps read little besides the factors).
     struct BlockInfo
     {
-        std::uint32_t offset = 0; // first double of the block in mArena: chol (dim x dim,
-                                  // lower Cholesky factor of D_b, of -D_b for edges), then
-                                  // L_b = D_b^-1 H_bp (dim x parentDim), both column-major
-        int parent = -1;          // layout index of p(b), -1 for the last block of a tree
-        int index = 0;            // body (node) or joint (edge) index
+        int parent = -1; // layout index of p(b), -1 for the last block of a tree
+        int index = 0;   // body (node) or joint (edge) index
         std::uint8_t dim = 0;
         std::uint8_t parentDim = 0; // 0 without a parent
-        std::uint8_t flags = 0;     // cEdge, cHasChildren, cFirstChild
+        std::uint8_t flags = 0;     // the c* bits below
         std::uint8_t unused = 0;
     };
-    static constexpr std::uint8_t cEdge = 1;        // a joint block; its pivot factor is of -D_b
-    static constexpr std::uint8_t cHasChildren = 2; // some earlier block has this one as parent
-    static constexpr std::uint8_t cFirstChild = 4;  // the first (in layout order) child of its parent
+    static constexpr std::uint8_t cEdge = 1;              // a joint block; its pivot factor is of -D_b
+    static constexpr std::uint8_t cHasChildren = 2;       // some earlier block has this one as parent
+    static constexpr std::uint8_t cFirstChild = 4;        // the first (in layout order) child of its parent
+    static constexpr std::uint8_t cChildIsJointChild = 8; // edge: its child node is the joint's child
+                                                          // body (set during factor())
 
     void applyPivotInverse(int block, Mat6& z) const; // top dim rows: z <- D_b^-1 z
 
-    std::vector<BlockInfo> mBlocks;     // layout order
-    std::vector<double> mArena;         // the factors, see BlockInfo::offset
-    std::vector<std::uint8_t> mSeen;    // scratch: per block, a child was met
-    std::vector<int> mUnmappedBodies;   // bodies without a block (static): zero in a solution
-    std::vector<int> mUnmappedJoints;   // joints without a block (loops): zero in a solution
-    std::vector<Vec6> mZ;               // scratch: one vector per block
+    std::vector<BlockInfo> mBlocks; // layout order
+    // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
+    // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then
+    // L_b = D_b^-1 H_bp, dim x parentDim column-major.
+    std::vector<std::uint32_t> mOffsets;
+    std::vector<double> mArena;
+    std::vector<Vec6> mZ;             // scratch: one vector per block
+    std::vector<std::uint8_t> mSeen;  // scratch: per block, a child was met
+    std::vector<int> mUnmappedBodies; // bodies without a block (static): zero in a solution
+    std::vector<int> mUnmappedJoints; // joints without a block (loops): zero in a solution
     struct PathEntry
     {
         int block = 0;
