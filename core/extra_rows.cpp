@@ -208,7 +208,16 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
                     const double tangential = lt.norm();
                     if (tangential > limit)
                     {
-                        lt *= tangential > 0.0 ? limit / tangential : 0.0;
+                        // Sliding: the anisotropic 2x2 step would leave the friction off the
+                        // slip direction at the fixed point; an isotropic step (k = 2 / trace)
+                        // followed by the radial projection converges to friction opposing the slip.
+                        const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
+                        lt = old.segment<2>(1) - k * vt;
+                        const double slide = lt.norm();
+                        if (slide > limit)
+                        {
+                            lt *= slide > 0.0 ? limit / slide : 0.0;
+                        }
                     }
                     next.segment<2>(1) = lt;
                 }
