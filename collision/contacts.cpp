@@ -42,6 +42,7 @@
 #include <fcl/math/triangle.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
 #include <limits>
 #include <stdexcept>
 
@@ -147,6 +148,9 @@ struct ContactDetector::Impl
     std::vector<char> bodyCollides;                     // per body: has a shape that can touch something
     std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
+    // Boxes grown by the margin on every side (null for other shapes): colliding one with the other
+    // box of a pair gives FCL's box-box manifold while they are still apart, for speculative contacts.
+    std::vector<std::unique_ptr<fcl::CollisionObjectd>> inflatedBoxes;
     std::vector<PlaneInstance> planes;
     std::vector<int> movingShapes;                        // shapes of moving bodies
     std::vector<int> staticShapes;                        // shapes of static bodies
@@ -160,6 +164,8 @@ struct ContactDetector::Impl
     fcl::CollisionRequestd request{8, true};
     fcl::CollisionRequestd meshRequest{64, true};
     fcl::CollisionResultd result;
+    fcl::DistanceRequestd distanceRequest{true}; // with nearest points (world frame)
+    fcl::DistanceResultd distanceResult;
     std::vector<RawContact> raw;
 
     bool candidatesReady = false;
@@ -209,6 +215,14 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(
                 object->computeInflatedAABB(margin);
             }
             objects.push_back(std::move(object));
+            std::unique_ptr<fcl::CollisionObjectd> inflated;
+            if (shape.type == core::ShapeType::Box)
+            {
+                const Vec3 size = shape.size + Vec3::Constant(2.0 * margin);
+                inflated = std::make_unique<fcl::CollisionObjectd>(
+                    std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z()), fcl::Transform3d::Identity());
+            }
+            inflatedBoxes.push_back(std::move(inflated));
         }
     }
 
@@ -252,6 +266,8 @@ void ContactDetector::Impl::poseShape(int index, const core::State& state)
         tf.translation() = s.p_WS;
         object->setTransform(tf);
         object->computeInflatedAABB(margin);
+        if (fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(index)].get())
+            inflated->setTransform(tf);
     }
 }
 
@@ -344,6 +360,37 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
             // FCL's single point is redundant when the features reach its depth.
             if (fclDepth <= featureDepth + std::max(0.1 * margin, 1e-6))
                 raw.erase(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(fclCount));
+        }
+    }
+    fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(i)].get();
+    if (raw.empty() && inflated != nullptr && b.type == core::ShapeType::Box)
+    {
+        // Two boxes apart: the manifold of a grown by the margin, depths less the margin (< 0).
+        result.clear();
+        fcl::collide(inflated, objects[static_cast<std::size_t>(j)].get(), request, result);
+        for (std::size_t k = 0; k < result.numContacts(); ++k)
+        {
+            const fcl::Contactd& c = result.getContact(k);
+            const double length = c.normal.norm();
+            if (length > 0.5 && c.penetration_depth > 0.0 && c.pos.allFinite())
+                raw.push_back({c.pos, c.normal / length, c.penetration_depth - margin});
+        }
+    }
+    else if (raw.empty() && !mesh)
+    {
+        // Apart: a speculative contact at the nearest points when the gap is below the margin,
+        // so that a body arriving fast is caught before it sinks in (depth = -gap).
+        distanceResult.clear();
+        const double gap =
+            fcl::distance(objects[static_cast<std::size_t>(i)].get(),
+                          objects[static_cast<std::size_t>(j)].get(), distanceRequest, distanceResult);
+        if (gap > 0.0 && gap < margin)
+        {
+            const Vec3 pa = distanceResult.nearest_points[0];
+            const Vec3 pb = distanceResult.nearest_points[1];
+            const Vec3 d = pb - pa;
+            if (d.norm() > 1e-12 && pa.allFinite() && pb.allFinite())
+                raw.push_back({0.5 * (pa + pb), d / d.norm(), -gap});
         }
     }
     detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
