@@ -156,6 +156,26 @@ void Simulator::buildExtraRows(const State& state)
             const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
             approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
         }
+        // A gap that the bodies cannot close within cSpeculativeSteps steps, even moving straight
+        // at each other at their relative speed plus this step's gravity, needs no row: only the
+        // rows a scene needs are built (resting bodies near each other add none).
+        constexpr double cSpeculativeSteps = 3.0;
+        if (contact.depth < 0.0)
+        {
+            Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
+            const BodyState& a = mStart[static_cast<std::size_t>(block.bodyA)];
+            relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
+            if (block.bodyB >= 0)
+            {
+                const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
+                relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
+            }
+            const double closing = relative.norm() + mModel.simulation.gravity.norm() * mDt;
+            if (closing * mDt * cSpeculativeSteps < -contact.depth)
+            {
+                continue;
+            }
+        }
         const bool closes = contact.depth >= 0.0 || approach * mDt <= contact.depth;
         if (!closes)
         {

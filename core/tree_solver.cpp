@@ -421,13 +421,19 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             block = info.parent;
         }
     }
-    // K_ij over the common suffix of the two paths.
+    // K_xy over the common suffix of the two paths (from the block where they meet to the root);
+    // zero for bodies of different trees.
     const std::size_t k = bodies.size();
-    std::vector<Mat6> K(k * k, Mat6::Zero());
+    mK.assign(k * k, Mat6::Zero());
     for (std::size_t i = 0; i < k; ++i)
     {
+        const int treeI = layout.treeOfBody[static_cast<std::size_t>(bodies[i])];
         for (std::size_t j = i; j < k; ++j)
         {
+            if (layout.treeOfBody[static_cast<std::size_t>(bodies[j])] != treeI)
+            {
+                continue;
+            }
             const std::vector<PathEntry>& a = mPaths[i];
             const std::vector<PathEntry>& b = mPaths[j];
             std::size_t ia = 0, ib = 0;
@@ -448,45 +454,74 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
                 const int dim = mBlocks[static_cast<std::size_t>(a[ia].block)].dim;
                 sum.noalias() += a[ia].Z.topRows(dim).transpose() * b[ib].W.topRows(dim);
             }
-            K[i * k + j] = sum;
-            K[j * k + i] = sum.transpose();
+            mK[i * k + j] = sum;
+            mK[j * k + i] = sum.transpose();
         }
     }
-    // G_rs = sum over the blocks' bodies of J_r,x K_xy J_s,y^T.
-    G.setZero(rows, rows);
-    for (const ExtraBlock& bi : blocks)
+    // Rows of each body stacked: J_x (m_x x 6) and their rows in G.
+    mBodyRows.resize(k);
+    mBodyJ.resize(k);
+    for (std::size_t s = 0; s < k; ++s)
     {
-        for (const ExtraBlock& bj : blocks)
+        mBodyRows[s].clear();
+    }
+    std::vector<int> count(k, 0);
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int side = 0; side < 2; ++side)
         {
-            if (bj.offset < bi.offset)
+            const int x = side == 0 ? block.bodyA : block.bodyB;
+            if (x >= 0)
+            {
+                count[static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)])] += block.count;
+            }
+        }
+    }
+    for (std::size_t s = 0; s < k; ++s)
+    {
+        mBodyJ[s].resize(count[s], 6);
+    }
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int side = 0; side < 2; ++side)
+        {
+            const int x = side == 0 ? block.bodyA : block.bodyB;
+            if (x < 0)
             {
                 continue;
             }
-            auto g = G.block(bi.offset, bj.offset, bi.count, bj.count);
-            for (int sideI = 0; sideI < 2; ++sideI)
+            const std::size_t slot = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)]);
+            const Mat6& J = side == 0 ? block.J_A : block.J_B;
+            for (int r = 0; r < block.count; ++r)
             {
-                const int x = sideI == 0 ? bi.bodyA : bi.bodyB;
-                if (x < 0)
-                {
-                    continue;
-                }
-                const Mat6& Ji = sideI == 0 ? bi.J_A : bi.J_B;
-                for (int sideJ = 0; sideJ < 2; ++sideJ)
-                {
-                    const int y = sideJ == 0 ? bj.bodyA : bj.bodyB;
-                    if (y < 0)
-                    {
-                        continue;
-                    }
-                    const Mat6& Jj = sideJ == 0 ? bj.J_A : bj.J_B;
-                    const std::size_t sx = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)]);
-                    const std::size_t sy = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(y)]);
-                    g.noalias() += Ji.topRows(bi.count) * K[sx * k + sy] * Jj.topRows(bj.count).transpose();
-                }
+                mBodyJ[slot].row(static_cast<Eigen::Index>(mBodyRows[slot].size())) = J.row(r);
+                mBodyRows[slot].push_back(block.offset + r);
             }
-            if (bj.offset != bi.offset)
+        }
+    }
+    // G = sum over body pairs (x, y) of the same tree of J_x K_xy J_y^T, scattered into G's rows.
+    G.setZero(rows, rows);
+    Eigen::MatrixXd product;
+    for (std::size_t x = 0; x < k; ++x)
+    {
+        const int treeX = layout.treeOfBody[static_cast<std::size_t>(bodies[x])];
+        for (std::size_t y = 0; y < k; ++y)
+        {
+            if (layout.treeOfBody[static_cast<std::size_t>(bodies[y])] != treeX)
             {
-                G.block(bj.offset, bi.offset, bj.count, bi.count) = g.transpose();
+                continue;
+            }
+            // Small products: coefficient-based (lazyProduct), not the general GEMM path.
+            mJK.noalias() = mBodyJ[x].lazyProduct(mK[x * k + y]);
+            product.noalias() = mJK.lazyProduct(mBodyJ[y].transpose());
+            const std::vector<int>& rx = mBodyRows[x];
+            const std::vector<int>& ry = mBodyRows[y];
+            for (std::size_t a = 0; a < rx.size(); ++a)
+            {
+                for (std::size_t b = 0; b < ry.size(); ++b)
+                {
+                    G(rx[a], ry[b]) += product(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+                }
             }
         }
     }

@@ -76,8 +76,12 @@ class TreeSolver final : public ImpulseSolver
         Mat6 Z; // L^-1 e_i restricted to this block: dim x 6
         Mat6 W; // D_b^-1 Z
     };
-    std::vector<std::vector<PathEntry>> mPaths; // scratch: per body with extra rows
-    std::vector<int> mSlotOfBody;               // scratch: body -> path slot, -1
+    std::vector<std::vector<PathEntry>> mPaths;                   // scratch: per body with extra rows
+    std::vector<int> mSlotOfBody;                                 // scratch: body -> path slot, -1
+    std::vector<Mat6> mK;                                         // scratch: K_xy per slot pair
+    std::vector<std::vector<int>> mBodyRows;                      // scratch: G rows of each slot's body
+    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> mBodyJ; // scratch: its stacked J rows
+    Eigen::Matrix<double, Eigen::Dynamic, 6> mJK;                 // scratch: J_x K_xy
 };
 
 } // namespace frontier::core
