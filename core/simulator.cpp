@@ -35,6 +35,11 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)), mDt(model.simulation.dt)
 {
+    if (model.simulation.integrator != IntegratorKind::Euler)
+    {
+        throw UnsupportedModelError(std::string("the '") + integratorName(model.simulation.integrator) +
+                                    "' integrator is not available yet; use 'euler'");
+    }
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
     mRhs.resize(nb, nj);
