@@ -1,0 +1,168 @@
+// bench/step_bench.cpp: whole simulation steps (core::Simulator::step: free velocities, rows,
+// factor, impulses, positions, SHAKE stabilization, angular momentum) on chains of n capsules on
+// ball joints hanging from the world, released horizontal like scenes/chain30.yaml (0.1 m, 0.1 kg
+// links), with the `linear`, `dense` and `pgs` (20 sweeps) solvers; no contacts.
+//
+// Each case starts from the chain after cWarmUpSteps steps (with the same solver; `dense` starts
+// from the `linear` warm-up, the same trajectory to round-off), so the chain is swinging and
+// bent. Counters: us_per_step, us_per_body_step (wall time / steps / n) and
+// max_joint_error_m, the largest joint position error after any benchmarked step.
+// The target: `linear` us_per_body_step flat within 1.5x from 100 to 10 000 links.
+//
+//   step_bench --benchmark_min_time=0.5
+#include "core/model.h"
+#include "core/simulator.h"
+#include "core/state.h"
+
+#include <algorithm>
+#include <benchmark/benchmark.h>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+namespace
+{
+
+using namespace frontier;
+using core::Vec3;
+
+constexpr int cWarmUpSteps = 300;
+constexpr double cLinkLength = 0.1; // m, joint to joint
+constexpr double cLinkMass = 0.1;   // kg
+
+// n capsules (radius 0.01 m, segment 0.08 m) along +x at z = 2 m, capsule axis (local z) along
+// world x, ball joints at the link ends, the first nailed to the world by a ball joint.
+core::Model makeChain(int n, core::SolverKind solver)
+{
+    core::Model model;
+    model.name = "chain of " + std::to_string(n);
+    model.simulation.dt = 0.001;
+    model.simulation.solver = solver;
+    model.simulation.pgsIterations = 20;
+    core::Shape capsule;
+    capsule.type = core::ShapeType::Capsule;
+    capsule.radius = 0.01;
+    capsule.length = cLinkLength - 2.0 * capsule.radius;
+    const core::MassProperties props = core::shapeMassProperties(capsule, 1000.0);
+    const core::Quat alongX(std::sqrt(0.5), 0.0, std::sqrt(0.5), 0.0);
+    model.bodies.reserve(static_cast<std::size_t>(n));
+    model.joints.reserve(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i)
+    {
+        core::Body body;
+        body.name = "link" + std::to_string(i);
+        body.mass = cLinkMass;
+        body.inertia_B = props.inertia * (cLinkMass / props.mass);
+        body.shapes.push_back(capsule);
+        body.position_W = Vec3((i + 0.5) * cLinkLength, 0.0, 2.0);
+        body.orientation_WB = alongX;
+        model.bodies.push_back(body);
+    }
+    for (int i = 0; i < n; ++i)
+    {
+        core::Joint joint;
+        joint.name = "joint" + std::to_string(i);
+        joint.type = core::JointType::Ball;
+        joint.parent = i == 0 ? core::cWorld : i - 1;
+        joint.child = i;
+        core::setJointFrames(model, joint, Vec3(i * cLinkLength, 0.0, 2.0), Vec3::UnitZ());
+        model.joints.push_back(joint);
+    }
+    return model;
+}
+
+// A chain model and its state after the warm-up, kept for every repetition of a case.
+struct Prepared
+{
+    std::unique_ptr<core::Model> model;
+    core::State warm;
+};
+
+const Prepared& prepare(int n, core::SolverKind solver)
+{
+    static std::map<std::pair<int, core::SolverKind>, Prepared> cache;
+    const auto key = std::make_pair(n, solver);
+    auto found = cache.find(key);
+    if (found != cache.end())
+    {
+        return found->second;
+    }
+    Prepared p;
+    p.model = std::make_unique<core::Model>(makeChain(n, solver));
+    const core::SolverKind warmSolver = solver == core::SolverKind::Dense ? core::SolverKind::Linear : solver;
+    const core::Model warmModel = makeChain(n, warmSolver);
+    core::Simulator warmUp(warmModel);
+    p.warm = core::initialState(warmModel);
+    for (int k = 0; k < cWarmUpSteps; ++k)
+    {
+        warmUp.step(p.warm);
+    }
+    return cache.emplace(key, std::move(p)).first->second;
+}
+
+void stepChain(benchmark::State& st, core::SolverKind solver)
+{
+    const int n = static_cast<int>(st.range(0));
+    const Prepared* prepared = nullptr;
+    try
+    {
+        prepared = &prepare(n, solver);
+    }
+    catch (const core::SimulationError& error)
+    {
+        st.SkipWithError(error.what());
+        return;
+    }
+    core::Simulator simulator(*prepared->model);
+    core::State state = prepared->warm;
+    double maxJointError = 0.0;
+    double seconds = 0.0;
+    for (auto _ : st)
+    {
+        const auto start = std::chrono::steady_clock::now();
+        try
+        {
+            simulator.step(state);
+        }
+        catch (const core::SimulationError& error)
+        {
+            st.SkipWithError(error.what());
+            break;
+        }
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        maxJointError = std::max(maxJointError, simulator.lastStep().maxJointErrorM);
+    }
+    const double steps = static_cast<double>(st.iterations());
+    if (steps > 0)
+    {
+        st.counters["us_per_step"] = 1e6 * seconds / steps;
+        st.counters["us_per_body_step"] = 1e6 * seconds / steps / n;
+    }
+    st.counters["max_joint_error_m"] = maxJointError;
+    st.counters["bodies"] = n;
+}
+
+void BM_StepLinear(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Linear);
+}
+void BM_StepDense(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Dense);
+}
+void BM_StepPgs20(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Pgs);
+}
+
+BENCHMARK(BM_StepLinear)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+// Dense LU is O(n^3) per factorization: ~0.05 s per step at 100 links, ~0.4 s at 200.
+BENCHMARK(BM_StepDense)->Arg(10)->Arg(100)->Arg(200)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepPgs20)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+
+} // namespace
+
+BENCHMARK_MAIN();

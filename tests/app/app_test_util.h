@@ -1,0 +1,112 @@
+// tests/app/app_test_util.h: running the `frontier` executable in a per-test folder.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace frontier::app::test
+{
+
+inline std::string sourcePath(const std::string& relative)
+{
+    return std::string(FRONTIER_SOURCE_DIR) + "/" + relative;
+}
+
+inline std::string readText(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Single quotes for /bin/sh.
+inline std::string shellQuote(const std::string& s)
+{
+    std::string out = "'";
+    for (char c : s)
+    {
+        out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+    }
+    return out + "'";
+}
+
+struct Result
+{
+    int exitCode = -1; // the process's exit status, -1 when it did not exit normally
+    std::string out;   // its stdout
+    std::string err;   // its stderr
+};
+
+// FRONTIER_BINARY_DIR/test-tmp/app.<suite>.<test>: created empty, removed with its contents at the
+// end. Runs `frontier` from the source folder (so scenes/... paths work), capturing stdout and
+// stderr into files of this folder.
+class TestDir
+{
+  public:
+    TestDir()
+    {
+        const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string name = std::string("app.") + info->test_suite_name() + "." + info->name();
+        for (char& c : name)
+        {
+            c = (c == '/') ? '_' : c;
+        }
+        mPath = std::filesystem::path(FRONTIER_BINARY_DIR) / "test-tmp" / name;
+        std::filesystem::remove_all(mPath);
+        std::filesystem::create_directories(mPath / "out");
+    }
+    ~TestDir()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(mPath, ec);
+    }
+    TestDir(const TestDir&) = delete;
+    TestDir& operator=(const TestDir&) = delete;
+
+    // A path in the folder "out/" that holds nothing but the command's outputs.
+    std::string out(const std::string& name) const { return (mPath / "out" / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const
+    {
+        const std::string path = (mPath / name).string();
+        std::ofstream(path, std::ios::binary) << text;
+        return path;
+    }
+    const std::filesystem::path& path() const { return mPath; }
+
+    // Runs `frontier ARGS` (ARGS already quoted for the shell where needed).
+    Result run(const std::string& args) const
+    {
+        const std::filesystem::path out = mPath / "stdout.txt";
+        const std::filesystem::path err = mPath / "stderr.txt";
+        const std::string command = "cd " + shellQuote(FRONTIER_SOURCE_DIR) + " && " +
+                                    shellQuote(std::string(FRONTIER_BINARY_DIR) + "/app/frontier") + " " +
+                                    args + " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string());
+        const int status = std::system(command.c_str());
+        Result result;
+        result.exitCode = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+        result.out = readText(out);
+        result.err = readText(err);
+        return result;
+    }
+
+    // Names of the entries of out/.
+    std::vector<std::string> outputs() const
+    {
+        std::vector<std::string> names;
+        for (const auto& entry : std::filesystem::directory_iterator(mPath / "out"))
+        {
+            names.push_back(entry.path().filename().string());
+        }
+        return names;
+    }
+
+  private:
+    std::filesystem::path mPath;
+};
+
+} // namespace frontier::app::test

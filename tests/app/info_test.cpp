@@ -1,0 +1,133 @@
+// tests/app/info_test.cpp: `frontier info` on the falling doll: counts, rows, degrees of freedom,
+// the frontier order, loops and collision pairs, in JSON; the text form runs.
+#include "app_test_util.h"
+
+#include <algorithm>
+#include <gtest/gtest.h>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <utility>
+
+namespace frontier::app::test
+{
+namespace
+{
+
+// Rows per joint type (README "The impulse problem"), written out here rather than taken from core.
+const std::map<std::string, int> cRowsByType = {{"ball", 3},  {"nail", 3},        {"revolute", 5},
+                                                {"angle", 4}, {"cylindrical", 4}, {"prismatic", 5},
+                                                {"fixed", 6}};
+
+bool hasPair(const nlohmann::json& pairs, const std::string& a, const std::string& b)
+{
+    for (const auto& pair : pairs)
+    {
+        const std::string x = pair.at(0).get<std::string>();
+        const std::string y = pair.at(1).get<std::string>();
+        if ((x == a && y == b) || (x == b && y == a))
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+TEST(Info, FallingDollJson)
+{
+    const TestDir dir;
+    const Result r = dir.run("info scenes/falling_doll.yaml --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    nlohmann::json info;
+    ASSERT_NO_THROW(info = nlohmann::json::parse(r.out)) << r.out;
+
+    ASSERT_EQ(info.at("bodies").size(), 16u);
+    ASSERT_EQ(info.at("joints").size(), 14u);
+    std::set<std::string> moving;
+    std::set<std::string> statics;
+    for (const auto& body : info.at("bodies"))
+    {
+        (body.at("static").get<bool>() ? statics : moving).insert(body.at("name").get<std::string>());
+    }
+    EXPECT_EQ(moving.size(), 15u);
+    EXPECT_EQ(statics, std::set<std::string>{"floor"});
+
+    int rows = 0;
+    std::set<std::string> joints;
+    for (const auto& joint : info.at("joints"))
+    {
+        const std::string type = joint.at("type").get<std::string>();
+        ASSERT_TRUE(cRowsByType.count(type)) << type;
+        EXPECT_EQ(joint.at("rows").get<int>(), cRowsByType.at(type)) << joint.dump();
+        EXPECT_FALSE(joint.at("loop").get<bool>()) << joint.dump();
+        rows += cRowsByType.at(type);
+        joints.insert(joint.at("name").get<std::string>());
+    }
+    // 4 ball (3), 6 revolute (5), 4 angle (4).
+    EXPECT_EQ(rows, 4 * 3 + 6 * 5 + 4 * 4);
+    EXPECT_EQ(info.at("constraint_rows").get<int>(), rows);
+    EXPECT_EQ(info.at("degrees_of_freedom").get<int>(), 6 * 15 - rows);
+    EXPECT_TRUE(info.at("loops").empty()) << info.at("loops").dump();
+
+    // The frontier order: every moving body and every (tree) joint exactly once, nothing else.
+    std::multiset<std::string> listed;
+    for (const auto& entry : info.at("frontier_order"))
+    {
+        listed.insert(entry.get<std::string>());
+    }
+    std::multiset<std::string> expected;
+    for (const std::string& body : moving)
+    {
+        expected.insert("body " + body);
+    }
+    for (const std::string& joint : joints)
+    {
+        expected.insert("joint " + joint);
+    }
+    EXPECT_EQ(listed, expected);
+    // Node 1, edge 1, node 2, ...: alternating, ending at the root body.
+    const auto& order = info.at("frontier_order");
+    ASSERT_EQ(order.size(), 29u);
+    for (std::size_t k = 0; k < order.size(); ++k)
+    {
+        EXPECT_EQ(order[k].get<std::string>().rfind(k % 2 == 0 ? "body " : "joint ", 0), 0u) << order.dump();
+    }
+
+    const nlohmann::json& pairs = info.at("collision_pairs");
+    EXPECT_FALSE(hasPair(pairs, "chest", "head")); // jointed (neck)
+    EXPECT_FALSE(hasPair(pairs, "pelvis", "chest"));
+    EXPECT_FALSE(hasPair(pairs, "forearm_left", "hand_left"));
+    EXPECT_TRUE(hasPair(pairs, "hand_left", "floor"));
+    EXPECT_TRUE(hasPair(pairs, "head", "floor"));
+    EXPECT_TRUE(hasPair(pairs, "hand_left", "thigh_left")); // not jointed, may touch
+    // No pair joined by a joint, none twice.
+    std::set<std::pair<std::string, std::string>> seen;
+    for (const auto& joint : info.at("joints"))
+    {
+        EXPECT_FALSE(
+            hasPair(pairs, joint.at("parent").get<std::string>(), joint.at("child").get<std::string>()))
+            << joint.dump();
+    }
+    for (const auto& pair : pairs)
+    {
+        std::string a = pair.at(0).get<std::string>();
+        std::string b = pair.at(1).get<std::string>();
+        if (b < a)
+        {
+            std::swap(a, b);
+        }
+        EXPECT_TRUE(seen.insert({a, b}).second) << pair.dump();
+    }
+}
+
+TEST(Info, TextModeRuns)
+{
+    const TestDir dir;
+    const Result r = dir.run("info scenes/falling_doll.yaml");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("frontier order"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("degrees of freedom: 32"), std::string::npos) << r.out;
+}
+
+} // namespace
+} // namespace frontier::app::test
