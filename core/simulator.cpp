@@ -416,13 +416,20 @@ void Simulator::measureJointErrors(const RowSystem& rows)
 {
     mStats.maxJointErrorM = 0.0;
     mStats.maxJointErrorRad = 0.0;
+    double worst = -1.0;
     for (std::size_t k = 0; k < rows.joints.size(); ++k)
     {
         const JointRows& r = rows.joints[k];
         for (int row = 0; row < r.count; ++row)
         {
+            const double error = std::abs(r.error(row));
             double& slot = row < r.positionRows ? mStats.maxJointErrorM : mStats.maxJointErrorRad;
-            slot = std::max(slot, std::abs(r.error(row)));
+            slot = std::max(slot, error);
+            if (error > worst)
+            {
+                worst = error;
+                mWorstJoint = static_cast<int>(k);
+            }
         }
     }
 }
@@ -430,31 +437,55 @@ void Simulator::measureJointErrors(const RowSystem& rows)
 // SHAKE-type projection: impulses along J^T that bring C(q_{n+1}) to zero. Each iteration solves
 // [M J^T; J 0][du; -dlambda] = [0; -C/h] and moves velocities by du and positions by h du. The
 // first iterations reuse the step's factorization (quasi-Newton: J at the start of the step stands
-// for J at the end); when that contracts the error by less than cSlowContraction per iteration
-// (fast rotation, thin bodies), the system is re-factored once at the current configuration.
+// for J at the end); when an iteration contracts the error by less than cSlowContraction
+// (fast rotation, thin bodies, large steps), the system is re-factored at the current
+// configuration (once per step: re-factoring again made convergence worse in tests). A joint
+// still apart by more than cJointBlowUp after the last iteration is a
+// blow-up: the run stops naming the step, the joint and the gap, instead of going on with garbage.
 void Simulator::stabilizeJoints(State& state)
 {
     constexpr double cSlowContraction = 0.1;
+    constexpr double cJointBlowUp = 1e-3; // m or rad
     mStats.stabilizationIterations = 0;
     double previous = std::numeric_limits<double>::infinity();
-    bool refactored = false;
     bool loopsFactored = false;
+    bool refactored = false;
     for (int iteration = 0;; ++iteration)
     {
         assembleRows(mModel, mLayout, state, mRowsAfter);
         measureJointErrors(mRowsAfter);
         const double error = std::max(mStats.maxJointErrorM, mStats.maxJointErrorRad);
-        if (error <= mOptions.stabilizationTolerance || iteration >= mOptions.stabilizationIterations)
+        if (error <= mOptions.stabilizationTolerance)
         {
+            break;
+        }
+        if (iteration >= mOptions.stabilizationIterations)
+        {
+            if (error > cJointBlowUp)
+            {
+                const Joint& joint = mModel.joints[static_cast<std::size_t>(mWorstJoint)];
+                const std::string parent =
+                    joint.parent == cWorld
+                        ? std::string("the world")
+                        : "'" + mModel.bodies[static_cast<std::size_t>(joint.parent)].name + "'";
+                const bool positional = mStats.maxJointErrorM >= mStats.maxJointErrorRad;
+                std::ostringstream msg;
+                msg << "simulation blew up at step " << state.step << " (t = " << state.time << " s): body '"
+                    << mModel.bodies[static_cast<std::size_t>(joint.child)].name << "' came off " << parent
+                    << " at joint '" << joint.name << "': joint " << (positional ? "position" : "orientation")
+                    << " error " << error << (positional ? " m" : " rad")
+                    << " after the correction did not converge; try a smaller --dt";
+                throw SimulationError(msg.str());
+            }
             break;
         }
         if (!refactored && error > cSlowContraction * previous)
         {
+            refactored = true;
             mRowsRefactored = mRowsAfter;
             mSolver->factor(mRowsRefactored);
             buildLoopRows(mRowsRefactored);
             loopsFactored = false;
-            refactored = true;
         }
         if (!mLoopBlocks.empty() && !loopsFactored)
         {

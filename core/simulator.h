@@ -126,6 +126,7 @@ class Simulator
     std::vector<BodyState> mStart; // poses at the start of the step
     std::vector<Vec3> mMomentum;   // world angular momentum per body during the step
     StepStats mStats;
+    int mWorstJoint = 0; // joint of the largest violation in the last measurement
     double mDt;
 };
 

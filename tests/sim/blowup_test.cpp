@@ -118,5 +118,45 @@ TEST(BlowUp, ChainWhippingPastTheSpeedLimitIsReported)
     EXPECT_NE(blowUp.message.find("'link"), std::string::npos) << blowUp.message;
 }
 
+// Regression: the 30-link chain's tip whips at about 1000 rad/s near t = 4 s. At dt = 5 ms that is
+// several radians per step, which no position projection can follow: the joint correction used to
+// end unconverged and the run went on with the chain apart (0.55 m gaps, energy +2.8e4 J) and
+// exit 0. It must stop naming the step, a body and the quantity; at dt = 2 ms it must hold.
+TEST(BlowUp, JointCorrectionThatCannotConvergeStopsTheRun)
+{
+    core::Model model = loadBundled("chain30.yaml");
+    model.simulation.dt = 0.005;
+    core::Simulator simulator(model);
+    core::State state = core::initialState(model);
+    std::string message;
+    try
+    {
+        for (long k = 0; k < stepsFor(10.0, model.simulation.dt); ++k)
+        {
+            simulator.step(state);
+            ASSERT_LT(simulator.lastStep().maxJointErrorM, 1e-3)
+                << "a gap above the blow-up bound went unreported";
+        }
+    }
+    catch (const core::SimulationError& e)
+    {
+        message = e.what();
+    }
+    ASSERT_FALSE(message.empty()) << "the run at dt = 5 ms finished although its joints came apart";
+    expectNamesStepBodyQuantity(model, message, stepNamed(message));
+    EXPECT_NE(message.find("joint 'j"), std::string::npos) << message;
+
+    model.simulation.dt = 0.002;
+    core::Simulator fine(model);
+    state = core::initialState(model);
+    double worst = 0.0;
+    for (long k = 0; k < stepsFor(10.0, model.simulation.dt); ++k)
+    {
+        fine.step(state);
+        worst = std::max(worst, fine.lastStep().maxJointErrorM);
+    }
+    EXPECT_LT(worst, 1e-6);
+}
+
 } // namespace
 } // namespace frontier::sim::test
