@@ -80,6 +80,14 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.simulatedSeconds = static_cast<double>(s.steps) * model.simulation.dt;
     stats.extra["max_joint_error_rad"] = s.maxJointErrorRad;
     stats.extra["energy_max_j"] = s.energyMaxJ;
+    // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
+    const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
+                                                "seconds_per_step_solve", "seconds_per_step_integrate"};
+    for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
+    {
+        stats.extra[stageKeys[stage]] =
+            s.steps > 0 ? s.stageSeconds[stage] / static_cast<double>(s.steps) : 0.0;
+    }
     stats.maxPenetrationM = s.maxPenetrationM;
     stats.energyInitialJ = s.energyInitialJ;
     stats.energyFinalJ = s.energyFinalJ;

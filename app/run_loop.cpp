@@ -48,6 +48,10 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.maxJointErrorRad = std::max(summary.maxJointErrorRad, stats.maxJointErrorRad);
             summary.maxPenetrationM = std::max(summary.maxPenetrationM, stats.maxPenetrationM);
             summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
+            for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
+            {
+                summary.stageSeconds[stage] += stats.seconds[stage];
+            }
             summary.energyMaxJ = std::max(summary.energyMaxJ, core::totalEnergy(model, state));
             summary.steps = k + 1;
             if (record)

@@ -5,6 +5,7 @@
 #include "core/simulator.h"
 #include "core/state.h"
 
+#include <array>
 #include <functional>
 #include <string>
 
@@ -27,6 +28,7 @@ struct RunSummary
     double energyFinalJ = 0.0;
     double energyMaxJ = 0.0;
     double maxPenetrationM = 0.0;
+    std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;
     bool finite = true;
     std::string failure; // the SimulationError message when the run blew up

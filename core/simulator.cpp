@@ -1,6 +1,8 @@
 // core/simulator.cpp: the step pipeline of the first-order (`euler`) scheme.
 #include "core/simulator.h"
 
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -20,6 +22,26 @@ Quat rotationFromVector(const Vec3& theta)
     }
     return Quat(Eigen::AngleAxisd(angle, theta / angle));
 }
+
+// Wall time of consecutive stages of one step, into StepStats::seconds.
+class StageClock
+{
+  public:
+    explicit StageClock(std::array<double, cStepStages>& out)
+        : mOut(out), mLast(std::chrono::steady_clock::now())
+    {
+    }
+    void lap(StepStage stage)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        mOut[static_cast<std::size_t>(stage)] = std::chrono::duration<double>(now - mLast).count();
+        mLast = now;
+    }
+
+  private:
+    std::array<double, cStepStages>& mOut;
+    std::chrono::steady_clock::time_point mLast;
+};
 
 // Anything beyond these is a blow-up even while still finite.
 constexpr double cMaxSpeed = 1e5;        // m/s
@@ -62,13 +84,17 @@ Simulator::~Simulator() = default;
 
 void Simulator::step(State& state)
 {
+    StageClock clock(mStats.seconds);
     checkState(state, "start of step");
     detectContacts(state);
+    clock.lap(StepStage::Detect);
     computeFreeVelocities(state);
     assembleRows(mModel, mLayout, state, mRows);
     mSolver->factor(mRows); // PAPER.md §3 step 2 (eliminate), once per step
+    clock.lap(StepStage::Factor);
     buildExtraRows(state);
     solveImpulses(state); // §3 step 3 (back substitute), then the extra rows (§5)
+    clock.lap(StepStage::Solve);
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state);
@@ -76,6 +102,7 @@ void Simulator::step(State& state)
     state.time += mDt;
     ++state.step;
     checkState(state, "end of step");
+    clock.lap(StepStage::Integrate);
 }
 
 void Simulator::checkState(const State& state, const char* where) const

@@ -25,6 +25,7 @@
 #include "core/impulse_solver.h"
 
 #include <Eigen/Dense>
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -56,10 +57,23 @@ struct StepOptions
     ExtraSolveSettings contactSolve; // tolerance of the contact problem
 };
 
+// Stages of a step, timed (wall seconds): contact detection; free velocities, rows and the O(n)
+// factorization; the impulse solve with the contact problem; positions, penetration and drift
+// correction, momentum carry.
+enum class StepStage
+{
+    Detect,
+    Factor,
+    Solve,
+    Integrate,
+};
+inline constexpr std::size_t cStepStages = 4;
+
 struct StepStats
 {
-    double maxJointErrorM = 0.0;   // largest positional joint violation after the step (m)
-    double maxJointErrorRad = 0.0; // largest angular joint violation after the step (rad)
+    std::array<double, cStepStages> seconds{}; // wall time of each StepStage this step (s)
+    double maxJointErrorM = 0.0;               // largest positional joint violation after the step (m)
+    double maxJointErrorRad = 0.0;             // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
     int contacts = 0;             // contact points found this step
     int extraRows = 0;            // contact, loop and limit rows this step
