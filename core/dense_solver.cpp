@@ -23,7 +23,7 @@ Eigen::MatrixXd DenseSolver::assemble(const RowSystem& system)
         const Joint& joint = model.joints[static_cast<std::size_t>(block.index)];
         const JointRows& rows = system.joints[static_cast<std::size_t>(block.index)];
         const int r = block.dim;
-        auto couple = [&](int body, const Mat6& J)
+        auto couple = [&](int body, const JacobianRows& J)
         {
             if (body == cWorld || model.bodies[static_cast<std::size_t>(body)].isStatic)
             {

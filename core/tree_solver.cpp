@@ -237,7 +237,7 @@ inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
 // §3 step 2 for node b (6 rows) whose edge e has R rows (R = 0: no edge, a free root). `block`
 // holds D_b on entry; on exit its Cholesky factor, then L_b = D_b^-1 J^T (6 x R). The edge's
 // pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: 6 x 6
-// column-major, rows 0..R-1 used.
+// row-major (JointRows), rows 0..R-1 used.
 template <int R> inline bool factorNode(double* block, const double* J, double* edgePivot)
 {
     if (!choleskyInPlace<6>(block))
@@ -251,7 +251,7 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
         {
             for (int i = 0; i < 6; ++i)
             {
-                l[i + c * 6] = J[c + i * 6];
+                l[i + c * 6] = J[c * 6 + i]; // J(c, i), row-major
             }
         }
         choleskySolveInPlace<6, R>(block, l);
@@ -262,7 +262,7 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
                 double s = 0.0;
                 for (int k = 0; k < 6; ++k)
                 {
-                    s += J[i + k * 6] * l[k + j * 6];
+                    s += J[i * 6 + k] * l[k + j * 6];
                 }
                 edgePivot[tri<R>(i, j)] = s;
             }
@@ -289,7 +289,7 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
         {
             for (int i = 0; i < R; ++i)
             {
-                l[i + c * R] = -J[i + c * 6];
+                l[i + c * R] = -J[i * 6 + c];
             }
         }
         choleskySolveInPlace<R, 6>(block, l); // L_e = D_e^-1 J = -(-D_e)^-1 J
@@ -300,7 +300,7 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
                 double s = 0.0;
                 for (int k = 0; k < R; ++k)
                 {
-                    s += J[k + i * 6] * l[k + j * R];
+                    s += J[k * 6 + i] * l[k + j * R];
                 }
                 if (firstChild)
                 {

@@ -17,13 +17,16 @@ namespace frontier::core
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
+// A joint's Jacobian blocks are stored row by row, so a joint of r rows occupies its first r x 6
+// doubles contiguously: the O(n) factorization streams only the rows a joint has.
+using JacobianRows = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 
 struct JointRows
 {
-    int count = 0;           // r_k, 3..6
-    int positionRows = 0;    // rows 0..positionRows-1 are positions (m), the rest angles (rad)
-    Mat6 J_a = Mat6::Zero(); // rows 0..count-1 used; zero for a world parent
-    Mat6 J_b = Mat6::Zero();
+    int count = 0;        // r_k, 3..6
+    int positionRows = 0; // rows 0..positionRows-1 are positions (m), the rest angles (rad)
+    JacobianRows J_a = JacobianRows::Zero(); // rows 0..count-1 used; zero for a world parent
+    JacobianRows J_b = JacobianRows::Zero();
     Vec6 error = Vec6::Zero(); // C(q): position-level violation of each row (m or rad)
 };
 
