@@ -1,6 +1,8 @@
 // app/job_board.cpp: progress lines for parallel jobs, and the job runner.
 #include "app/job_board.h"
 
+#include "app/progress.h"
+
 #include <atomic>
 #include <cstdio>
 #include <thread>
@@ -93,6 +95,39 @@ int runJobs(std::size_t count, int threads, const std::function<int(std::size_t)
         t.join();
     }
     return worst;
+}
+
+int runBatch(const std::vector<std::string>& names, int threads, bool quiet, const BatchJob& work)
+{
+    JobBoard board(names, !quiet && stderrIsTerminal());
+    std::vector<std::string> summaries(names.size());
+    const bool batch = names.size() > 1;
+    const int code = runJobs(
+        names.size(), threads,
+        [&](std::size_t job)
+        {
+            std::string error;
+            const int result = work(
+                job, [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
+            if (batch || result != 0)
+            {
+                board.finish(job,
+                             result == 0 ? "done" : "FAILED (exit " + std::to_string(result) + "): " + error);
+            }
+            return result;
+        });
+    board.close();
+    if (!quiet)
+    {
+        for (const std::string& summary : summaries)
+        {
+            if (!summary.empty())
+            {
+                std::printf("%s\n", summary.c_str());
+            }
+        }
+    }
+    return code;
 }
 
 } // namespace frontier::app

@@ -32,4 +32,14 @@ class JobBoard
 // Runs work(job) for every job on `threads` threads; returns the largest exit code.
 int runJobs(std::size_t count, int threads, const std::function<int(std::size_t)>& work);
 
+// One job of a batch: reports progress through `status`, fills `summary` (printed on stdout at the
+// end, in job order) or `error`, returns its exit code.
+using BatchJob = std::function<int(std::size_t job, const std::function<void(const std::string&)>& status,
+                                   std::string& summary, std::string& error)>;
+
+// Runs the named jobs in parallel (`threads`), one progress line each, a failing job reported on
+// its line while the others finish; with one job, only a failure is reported. Returns the worst
+// exit code.
+int runBatch(const std::vector<std::string>& names, int threads, bool quiet, const BatchJob& work);
+
 } // namespace frontier::app

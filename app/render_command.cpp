@@ -146,43 +146,20 @@ int renderCommand(const RenderCommandOptions& options)
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
     }
-    const bool terminal = !options.quiet && stderrIsTerminal();
     std::vector<std::string> names;
     for (const std::string& path : options.trajectories)
     {
         names.push_back(jobName(path));
     }
-    JobBoard board(names, terminal);
-    std::vector<std::string> summaries(options.trajectories.size());
+    // One trajectory: its frames on all render threads; several: one job per trajectory.
     const bool batch = options.trajectories.size() > 1;
-    const int code =
-        runJobs(options.trajectories.size(), batch ? options.jobs : 1,
-                [&](std::size_t job)
-                {
-                    std::string error;
-                    const int result = renderOne(
-                        options, options.trajectories[job], outputs[job], batch ? 1 : options.jobs,
-                        [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
-                    if (batch || result != cExitOk)
+    return runBatch(names, batch ? options.jobs : 1, options.quiet,
+                    [&](std::size_t job, const std::function<void(const std::string&)>& status,
+                        std::string& summary, std::string& error)
                     {
-                        board.finish(job, result == cExitOk
-                                              ? "done"
-                                              : "FAILED (exit " + std::to_string(result) + "): " + error);
-                    }
-                    return result;
-                });
-    board.close();
-    if (!options.quiet)
-    {
-        for (const std::string& summary : summaries)
-        {
-            if (!summary.empty())
-            {
-                std::printf("%s\n", summary.c_str());
-            }
-        }
-    }
-    return code;
+                        return renderOne(options, options.trajectories[job], outputs[job],
+                                         batch ? 1 : options.jobs, status, summary, error);
+                    });
 }
 
 } // namespace frontier::app

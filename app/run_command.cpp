@@ -286,32 +286,11 @@ int runCommand(const RunOptions& options)
     {
         names.push_back(jobName(scene));
     }
-    JobBoard board(names, terminal);
-    std::vector<std::string> summaries(options.scenes.size());
-    const int code = runJobs(
-        options.scenes.size(), options.jobs,
-        [&](std::size_t job)
-        {
-            std::string error;
-            const int result = runOne(
-                options, options.scenes[job], outputs[job], 1,
-                [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
-            board.finish(job, result == cExitOk ? "done"
-                                                : "FAILED (exit " + std::to_string(result) + "): " + error);
-            return result;
-        });
-    board.close();
-    if (!options.quiet)
-    {
-        for (const std::string& summary : summaries)
-        {
-            if (!summary.empty())
-            {
-                std::printf("%s\n", summary.c_str());
-            }
-        }
-    }
-    return code;
+    return runBatch(names, options.jobs, options.quiet,
+                    [&](std::size_t job, const std::function<void(const std::string&)>& status,
+                        std::string& summary, std::string& error) {
+                        return runOne(options, options.scenes[job], outputs[job], 1, status, summary, error);
+                    });
 }
 
 } // namespace frontier::app
