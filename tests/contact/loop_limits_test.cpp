@@ -5,7 +5,9 @@
 #include "core/frontier_order.h"
 
 #include <cstdio>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <iterator>
 
 namespace frontier::test
 {
@@ -120,6 +122,38 @@ int jointIndex(const core::Model& model, const std::string& name)
 // into its lower limit and slides down onto its upper one. Bounds: every step each coordinate
 // (core::jointCoordinate) within its limits to 1e-3 rad or m; both reach each limit (within 1e-2
 // of it); at the end both rest pressed on the upper limit (within 1e-3) slower than 1e-3 m/s.
+// Redundant constraints: the same loop-closing joint twice makes the loop rows of G singular. The
+// projection treats the zero pivots as a pseudo-inverse, so the linkage moves exactly as with one
+// copy (no NaN, no fight between the copies), and both copies hold.
+TEST(FourBar, RedundantLoopJointMovesLikeTheSingleOne)
+{
+    std::ifstream in(scenePath("four_bar.yaml"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string line = "  - {name: rocker_pivot,";
+    const std::size_t at = text.find(line);
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t end = text.find('\n', at) + 1;
+    std::string copy = text.substr(at, end - at);
+    copy.replace(0, line.size(), "  - {name: rocker_pivot_again,");
+    text.insert(end, copy);
+
+    SceneRun single(io::loadScene(scenePath("four_bar.yaml")));
+    SceneRun doubled(io::loadSceneFromString(text, scenePath("four_bar_redundant.yaml")));
+    ASSERT_EQ(doubled.simulator.layout().loopJoints.size(), 2u);
+    double gap = 0.0;
+    for (long k = 0; k < single.stepsFor(2.0); ++k)
+    {
+        single.step();
+        doubled.step();
+        gap = std::max(gap, doubled.simulator.lastStep().maxJointErrorM);
+    }
+    EXPECT_LT(gap, 1e-6);
+    for (const char* body : {"crank", "coupler", "rocker"})
+    {
+        EXPECT_LT((single.body(body).position_W - doubled.body(body).position_W).norm(), 1e-6) << body;
+    }
+}
+
 TEST(Limits, RevoluteAndPrismaticLimitsHold)
 {
     SceneRun run(io::loadScene(scenePath("limits.yaml")));
