@@ -23,13 +23,11 @@ std::vector<core::State> statesOf(const core::Model& model, const io::Trajectory
                                   const std::string& path)
 {
     std::map<std::string, int> bodyIndex;
-    int moving = 0;
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
         if (!model.bodies[i].isStatic)
         {
             bodyIndex[model.bodies[i].name] = static_cast<int>(i);
-            ++moving;
         }
     }
     const core::State initial = core::initialState(model);
@@ -76,7 +74,6 @@ std::vector<core::State> statesOf(const core::Model& model, const io::Trajectory
         throw io::InputError(path, 0, 0, "the trajectory has no rows");
     }
     closeState(states.back().time);
-    (void)moving;
     return states;
 }
 

@@ -9,11 +9,6 @@ namespace frontier::core
 
 namespace
 {
-bool moves(const Model& model, int body)
-{
-    return body != cWorld && !model.bodies[static_cast<std::size_t>(body)].isStatic;
-}
-
 Vec6 bodyVelocity(const BodyState& s)
 {
     Vec6 u;
@@ -39,7 +34,7 @@ ContactRows contactRows(const Model& model, const State& state, int bodyA, int b
         const Vec3 d = rows.directions.col(k);
         rows.J_A.block<1, 3>(k, 0) = -d.transpose();
         rows.J_A.block<1, 3>(k, 3) = -r_A.cross(d).transpose();
-        if (moves(model, bodyB))
+        if (isMovingBody(model, bodyB))
         {
             const Vec3 r_B = point_W - state.bodies[static_cast<std::size_t>(bodyB)].position_W;
             rows.J_B.block<1, 3>(k, 0) = d.transpose();
@@ -62,7 +57,7 @@ CollisionOutcome respondToCollision(const Model& model, const State& state, cons
     const std::size_t nj = model.joints.size();
     const ContactRows rows =
         contactRows(model, state, event.bodyA, event.bodyB, event.point_W, event.normal_W);
-    const bool bMoves = moves(model, event.bodyB);
+    const bool bMoves = isMovingBody(model, event.bodyB);
     auto rowVelocity = [&](const BlockVector& x) -> Eigen::Vector3d
     {
         Eigen::Vector3d v = rows.J_A * x.body[static_cast<std::size_t>(event.bodyA)];

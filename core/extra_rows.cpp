@@ -13,11 +13,6 @@ namespace frontier::core
 
 namespace
 {
-bool moves(const Model& model, int body)
-{
-    return body >= 0 && !model.bodies[static_cast<std::size_t>(body)].isStatic;
-}
-
 struct LimitGeometry
 {
     Vec3 axis_W;                          // the joint axis in world
@@ -25,7 +20,7 @@ struct LimitGeometry
     double coordinate = 0.0;
 };
 
-LimitGeometry limitGeometry(const Model& model, const State& state, const Joint& joint)
+LimitGeometry limitGeometry(const State& state, const Joint& joint)
 {
     JointPose pose;
     if (joint.parent != cWorld)
@@ -58,7 +53,6 @@ LimitGeometry limitGeometry(const Model& model, const State& state, const Joint&
         out.J_B.head<3>() = k.transpose();
         out.J_B.tail<3>() = g.r_b.cross(k).transpose();
     }
-    (void)model;
     return out;
 }
 } // namespace
@@ -72,7 +66,7 @@ ExtraBlock makeContactBlock(const Model& model, const State& state, const Contac
     block.kind = ExtraBlock::Kind::Contact;
     block.count = friction > 0.0 ? 3 : 1; // no friction rows when friction is zero
     block.bodyA = contact.bodyA;
-    block.bodyB = moves(model, contact.bodyB) ? contact.bodyB : -1;
+    block.bodyB = isMovingBody(model, contact.bodyB) ? contact.bodyB : -1;
     block.J_A.topRows(block.count) = rows.J_A.topRows(block.count);
     block.J_B.topRows(block.count) = rows.J_B.topRows(block.count);
     block.error(0) = contact.depth;
@@ -83,7 +77,7 @@ ExtraBlock makeContactBlock(const Model& model, const State& state, const Contac
 
 double jointCoordinate(const Model& model, const State& state, int jointIndex)
 {
-    return limitGeometry(model, state, model.joints[static_cast<std::size_t>(jointIndex)]).coordinate;
+    return limitGeometry(state, model.joints[static_cast<std::size_t>(jointIndex)]).coordinate;
 }
 
 void appendLimitBlocks(const Model& model, const State& state, int jointIndex, double margin,
@@ -94,7 +88,7 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
     {
         return;
     }
-    const LimitGeometry g = limitGeometry(model, state, joint);
+    const LimitGeometry g = limitGeometry(state, joint);
     const double lower = (*joint.limits)[0];
     const double upper = (*joint.limits)[1];
     double sign = 0.0;
@@ -142,7 +136,7 @@ int layoutExtraRows(std::vector<ExtraBlock>& blocks)
 
 ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda)
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch)
 {
     ExtraSolveStats stats;
     const Eigen::Index m = G.rows();
@@ -155,7 +149,8 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
     const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
     // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
     // tangential block, limits their one row.
-    std::vector<Mat6> inverse(blocks.size(), Mat6::Zero());
+    std::vector<Mat6>& inverse = scratch.inverse;
+    inverse.assign(blocks.size(), Mat6::Zero());
     for (std::size_t b = 0; b < blocks.size(); ++b)
     {
         const int o = blocks[b].offset;
@@ -175,7 +170,9 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
             inverse[b].block<2, 2>(1, 1) = tt.inverse();
         }
     }
-    Eigen::VectorXd velocity = freeVelocity + G * lambda; // J u with the current impulses
+    Eigen::VectorXd& velocity = scratch.velocity;
+    velocity.noalias() = freeVelocity;
+    velocity.noalias() += G * lambda; // J u with the current impulses
     using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
     for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
     {

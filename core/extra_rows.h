@@ -66,12 +66,20 @@ struct ExtraSolveStats
     double lastChange = 0.0; // relative impulse change of the last sweep
 };
 
+// Working storage of solveExtraRows, kept by the caller so that stepping does not allocate once
+// sizes have settled.
+struct ExtraSolveScratch
+{
+    std::vector<Mat6> inverse; // inverse pivots per block
+    Eigen::VectorXd velocity;  // J u with the current impulses
+};
+
 // Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
 // given the others; a contact's normal row clamped at zero, then its two tangential rows solved
 // together and projected radially onto the friction cone |lambda_t| <= mu lambda_n; limit rows
 // clamped at zero. `lambda` is the warm start on entry (size = rows) and the result on exit.
 ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda);
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch);
 
 } // namespace frontier::core

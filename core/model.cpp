@@ -19,6 +19,11 @@ int Model::findBody(const std::string& bodyName) const
     return -2;
 }
 
+bool isMovingBody(const Model& model, int body)
+{
+    return body >= 0 && !model.bodies[static_cast<std::size_t>(body)].isStatic;
+}
+
 int jointRowCount(JointType type)
 {
     switch (type)

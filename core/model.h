@@ -155,6 +155,9 @@ struct Model
     int findBody(const std::string& bodyName) const;
 };
 
+// True for the index of a moving body (not cWorld, not a static body).
+bool isMovingBody(const Model& model, int body);
+
 int jointRowCount(JointType type);
 const char* jointTypeName(JointType type);
 std::optional<JointType> jointTypeFromName(const std::string& name);

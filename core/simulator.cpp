@@ -286,7 +286,8 @@ void Simulator::solveImpulses(State& state)
         mExtraLambda.setZero(mStats.extraRows);
         warmStart();
         mStats.contactSweeps =
-            solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda).sweeps;
+            solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda, mExtraScratch)
+                .sweeps;
         mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
     }
     rememberImpulses();
@@ -379,8 +380,10 @@ void Simulator::removePenetration(State& state)
     {
         return;
     }
-    std::vector<ExtraBlock> blocks;
-    std::vector<int> rows;
+    std::vector<ExtraBlock>& blocks = mPenetrationBlocks;
+    std::vector<int>& rows = mPenetrationRows;
+    blocks.clear();
+    rows.clear();
     bool any = false;
     extraRowVelocities(mExtra, mSolution, mExtraVelocity);
     for (const ExtraBlock& block : mExtra)
@@ -408,18 +411,13 @@ void Simulator::removePenetration(State& state)
         return;
     }
     const int n = layoutExtraRows(blocks);
-    Eigen::MatrixXd G(n, n);
-    for (int r = 0; r < n; ++r)
-    {
-        for (int c = 0; c < n; ++c)
-        {
-            G(r, c) = mG(rows[static_cast<std::size_t>(r)], rows[static_cast<std::size_t>(c)]);
-        }
-    }
-    Eigen::VectorXd mu = Eigen::VectorXd::Zero(n);
-    solveExtraRows(blocks, G, Eigen::VectorXd::Zero(n), mOptions.contactSolve, mu);
+    mPenetrationG = mG(rows, rows); // the normal, limit and loop rows of the step's G
+    mPenetrationFree.setZero(n);
+    mPenetrationImpulse.setZero(n);
+    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, mOptions.contactSolve, mPenetrationImpulse,
+                   mExtraScratch);
     mCorrection.setZero();
-    mSolver->applyExtraImpulses(blocks, mu, mCorrection);
+    mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
     displacePositions(state, mCorrection);
 }
 

@@ -121,6 +121,12 @@ class Simulator
     std::vector<ExtraBlock> mExtra; // contacts, loops, limits of this step
     Eigen::MatrixXd mG;             // their Delassus matrix
     Eigen::VectorXd mExtraVelocity, mExtraLambda;
+    ExtraSolveScratch mExtraScratch;
+    // Scratch of removePenetration: its blocks, their rows in mG, their G, free velocity, impulses.
+    std::vector<ExtraBlock> mPenetrationBlocks;
+    std::vector<int> mPenetrationRows;
+    Eigen::MatrixXd mPenetrationG;
+    Eigen::VectorXd mPenetrationFree, mPenetrationImpulse;
     std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, for the stabilization
     Eigen::MatrixXd mLoopG;
     Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
