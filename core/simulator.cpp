@@ -1,4 +1,5 @@
-// core/simulator.cpp: the step pipeline of the first-order (`euler`) scheme.
+// core/simulator.cpp: the step pipelines of the first-order (`euler`) and second-order (`rattle`)
+// schemes.
 #include "core/simulator.h"
 
 #include <array>
@@ -57,11 +58,6 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)), mDt(model.simulation.dt)
 {
-    if (model.simulation.integrator != IntegratorKind::Euler)
-    {
-        throw UnsupportedModelError(std::string("the '") + integratorName(model.simulation.integrator) +
-                                    "' integrator is not available yet; use 'euler'");
-    }
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
     mRhs.resize(nb, nj);
@@ -70,6 +66,14 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
     mRhs.setZero();
     mSolution.setZero();
     mStart.resize(nb);
+    mPrincipal.resize(nb);
+    for (std::size_t i = 0; i < nb; ++i)
+    {
+        if (!model.bodies[i].isStatic)
+        {
+            mPrincipal[i] = principalAxes(model.bodies[i].inertia_B);
+        }
+    }
     for (std::size_t k = 0; k < nj; ++k)
     {
         const Joint& joint = model.joints[k];
@@ -84,11 +88,24 @@ Simulator::~Simulator() = default;
 
 void Simulator::step(State& state)
 {
+    if (mModel.simulation.integrator == IntegratorKind::Rattle)
+    {
+        stepRattle(state);
+    }
+    else
+    {
+        stepEuler(state);
+    }
+}
+
+// First order: kick h g, impulses (joints exact, contacts), drift, SHAKE-type drift removal.
+void Simulator::stepEuler(State& state)
+{
     StageClock clock(mStats.seconds);
     checkState(state, "start of step");
     detectContacts(state);
     clock.lap(StepStage::Detect);
-    computeFreeVelocities(state);
+    computeFreeVelocities(state, mDt);
     assembleRows(mModel, mLayout, state, mRows);
     mSolver->factor(mRows); // PAPER.md §3 step 2 (eliminate), once per step
     clock.lap(StepStage::Factor);
@@ -103,6 +120,113 @@ void Simulator::step(State& state)
     ++state.step;
     checkState(state, "end of step");
     clock.lap(StepStage::Integrate);
+}
+
+// Second order (RATTLE): kick h/2 g; impulses at q_n (joints, contacts) that the Newton
+// iteration of stabilizeJoints completes into the multiplier putting q_{n+1} on the constraint
+// manifold; drift; kick h/2 g; velocity projection at q_{n+1}.
+void Simulator::stepRattle(State& state)
+{
+    StageClock clock(mStats.seconds);
+    checkState(state, "start of step");
+    detectContacts(state);
+    clock.lap(StepStage::Detect);
+    computeFreeVelocities(state, 0.5 * mDt);
+    factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
+    clock.lap(StepStage::Factor);
+    buildExtraRows(state);
+    solveImpulses(state);
+    clock.lap(StepStage::Solve);
+    integratePositions(state); // drift: x += h v, R by the free rotation at constant L
+    removePenetration(state);
+    stabilizeJoints(state);      // Newton on C(q_{n+1}) = 0, impulses along J(q_n)^T
+    carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
+    kickByGravity(state, 0.5 * mDt);
+    projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
+    state.time += mDt;
+    ++state.step;
+    checkState(state, "end of step");
+    clock.lap(StepStage::Integrate);
+}
+
+// Rows and factorization at the start-of-step pose; the rattle scheme's last projection left
+// them factored at exactly this pose unless the state was changed between steps.
+void Simulator::factorAtStart(const State& state)
+{
+    bool reuse = mFactoredPoseValid;
+    for (std::size_t i = 0; reuse && i < mModel.bodies.size(); ++i)
+    {
+        const BodyState& now = state.bodies[i];
+        const BodyState& then = mFactoredPose[i];
+        reuse =
+            now.position_W == then.position_W && now.orientation_WB.coeffs() == then.orientation_WB.coeffs();
+    }
+    if (!reuse)
+    {
+        assembleRows(mModel, mLayout, state, mRows);
+        mSolver->factor(mRows);
+    }
+    mFactoredPoseValid = false;
+}
+
+// The second half of RATTLE's velocity update: u_{n+1} = u - M^-1 J^T mu with J(q_{n+1}) u_{n+1} = 0,
+// M and J at q_{n+1} (the rows the last Newton iteration assembled). Loop joints join as
+// bilateral rows; contacts and limits that pushed in this step's impulse stage as one-sided
+// normal rows with target 0 (they may separate, never pull).
+void Simulator::projectVelocities(State& state)
+{
+    std::swap(mRows, mRowsAfter);
+    mSolver->factor(mRows);
+    mFactoredPose = state.bodies;
+    mFactoredPoseValid = true;
+    mEndBlocks.clear();
+    buildLoopRows(mRows);
+    mEndBlocks = mLoopBlocks;
+    for (const ExtraBlock& block : mExtra)
+    {
+        if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
+        {
+            ExtraBlock normal = block;
+            normal.count = 1;
+            normal.target.setZero();
+            mEndBlocks.push_back(normal);
+        }
+    }
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        if (!mModel.bodies[i].isStatic)
+        {
+            const BodyState& s = state.bodies[i];
+            mRhs.body[i].head<3>() = mRows.mass[i] * s.velocity_W;
+            mRhs.body[i].tail<3>() = mRows.inertia_W[i] * s.angularVelocity_W;
+        }
+    }
+    for (Vec6& c : mRhs.joint)
+    {
+        c.setZero();
+    }
+    mSolver->solve(mRhs, mCorrection);
+    if (!mEndBlocks.empty())
+    {
+        const int rows = layoutExtraRows(mEndBlocks);
+        mSolver->delassus(mEndBlocks, rows, mEndG);
+        extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
+        mEndLambda.setZero(rows);
+        solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch);
+        mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
+    }
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        if (!mModel.bodies[i].isStatic)
+        {
+            state.bodies[i].velocity_W = mCorrection.body[i].head<3>();
+            state.bodies[i].angularVelocity_W = mCorrection.body[i].tail<3>();
+        }
+    }
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        mSolution.joint[k] += mCorrection.joint[k];
+    }
 }
 
 void Simulator::checkState(const State& state, const char* where) const
@@ -138,13 +262,23 @@ void Simulator::checkState(const State& state, const char* where) const
     }
 }
 
-// u* = u + h M^-1 f: gravity on the centre of mass; no torque. Saves the start-of-step poses.
-void Simulator::computeFreeVelocities(State& state)
+// u* = u + h M^-1 f over a time h (s): gravity on the centre of mass; no torque. Saves the
+// start-of-step poses.
+void Simulator::computeFreeVelocities(State& state, double h)
 {
-    const Vec3 dv = mDt * mModel.simulation.gravity;
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         mStart[i] = state.bodies[i];
+    }
+    kickByGravity(state, h);
+}
+
+// v += h g for every moving body (h in s).
+void Simulator::kickByGravity(State& state, double h)
+{
+    const Vec3 dv = h * mModel.simulation.gravity;
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
         if (!mModel.bodies[i].isStatic)
         {
             state.bodies[i].velocity_W += dv;
@@ -421,9 +555,11 @@ void Simulator::removePenetration(State& state)
     displacePositions(state, mCorrection);
 }
 
-// x_{n+1} = x_n + h v_{n+1}; R_{n+1} = exp(h w_{n+1}) R_n, from the start-of-step pose.
+// x_{n+1} = x_n + h v_{n+1}, from the start-of-step pose. Rotation: euler R_{n+1} = exp(h w) R_n;
+// rattle the free rigid-body rotation at the world angular momentum L = I_W(R_n) w.
 void Simulator::integratePositions(State& state)
 {
+    const bool rattle = mModel.simulation.integrator == IntegratorKind::Rattle;
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         if (mModel.bodies[i].isStatic)
@@ -433,7 +569,9 @@ void Simulator::integratePositions(State& state)
         BodyState& s = state.bodies[i];
         s.position_W = mStart[i].position_W + mDt * s.velocity_W;
         s.orientation_WB =
-            (rotationFromVector(mDt * s.angularVelocity_W) * mStart[i].orientation_WB).normalized();
+            rattle ? rotateFreely(mStart[i].orientation_WB, mPrincipal[i],
+                                  mRows.inertia_W[i] * s.angularVelocity_W, mDt)
+                   : (rotationFromVector(mDt * s.angularVelocity_W) * mStart[i].orientation_WB).normalized();
     }
 }
 
@@ -475,6 +613,15 @@ void Simulator::stabilizeJoints(State& state)
     double previous = std::numeric_limits<double>::infinity();
     bool loopsFactored = false;
     bool refactored = false;
+    // rattle: the quasi-Newton iteration keeps RATTLE's impulse direction J(q_n)^T (the step stays
+    // the symplectic map) while it contracts the error at all; only a step where it stalls
+    // (contraction worse than cRattleStall, very fast rotation within one step) is finished
+    // SHAKE-style, re-factored at the current rows.
+    constexpr double cRattleStall = 0.5;
+    constexpr int cRattleIterations = 12; // more than euler's: linear convergence
+    const bool rattle = mModel.simulation.integrator == IntegratorKind::Rattle;
+    const int maxIterations = mOptions.stabilizationIterations + (rattle ? cRattleIterations : 0);
+    const double slowContraction = rattle ? cRattleStall : cSlowContraction;
     for (int iteration = 0;; ++iteration)
     {
         assembleRows(mModel, mLayout, state, mRowsAfter);
@@ -484,7 +631,7 @@ void Simulator::stabilizeJoints(State& state)
         {
             break;
         }
-        if (iteration >= mOptions.stabilizationIterations)
+        if (iteration >= maxIterations)
         {
             if (error > cJointBlowUp)
             {
@@ -504,7 +651,8 @@ void Simulator::stabilizeJoints(State& state)
             }
             break;
         }
-        if (!refactored && error > cSlowContraction * previous)
+        const bool stalled = error > slowContraction * previous || (rattle && iteration >= cRattleIterations);
+        if (!refactored && stalled)
         {
             refactored = true;
             mRowsRefactored = mRowsAfter;

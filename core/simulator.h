@@ -19,9 +19,19 @@
 // energy is injected by a bias velocity.
 // Gyroscopic term: each body's world angular momentum I_W w is carried through the rotation
 // update (w = I_W(R_new)^-1 I_W(R_old) w), so a free body's angular momentum is exact.
+//
+// The second-order scheme (`rattle`, Simulator::stepRattle) is RATTLE on the bodies' positions
+// and rotations: half kick h/2 g; impulses along J(q_n)^T chosen so that the drifted positions
+// satisfy C(q_{n+1}) = 0 (Newton iterations to stabilizationTolerance with the O(n) factorization);
+// a drift at constant momenta (straight lines, and the split free rigid-body rotation of
+// core/free_rotation.h on SO(3)); half kick; the velocity projection J(q_{n+1}) u_{n+1} = 0
+// with the factorization at q_{n+1}, which the next step reuses. Contacts, limits and impacts
+// are impulses of the first stage (first order across an impact, as any impulse method); contacts
+// and limits that pushed in the first stage keep pushing (one-sided) in the final projection.
 #pragma once
 
 #include "core/contact.h"
+#include "core/free_rotation.h"
 #include "core/impulse_solver.h"
 
 #include <Eigen/Dense>
@@ -100,9 +110,14 @@ class Simulator
     const std::vector<Vec6>& jointImpulses() const { return mSolution.joint; }
 
   private:
+    void stepEuler(State& state);
+    void stepRattle(State& state);
     void checkState(const State& state, const char* where) const;
     void detectContacts(const State& state);
-    void computeFreeVelocities(State& state);
+    void computeFreeVelocities(State& state, double h);
+    void kickByGravity(State& state, double h);
+    void factorAtStart(const State& state);
+    void projectVelocities(State& state);
     void buildExtraRows(const State& state);
     void solveImpulses(State& state);
     void integratePositions(State& state);
@@ -145,6 +160,14 @@ class Simulator
     BlockVector mRhs, mSolution, mCorrection;
     std::vector<BodyState> mStart; // poses at the start of the step
     std::vector<Vec3> mMomentum;   // world angular momentum per body during the step
+    // rattle: principal axes per body; the pose at which mRows was factored by the last step's
+    // velocity projection (reused when the next step starts there); the projection's extra rows.
+    std::vector<PrincipalAxes> mPrincipal;
+    std::vector<BodyState> mFactoredPose;
+    bool mFactoredPoseValid = false;
+    std::vector<ExtraBlock> mEndBlocks;
+    Eigen::MatrixXd mEndG;
+    Eigen::VectorXd mEndVelocity, mEndLambda;
     StepStats mStats;
     int mWorstJoint = 0; // joint of the largest violation in the last measurement
     double mDt;
