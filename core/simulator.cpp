@@ -187,7 +187,7 @@ void Simulator::projectVelocities(State& state)
         if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
         {
             ExtraBlock normal = block;
-            normal.count = 1;
+            normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
             normal.target.setZero();
             mEndBlocks.push_back(normal);
         }
