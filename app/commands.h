@@ -66,9 +66,34 @@ struct CheckOptions
     bool quiet = false;
 };
 
+// `frontier stability`: each scene with each method, a markdown table of what survived.
+struct StabilityOptions
+{
+    std::vector<std::string> scenes;
+    std::vector<std::string> methods; // `solver[:iterations]/integrator`; empty: the defaults
+    std::string out;                  // markdown file, empty: stdout only
+    std::optional<double> duration;   // s, instead of each scene's
+    std::optional<double> dt;         // s, instead of each scene's
+    int maxDenseRows = 2000;          // dense runs of larger KKT matrices are skipped
+    bool quiet = false;
+};
+
+// `frontier sweep`: list entries as given (split at commas); empty lists take the defaults.
+struct SweepOptions
+{
+    std::string scene;
+    std::vector<std::string> dts;         // s; default: the scene's dt x 16, 8, 4, 2, 1
+    std::vector<std::string> solvers;     // linear, dense, pgs, pgs:K; default: linear
+    std::vector<std::string> integrators; // euler, rattle; default: both
+    std::optional<double> duration;       // s; default: the scene's, at most 2 s
+    std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
+};
+
 int runCommand(const RunOptions& options);
 int checkCommand(const CheckOptions& options);
 int infoCommand(const InfoOptions& options);
 int renderCommand(const RenderCommandOptions& options);
+int sweepCommand(const SweepOptions& options);
+int stabilityCommand(const StabilityOptions& options);
 
 } // namespace frontier::app

@@ -34,6 +34,43 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_option("--jobs", o.jobs, "parallel jobs (a batch) or render threads")->check(CLI::Range(1, 256));
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
 }
+void addSweepOptions(CLI::App& sweep, SweepOptions& o)
+{
+    sweep.add_option("scene", o.scene, "scene .yaml or model .urdf")->required();
+    sweep
+        .add_option(
+            "--dt", o.dts,
+            "time steps (s), comma-separated; default: the scene's dt x 16, 8, 4, 2, 1. Every run must "
+            "reach the same sample times, so each must divide a small multiple of the largest")
+        ->delimiter(',')
+        ->allow_extra_args(false);
+    sweep
+        .add_option("--solver", o.solvers,
+                    "solvers, comma-separated: linear, dense, pgs, pgs:K (K sweeps); default: linear")
+        ->delimiter(',')
+        ->allow_extra_args(false);
+    sweep
+        .add_option("--integrator", o.integrators,
+                    "integrators, comma-separated: euler, rattle; default: both")
+        ->delimiter(',')
+        ->allow_extra_args(false);
+    sweep
+        .add_option("--duration", o.duration,
+                    "simulated time of every run (s); default: the scene's duration, at most 2 s")
+        ->check(CLI::PositiveNumber);
+    sweep
+        .add_option(
+            "--out", o.out,
+            "folder for sweep.csv, the chart sweep.png (drawn by gnuplot; without it, sweep.gp to draw it "
+            "later) and its data sweep.dat")
+        ->required();
+    sweep.footer(
+        "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
+        "rattle (euler when rattle fails) with the linear solver at the finest dt / 4. Trajectory "
+        "error: the largest centre-of-mass distance (m) to the reference over all moving bodies at 20 "
+        "sample times spread over the run, the last at its end. Exit codes: 0 done (failed cells are "
+        "results), 1 the reference or every cell failed, or gnuplot failed; 2 bad input.");
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -87,6 +124,35 @@ int main(int argc, char** argv)
         ->check(CLI::PositiveNumber);
     check->add_flag("--quiet", checkOptions.quiet, "no progress line");
 
+    StabilityOptions stabilityOptions;
+    auto* stability = app.add_subcommand(
+        "stability", "run scenes with several solvers and integrators: a markdown table of what survives");
+    stability->add_option("scenes", stabilityOptions.scenes, "scene .yaml files (scenes/stability/*.yaml)")
+        ->required()
+        ->expected(1, -1);
+    stability
+        ->add_option("--methods", stabilityOptions.methods,
+                     "solver[:iterations]/integrator, comma-separated (default: linear/euler,"
+                     "linear/rattle,dense/euler,pgs:20/euler,pgs:100/euler)")
+        ->delimiter(',');
+    stability->add_option("--out", stabilityOptions.out, "also write the markdown table here");
+    stability
+        ->add_option("--duration", stabilityOptions.duration, "simulated time instead of each scene's (s)")
+        ->check(CLI::PositiveNumber);
+    stability->add_option("--dt", stabilityOptions.dt, "time step instead of each scene's (s)")
+        ->check(CLI::PositiveNumber);
+    stability
+        ->add_option("--max-dense-rows", stabilityOptions.maxDenseRows,
+                     "skip dense runs of larger KKT matrices")
+        ->check(CLI::PositiveNumber);
+    stability->add_flag("--quiet", stabilityOptions.quiet, "no progress lines");
+
+    SweepOptions sweepOptions;
+    auto* sweep = app.add_subcommand(
+        "sweep",
+        "speed against accuracy over time steps, solvers and integrators: DIR/sweep.csv, DIR/sweep.png");
+    addSweepOptions(*sweep, sweepOptions);
+
     try
     {
         app.parse(argc, argv);
@@ -112,9 +178,17 @@ int main(int argc, char** argv)
     {
         return checkCommand(checkOptions);
     }
+    if (stability->parsed())
+    {
+        return stabilityCommand(stabilityOptions);
+    }
     if (render->parsed())
     {
         return renderCommand(renderOptions);
+    }
+    if (sweep->parsed())
+    {
+        return sweepCommand(sweepOptions);
     }
     return infoCommand(infoOptions);
 }

@@ -30,6 +30,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     core::State state = core::initialState(model);
     summary.energyInitialJ = core::totalEnergy(model, state);
     summary.energyMaxJ = summary.energyInitialJ;
+    summary.energyMinJ = summary.energyInitialJ;
     const auto [errorM, errorRad] = simulator.jointErrors(state);
     summary.maxJointErrorM = errorM;
     summary.maxJointErrorRad = errorRad;
@@ -52,7 +53,9 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             {
                 summary.stageSeconds[stage] += stats.seconds[stage];
             }
-            summary.energyMaxJ = std::max(summary.energyMaxJ, core::totalEnergy(model, state));
+            const double energy = core::totalEnergy(model, state);
+            summary.energyMaxJ = std::max(summary.energyMaxJ, energy);
+            summary.energyMinJ = std::min(summary.energyMinJ, energy);
             summary.steps = k + 1;
             if (record)
             {

@@ -26,7 +26,8 @@ struct RunSummary
     double maxJointErrorRad = 0.0; // largest angular joint violation over the run (rad)
     double energyInitialJ = 0.0;
     double energyFinalJ = 0.0;
-    double energyMaxJ = 0.0;
+    double energyMaxJ = 0.0; // largest total energy over the run (J)
+    double energyMinJ = 0.0; // smallest total energy over the run (J)
     double maxPenetrationM = 0.0;
     std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;

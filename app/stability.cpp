@@ -1,0 +1,616 @@
+// app/stability.cpp: the stability suite's runs and its markdown report.
+#include "app/stability.h"
+
+#include "app/run_loop.h"
+#include "core/impulse_solver.h"
+#include "core/state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace frontier::app
+{
+
+std::string StabilityMethod::label() const
+{
+    std::string text = core::solverName(solver);
+    if (solver == core::SolverKind::Pgs)
+    {
+        text += ":" + std::to_string(pgsIterations);
+    }
+    return text + "/" + core::integratorName(integrator);
+}
+
+std::optional<StabilityMethod> parseStabilityMethod(const std::string& text)
+{
+    StabilityMethod method;
+    std::string solver = text;
+    const std::size_t slash = text.find('/');
+    if (slash != std::string::npos)
+    {
+        solver = text.substr(0, slash);
+        const auto integrator = core::integratorFromName(text.substr(slash + 1));
+        if (!integrator)
+        {
+            return std::nullopt;
+        }
+        method.integrator = *integrator;
+    }
+    const std::size_t colon = solver.find(':');
+    std::string iterations;
+    if (colon != std::string::npos)
+    {
+        iterations = solver.substr(colon + 1);
+        solver = solver.substr(0, colon);
+    }
+    const auto kind = core::solverFromName(solver);
+    if (!kind)
+    {
+        return std::nullopt;
+    }
+    method.solver = *kind;
+    if (colon != std::string::npos)
+    {
+        if (*kind != core::SolverKind::Pgs || iterations.empty() || iterations.size() > 6 ||
+            !std::all_of(iterations.begin(), iterations.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        {
+            return std::nullopt;
+        }
+        method.pgsIterations = std::stoi(iterations);
+        if (method.pgsIterations < 1)
+        {
+            return std::nullopt;
+        }
+    }
+    return method;
+}
+
+std::vector<StabilityMethod> defaultStabilityMethods()
+{
+    using core::IntegratorKind;
+    using core::SolverKind;
+    return {{SolverKind::Linear, 20, IntegratorKind::Euler},
+            {SolverKind::Linear, 20, IntegratorKind::Rattle},
+            {SolverKind::Dense, 20, IntegratorKind::Euler},
+            {SolverKind::Pgs, 20, IntegratorKind::Euler},
+            {SolverKind::Pgs, 100, IntegratorKind::Euler}};
+}
+
+namespace
+{
+
+double kineticEnergy(const core::Model& model, const core::State& state)
+{
+    double energy = 0.0;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const core::Body& body = model.bodies[i];
+        if (body.isStatic)
+        {
+            continue;
+        }
+        const core::BodyState& s = state.bodies[i];
+        energy += 0.5 * body.mass * s.velocity_W.squaredNorm() +
+                  0.5 * s.angularVelocity_W.dot(core::worldInertia(body, s) * s.angularVelocity_W);
+    }
+    return energy;
+}
+
+// No gravity, no static body, no joint to the world: total angular momentum is conserved.
+bool isFreeSystem(const core::Model& model)
+{
+    if (model.simulation.gravity.norm() > 0.0)
+    {
+        return false;
+    }
+    for (const core::Body& body : model.bodies)
+    {
+        if (body.isStatic)
+        {
+            return false;
+        }
+    }
+    for (const core::Joint& joint : model.joints)
+    {
+        if (joint.parent == core::cWorld)
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+// A static box or plane that moving centres of mass must never pass through.
+struct Barrier
+{
+    int body = 0;       // the static body
+    bool plane = false; // else a box
+    core::Vec3 normal = core::Vec3::UnitZ();
+    double offset = 0.0;
+    core::Vec3 centre_W = core::Vec3::Zero();
+    core::Quat rotation_WS = core::Quat::Identity();
+    core::Vec3 halfSize = core::Vec3::Zero(); // m
+};
+
+bool pairCanCollide(const core::Model& model, int a, int b)
+{
+    const core::Body& ba = model.bodies[static_cast<std::size_t>(a)];
+    const core::Body& bb = model.bodies[static_cast<std::size_t>(b)];
+    if (!ba.group.empty() && ba.group == bb.group)
+    {
+        return false;
+    }
+    for (const auto& pair : model.contact.ignore)
+    {
+        if ((pair[0] == a && pair[1] == b) || (pair[0] == b && pair[1] == a))
+        {
+            return false;
+        }
+    }
+    for (const core::Joint& joint : model.joints)
+    {
+        if (!joint.collideConnected &&
+            ((joint.parent == a && joint.child == b) || (joint.parent == b && joint.child == a)))
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+std::vector<Barrier> barriers(const core::Model& model)
+{
+    std::vector<Barrier> out;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const core::Body& body = model.bodies[i];
+        if (!body.isStatic)
+        {
+            continue;
+        }
+        for (const core::Shape& shape : body.shapes)
+        {
+            Barrier barrier;
+            barrier.body = static_cast<int>(i);
+            if (shape.type == core::ShapeType::Plane)
+            {
+                barrier.plane = true;
+                barrier.normal = shape.normal;
+                barrier.offset = shape.offset;
+            }
+            else if (shape.type == core::ShapeType::Box)
+            {
+                barrier.centre_W = body.position_W + body.orientation_WB * shape.position_BS;
+                barrier.rotation_WS = body.orientation_WB * shape.rotation_BS;
+                barrier.halfSize = 0.5 * shape.size;
+            }
+            else
+            {
+                continue;
+            }
+            out.push_back(barrier);
+        }
+    }
+    return out;
+}
+
+bool insideBox(const Barrier& barrier, const core::Vec3& p_W)
+{
+    const core::Vec3 p = barrier.rotation_WS.conjugate() * (p_W - barrier.centre_W);
+    return (p.cwiseAbs() - barrier.halfSize).maxCoeff() < 0.0;
+}
+
+// True when the segment from a to b (world, both outside the box) passes through the box.
+bool segmentCrossesBox(const Barrier& barrier, const core::Vec3& a_W, const core::Vec3& b_W)
+{
+    const core::Quat toBox = barrier.rotation_WS.conjugate();
+    const core::Vec3 a = toBox * (a_W - barrier.centre_W);
+    const core::Vec3 d = toBox * (b_W - barrier.centre_W) - a;
+    double enter = 0.0;
+    double leave = 1.0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double h = barrier.halfSize[k];
+        if (std::abs(d[k]) < 1e-300)
+        {
+            if (std::abs(a[k]) >= h)
+            {
+                return false;
+            }
+            continue;
+        }
+        double t0 = (-h - a[k]) / d[k];
+        double t1 = (h - a[k]) / d[k];
+        if (t0 > t1)
+        {
+            std::swap(t0, t1);
+        }
+        enter = std::max(enter, t0);
+        leave = std::min(leave, t1);
+        if (enter > leave)
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+std::string format(const char* pattern, double value)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+// From a core::SimulationError message: "came apart at t = 0.533 s (joint 'wrist_left', 0.033 rad)"
+// for a joint that let go, "blew up at t = ... s" for a runaway quantity.
+std::string failureNote(const std::string& message, double fallbackTime)
+{
+    double time = fallbackTime;
+    const std::size_t at = message.find("(t = ");
+    if (at != std::string::npos)
+    {
+        time = std::strtod(message.c_str() + at + 5, nullptr);
+    }
+    std::string note = "at t = " + format("%.3g", time) + " s";
+    const std::size_t joint = message.find("at joint '");
+    const std::size_t error = message.find(" error ", joint == std::string::npos ? 0 : joint);
+    if (message.find("came off") == std::string::npos || joint == std::string::npos ||
+        error == std::string::npos)
+    {
+        return "blew up " + note;
+    }
+    const std::size_t nameEnd = message.find('\'', joint + 10);
+    char* end = nullptr;
+    const double gap = std::strtod(message.c_str() + error + 7, &end);
+    const std::string unit = (end != nullptr && std::string(end).rfind(" rad", 0) == 0) ? " rad" : " m";
+    return "came apart " + note + " (joint '" + message.substr(joint + 10, nameEnd - joint - 10) + "', " +
+           format("%.2g", gap) + unit + ")";
+}
+
+} // namespace
+
+double stabilityEnergyScale(const core::Model& model)
+{
+    const core::State state = core::initialState(model);
+    double mass = 0.0;
+    core::Vec3 low = core::Vec3::Constant(std::numeric_limits<double>::infinity());
+    core::Vec3 high = -low;
+    for (const core::Body& body : model.bodies)
+    {
+        if (!body.isStatic)
+        {
+            mass += body.mass;
+            low = low.cwiseMin(body.position_W);
+            high = high.cwiseMax(body.position_W);
+        }
+    }
+    const double diagonal = mass > 0.0 ? (high - low).norm() : 0.0;
+    return std::max(kineticEnergy(model, state) + mass * model.simulation.gravity.norm() * diagonal, 1e-9);
+}
+
+int denseRows(const core::Model& model)
+{
+    int rows = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        rows += body.isStatic ? 0 : 6;
+    }
+    for (const core::Joint& joint : model.joints)
+    {
+        rows += core::jointRowCount(joint.type);
+    }
+    return rows;
+}
+
+StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName,
+                               const StabilityMethod& method, const StabilityLimits& limits)
+{
+    core::Model model = scene;
+    model.simulation.solver = method.solver;
+    model.simulation.pgsIterations = method.pgsIterations;
+    model.simulation.integrator = method.integrator;
+    if (limits.duration)
+    {
+        model.simulation.duration = *limits.duration;
+    }
+    if (limits.dt)
+    {
+        model.simulation.dt = *limits.dt;
+    }
+
+    StabilityCell cell;
+    cell.scene = sceneName;
+    cell.method = method.label();
+    cell.dt = model.simulation.dt;
+    cell.steps = std::max(1L, stepsFor(model.simulation.duration, model.simulation.dt));
+    cell.energyScaleJ = stabilityEnergyScale(model);
+    if (method.solver == core::SolverKind::Dense && denseRows(model) > limits.maxDenseRows)
+    {
+        cell.outcome = StabilityOutcome::Skipped;
+        cell.note = "skipped (dense, " + std::to_string(denseRows(model)) + " rows)";
+        return cell;
+    }
+
+    // Measured on every recorded state: energy, angular momentum, centres tunnelling through static
+    // barriers. A centre tunnels when it ends below a static plane, or leaves a static box on the
+    // other side from where it came: lastOutside keeps, per body and box, its last position outside
+    // the box, and the segment from there to the next position outside must not cross the box (a
+    // centre that sinks into a box and is pushed back out the way it came stays on one side of
+    // the face it entered by, so that segment misses the box).
+    const bool free = isFreeSystem(model);
+    const std::vector<Barrier> walls = barriers(model);
+    const std::size_t bodies = model.bodies.size();
+    std::vector<char> watched(walls.size() * bodies, 0); // moving body i can collide with wall w
+    std::vector<char> seenOutside(walls.size() * bodies, 0);
+    std::vector<core::Vec3> lastOutside(walls.size() * bodies, core::Vec3::Zero());
+    for (std::size_t w = 0; w < walls.size(); ++w)
+    {
+        for (std::size_t i = 0; i < bodies; ++i)
+        {
+            watched[w * bodies + i] =
+                !model.bodies[i].isStatic && pairCanCollide(model, static_cast<int>(i), walls[w].body);
+        }
+    }
+    core::Vec3 momentum0 = core::Vec3::Zero();
+    double momentumDrift = 0.0;
+    bool first = true;
+    const Recorder record = [&](const core::State& state)
+    {
+        const double energy = core::totalEnergy(model, state);
+        const core::Vec3 momentum = core::totalMomentum(model, state).angular;
+        if (first)
+        {
+            cell.energyInitialJ = cell.energyMaxJ = cell.energyMinJ = energy;
+            momentum0 = momentum;
+            first = false;
+        }
+        cell.energyMaxJ = std::max(cell.energyMaxJ, energy);
+        cell.energyMinJ = std::min(cell.energyMinJ, energy);
+        momentumDrift = std::max(momentumDrift, (momentum - momentum0).norm());
+        cell.stepsRun = state.step;
+        for (std::size_t w = 0; w < walls.size(); ++w)
+        {
+            const Barrier& wall = walls[w];
+            for (std::size_t i = 0; i < bodies; ++i)
+            {
+                const std::size_t k = w * bodies + i;
+                if (!watched[k])
+                {
+                    continue;
+                }
+                const core::Vec3& p = state.bodies[i].position_W;
+                bool through = false;
+                if (wall.plane)
+                {
+                    through = wall.normal.dot(p) < wall.offset;
+                }
+                else if (!insideBox(wall, p))
+                {
+                    through = seenOutside[k] && segmentCrossesBox(wall, lastOutside[k], p);
+                    seenOutside[k] = 1;
+                    lastOutside[k] = p;
+                }
+                if (through && cell.tunnelled.empty())
+                {
+                    cell.tunnelled = "'" + model.bodies[i].name + "' through '" +
+                                     model.bodies[static_cast<std::size_t>(wall.body)].name +
+                                     "' at t = " + format("%.4g", state.time) + " s";
+                }
+            }
+        }
+    };
+
+    RunSettings settings;
+    settings.steps = cell.steps;
+    try
+    {
+        const RunSummary summary = runSimulation(model, settings, record);
+        cell.wallSeconds = summary.wallSeconds;
+        cell.maxJointGapM = summary.maxJointErrorM;
+        cell.maxJointGapRad = summary.maxJointErrorRad;
+        cell.maxPenetrationM = summary.maxPenetrationM;
+        if (!summary.finite)
+        {
+            cell.outcome = StabilityOutcome::Failed;
+            cell.note =
+                failureNote(summary.failure, static_cast<double>(summary.steps) * model.simulation.dt);
+            cell.failure = summary.failure;
+        }
+    }
+    catch (const core::UnsupportedModelError&)
+    {
+        cell.outcome = StabilityOutcome::Unavailable;
+        cell.note = "not available";
+        return cell;
+    }
+    catch (const core::SingularJointError& e)
+    {
+        cell.outcome = StabilityOutcome::Failed;
+        cell.failure = e.what();
+        cell.note = "singular joint '" + e.jointName() + "' at t = " +
+                    format("%.3g", static_cast<double>(cell.stepsRun + 1) * model.simulation.dt) + " s";
+    }
+    if (free)
+    {
+        cell.momentumDrift = momentumDrift / std::max(momentum0.norm(), 1e-300);
+    }
+    if (cell.outcome == StabilityOutcome::Survived)
+    {
+        if (!cell.tunnelled.empty())
+        {
+            cell.outcome = StabilityOutcome::Failed;
+            cell.note = "tunnelled: " + cell.tunnelled;
+        }
+        else if (cell.maxJointGapM > limits.maxJointGapM || cell.maxJointGapRad > limits.maxJointGapRad)
+        {
+            cell.outcome = StabilityOutcome::Failed;
+            cell.note = cell.maxJointGapM > limits.maxJointGapM
+                            ? "came apart (gap " + format("%.2g", cell.maxJointGapM) + " m)"
+                            : "came apart (gap " + format("%.2g", cell.maxJointGapRad) + " rad)";
+        }
+    }
+    return cell;
+}
+
+namespace
+{
+
+std::string sci(double value)
+{
+    if (value == 0.0)
+    {
+        return "0";
+    }
+    return format("%.1e", value);
+}
+
+std::string percent(double fraction)
+{
+    if (std::abs(fraction) < 5e-7)
+    {
+        return "0";
+    }
+    return format(std::abs(fraction) < 1e-2 ? "%.2g%%" : "%.3g%%", 100.0 * fraction);
+}
+
+std::string overviewText(const StabilityCell& cell)
+{
+    switch (cell.outcome)
+    {
+    case StabilityOutcome::Survived:
+        // Energy gained is a failure of its own kind (energy lost may be physics: contacts).
+        return cell.energyRise() > 0.01 ? "ok, but energy +" + percent(cell.energyRise()) : std::string("ok");
+    case StabilityOutcome::Failed:
+        return "**FAILED**: " + cell.note;
+    case StabilityOutcome::Unavailable:
+        return "not available";
+    case StabilityOutcome::Skipped:
+        return cell.note;
+    }
+    return "";
+}
+
+} // namespace
+
+std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
+                              const std::vector<std::string>& sceneNames,
+                              const std::vector<StabilityMethod>& methods,
+                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
+                              const std::string& machine)
+{
+    std::map<std::pair<std::string, std::string>, const StabilityCell*> byKey;
+    for (const StabilityCell& cell : cells)
+    {
+        byKey[{cell.scene, cell.method}] = &cell;
+    }
+    std::ostringstream out;
+    out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
+           "A run fails when it blows up, a joint comes apart (gap above "
+        << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
+        << " rad), a joint block becomes singular, or a centre of mass tunnels through a static box or "
+           "plane. "
+           "Wall times on "
+        << machine << ", one run at a time.\n\n";
+
+    out << "| scene |";
+    for (const StabilityMethod& method : methods)
+    {
+        out << " " << method.label() << " |";
+    }
+    out << "\n|---|";
+    for (std::size_t m = 0; m < methods.size(); ++m)
+    {
+        out << "---|";
+    }
+    out << "\n";
+    for (const std::string& scene : sceneNames)
+    {
+        out << "| " << scene << " |";
+        for (const StabilityMethod& method : methods)
+        {
+            const auto it = byKey.find({scene, method.label()});
+            out << " " << (it == byKey.end() ? std::string("") : overviewText(*it->second)) << " |";
+        }
+        out << "\n";
+    }
+
+    out << "\nThe scenes: energy drift is relative to E_ref = initial kinetic energy + M |g| D (M the moving "
+           "mass, D the diagonal of the box holding the initial centres of mass).\n\n"
+           "| scene | moving bodies | joint rows | dt (s) | duration (s) | E_ref (J) "
+           "|\n|---|---|---|---|---|---|\n";
+    for (std::size_t s = 0; s < scenes.size(); ++s)
+    {
+        const core::Model& model = scenes[s];
+        int moving = 0;
+        for (const core::Body& body : model.bodies)
+        {
+            moving += body.isStatic ? 0 : 1;
+        }
+        const double duration = limits.duration ? *limits.duration : model.simulation.duration;
+        const double dt = limits.dt ? *limits.dt : model.simulation.dt;
+        out << "| " << sceneNames[s] << " | " << moving << " | " << denseRows(model) - 6 * moving << " | "
+            << format("%.4g", dt) << " | " << format("%g", duration) << " | "
+            << format("%.4g", stabilityEnergyScale(model)) << " |\n";
+    }
+
+    out << "\nDetails: the largest joint gap over the run (positional, angular), the energy's largest rise "
+           "above and fall below its initial value (relative to E_ref), the total angular momentum's "
+           "largest relative change (free systems only), the deepest contact overlap, and the wall time.\n\n"
+           "| scene | method | result | joint gap (m) | joint gap (rad) | energy rise | energy loss | "
+           "L drift | penetration (m) | wall (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const std::string& scene : sceneNames)
+    {
+        for (const StabilityMethod& method : methods)
+        {
+            const auto it = byKey.find({scene, method.label()});
+            if (it == byKey.end())
+            {
+                continue;
+            }
+            const StabilityCell& c = *it->second;
+            out << "| " << scene << " | " << c.method << " | ";
+            if (c.outcome == StabilityOutcome::Unavailable || c.outcome == StabilityOutcome::Skipped)
+            {
+                out << c.note << " | | | | | | | |\n";
+                continue;
+            }
+            out << (c.survived() ? std::string("ok") : "**FAILED**: " + c.note) << " | "
+                << sci(c.maxJointGapM) << " | " << sci(c.maxJointGapRad) << " | " << percent(c.energyRise())
+                << " | " << percent(c.energyLoss()) << " | " << (c.momentumDrift ? sci(*c.momentumDrift) : "")
+                << " | " << sci(c.maxPenetrationM) << " | " << format("%.2f", c.wallSeconds) << " |\n";
+        }
+    }
+    return out.str();
+}
+
+std::string machineDescription()
+{
+    std::string model = "an unknown CPU";
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(cpuinfo, line))
+    {
+        if (line.rfind("model name", 0) == 0)
+        {
+            const std::size_t colon = line.find(':');
+            if (colon != std::string::npos)
+            {
+                model = line.substr(colon + 1);
+                model.erase(0, model.find_first_not_of(" \t"));
+            }
+            break;
+        }
+    }
+    const unsigned cores = std::thread::hardware_concurrency();
+    return std::to_string(cores) + (cores == 1 ? " core, " : " cores, ") + model;
+}
+
+} // namespace frontier::app

@@ -1,0 +1,104 @@
+// app/stability.h: the stability suite (`frontier stability`, README "Stability suite"): each
+// scene run with each method (solver and integrator), and what survived: joint gaps, energy
+// drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
+#pragma once
+
+#include "core/model.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace frontier::app
+{
+
+// A solver with its iteration count and an integrator, written `solver[:iterations]/integrator`
+// (`linear/euler`, `pgs:100/euler`); the integrator may be left out (`dense` = `dense/euler`).
+struct StabilityMethod
+{
+    core::SolverKind solver = core::SolverKind::Linear;
+    int pgsIterations = 20; // sweeps of pgs (ignored by the other solvers)
+    core::IntegratorKind integrator = core::IntegratorKind::Euler;
+
+    std::string label() const;
+};
+
+// nullopt for anything else than `solver[:iterations][/integrator]` (iterations only for pgs, >= 1).
+std::optional<StabilityMethod> parseStabilityMethod(const std::string& text);
+
+// linear/euler, linear/rattle, dense/euler, pgs:20/euler, pgs:100/euler.
+std::vector<StabilityMethod> defaultStabilityMethods();
+
+struct StabilityLimits
+{
+    double maxJointGapM = 1e-2;     // a larger positional joint gap counts as coming apart (m)
+    double maxJointGapRad = 0.1;    // a larger angular joint gap counts as coming apart (rad)
+    int maxDenseRows = 2000;        // dense cells with a larger KKT matrix are skipped
+    std::optional<double> duration; // simulated time (s); default: the scene's
+    std::optional<double> dt;       // time step (s); default: the scene's
+};
+
+enum class StabilityOutcome
+{
+    Survived,    // ran to the end: finite, joints held, no tunnelling
+    Failed,      // blew up, came apart, a singular joint, or a body tunnelled through a static one
+    Unavailable, // the method is not built (core::UnsupportedModelError)
+    Skipped,     // not run (dense beyond StabilityLimits::maxDenseRows)
+};
+
+// One scene run with one method. Energies are relative to energyScaleJ (stabilityEnergyScale).
+struct StabilityCell
+{
+    std::string scene;  // file name without folder and extension
+    std::string method; // StabilityMethod::label()
+    StabilityOutcome outcome = StabilityOutcome::Survived;
+    std::string note;    // why it failed, was skipped or is unavailable (empty when it survived)
+    std::string failure; // the simulator's message when the run stopped
+    long steps = 0;      // steps asked for
+    long stepsRun = 0;   // steps completed
+    double dt = 0.0;     // s
+    double maxJointGapM = 0.0;
+    double maxJointGapRad = 0.0;
+    double energyInitialJ = 0.0;
+    double energyMaxJ = 0.0;
+    double energyMinJ = 0.0;
+    double energyScaleJ = 1.0;
+    double maxPenetrationM = 0.0; // deepest contact overlap reported by the detector (m)
+    // Largest |L(t) - L(0)| / |L(0)| of the total angular momentum; only for free systems (no
+    // gravity, no static bodies, no joint to the world), where it must be conserved.
+    std::optional<double> momentumDrift;
+    // "'body' through 'static' at t = ... s" when a centre of mass passed right through a static
+    // box within one step or ended below a static plane (empty: never).
+    std::string tunnelled;
+    double wallSeconds = 0.0;
+
+    bool survived() const { return outcome == StabilityOutcome::Survived; }
+    double energyRise() const { return (energyMaxJ - energyInitialJ) / energyScaleJ; } // relative
+    double energyLoss() const { return (energyInitialJ - energyMinJ) / energyScaleJ; } // relative
+};
+
+// The energy the suite's drift is measured against (J): the initial kinetic energy plus M |g| D,
+// M the moving mass and D the diagonal of the box holding the initial centres of mass (lifting
+// everything across the scene); at least 1e-9 J.
+double stabilityEnergyScale(const core::Model& model);
+
+// Rows of the dense KKT matrix: 6 per moving body plus every joint row.
+int denseRows(const core::Model& model);
+
+// Runs `model` (its settings but the method's solver and integrator, and limits.dt and
+// limits.duration when given). Never throws for a failed run: the cell says what happened.
+StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName,
+                               const StabilityMethod& method, const StabilityLimits& limits);
+
+// The markdown report: an overview (scene by method, survived or why not) and the details, one
+// row per cell; `machine` names the computer the wall times were measured on.
+std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
+                              const std::vector<std::string>& sceneNames,
+                              const std::vector<StabilityMethod>& methods,
+                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
+                              const std::string& machine);
+
+// "N cores, <model name>" from std::thread and /proc/cpuinfo.
+std::string machineDescription();
+
+} // namespace frontier::app

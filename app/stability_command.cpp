@@ -1,0 +1,93 @@
+// app/stability_command.cpp: `frontier stability`: the stability suite's table (app/stability.h).
+#include "app/commands.h"
+#include "app/stability.h"
+#include "io/atomic_file.h"
+#include "io/scene.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace frontier::app
+{
+
+int stabilityCommand(const StabilityOptions& options)
+{
+    std::vector<StabilityMethod> methods;
+    for (const std::string& text : options.methods)
+    {
+        const auto method = parseStabilityMethod(text);
+        if (!method)
+        {
+            std::cerr << "frontier: bad method '" << text
+                      << "': expected solver[:iterations]/integrator, e.g. linear/euler or pgs:100/euler\n";
+            return cExitBadInput;
+        }
+        methods.push_back(*method);
+    }
+    if (methods.empty())
+    {
+        methods = defaultStabilityMethods();
+    }
+
+    std::vector<core::Model> scenes;
+    std::vector<std::string> names;
+    try
+    {
+        for (const std::string& path : options.scenes)
+        {
+            scenes.push_back(io::loadScene(path));
+            names.push_back(std::filesystem::path(path).stem().string());
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+
+    StabilityLimits limits;
+    limits.duration = options.duration;
+    limits.dt = options.dt;
+    limits.maxDenseRows = options.maxDenseRows;
+    std::vector<StabilityCell> cells;
+    for (std::size_t s = 0; s < scenes.size(); ++s)
+    {
+        for (const StabilityMethod& method : methods)
+        {
+            if (!options.quiet)
+            {
+                std::fprintf(stderr, "%s %s ...", names[s].c_str(), method.label().c_str());
+                std::fflush(stderr);
+            }
+            cells.push_back(runStabilityCell(scenes[s], names[s], method, limits));
+            const StabilityCell& c = cells.back();
+            if (!options.quiet)
+            {
+                std::fprintf(stderr, " %s; gap %.2g m, %.2g rad; energy %+.3g%% / %+.3g%%; %.2f s\n",
+                             c.survived() ? "ok" : c.note.c_str(), c.maxJointGapM, c.maxJointGapRad,
+                             100.0 * c.energyRise(), -100.0 * c.energyLoss(), c.wallSeconds);
+            }
+        }
+    }
+
+    const std::string table = stabilityMarkdown(scenes, names, methods, cells, limits, machineDescription());
+    std::cout << table;
+    if (!options.out.empty())
+    {
+        try
+        {
+            io::AtomicFile file(options.out);
+            file.write(table);
+            file.commit();
+        }
+        catch (const io::OutputError& e)
+        {
+            std::cerr << "frontier: " << e.what() << "\n";
+            return cExitBadInput;
+        }
+    }
+    return cExitOk;
+}
+
+} // namespace frontier::app

@@ -1,0 +1,517 @@
+// app/sweep.cpp: the sweep grid, its schedule, the reference run, one run per cell and the metrics.
+#include "app/sweep.h"
+
+#include "app/run_loop.h"
+#include "core/simulator.h"
+#include "core/state.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace frontier::app
+{
+
+namespace
+{
+constexpr double cNaN = std::numeric_limits<double>::quiet_NaN();
+// A common multiple of the time steps is searched among the first this many multiples of the
+// largest one.
+constexpr long cMaxUnitMultiple = 1000;
+// How far from a whole number (relative) a ratio of time steps may be and still count as one.
+constexpr double cRatioTolerance = 1e-6;
+constexpr int cMaxPgsIterations = 1000000;
+// A cell's run shorter than this (wall s) is repeated, up to cMaxTimingRuns runs in all, and the
+// fastest counts: one short run is mostly timer and cache noise.
+constexpr double cTimingSeconds = 0.05;
+constexpr int cMaxTimingRuns = 10;
+
+std::string trim(const std::string& text)
+{
+    const auto begin = text.find_first_not_of(" \t");
+    if (begin == std::string::npos)
+    {
+        return {};
+    }
+    const auto end = text.find_last_not_of(" \t");
+    return text.substr(begin, end - begin + 1);
+}
+
+std::string formatSeconds(double seconds)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", seconds);
+    return text;
+}
+
+// True when ratio is a whole number >= 1, within round-off.
+bool isWholeRatio(double ratio)
+{
+    const double whole = std::round(ratio);
+    return whole >= 1.0 && std::abs(ratio - whole) <= cRatioTolerance * whole;
+}
+
+long stepsPerUnit(double unitS, double dt)
+{
+    return static_cast<long>(std::llround(unitS / dt));
+}
+
+std::vector<int> movingBodies(const core::Model& model)
+{
+    std::vector<int> bodies;
+    for (int i = 0; i < static_cast<int>(model.bodies.size()); ++i)
+    {
+        if (core::isMovingBody(model, i))
+        {
+            bodies.push_back(i);
+        }
+    }
+    return bodies;
+}
+
+// Centre-of-mass positions of the moving bodies at each sample time (m).
+using Samples = std::vector<std::vector<core::Vec3>>;
+
+struct SampledRun
+{
+    RunSummary summary;
+    Samples samples;
+};
+
+// One run of `model` as set up, recording the moving bodies at the sample steps. Exceptions of the
+// Simulator's constructor (and SingularJointError) propagate; a blow-up is summary.finite = false.
+SampledRun runSampled(const core::Model& model, const SweepSchedule& schedule, const std::vector<int>& bodies,
+                      const std::function<void(double)>& fraction,
+                      const std::function<void(std::size_t, const core::State&)>& atSample)
+{
+    const long perUnit = stepsPerUnit(schedule.unitS, model.simulation.dt);
+    SampledRun run;
+    RunSettings settings;
+    settings.steps = schedule.units * perUnit;
+    if (fraction)
+    {
+        settings.progress = [&](long step)
+        { fraction(static_cast<double>(step) / static_cast<double>(settings.steps)); };
+    }
+    std::size_t next = 0;
+    const Recorder record = [&](const core::State& state)
+    {
+        if (next < schedule.sampleUnits.size() && state.step == schedule.sampleUnits[next] * perUnit)
+        {
+            if (atSample)
+            {
+                atSample(next, state);
+            }
+            else
+            {
+                std::vector<core::Vec3> positions;
+                positions.reserve(bodies.size());
+                for (int body : bodies)
+                {
+                    positions.push_back(state.bodies[static_cast<std::size_t>(body)].position_W);
+                }
+                run.samples.push_back(std::move(positions));
+            }
+            ++next;
+        }
+    };
+    run.summary = runSimulation(model, settings, record);
+    return run;
+}
+
+bool allFinite(const Samples& samples)
+{
+    for (const auto& sample : samples)
+    {
+        for (const core::Vec3& p : sample)
+        {
+            if (!p.allFinite())
+            {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+} // namespace
+
+std::string SweepMethod::solverLabel() const
+{
+    if (solver == core::SolverKind::Pgs)
+    {
+        return "pgs:" + std::to_string(pgsIterations);
+    }
+    return core::solverName(solver);
+}
+
+std::string SweepMethod::label() const
+{
+    return std::string(core::integratorName(integrator)) + " " + solverLabel();
+}
+
+std::vector<double> parseTimeSteps(const std::vector<std::string>& entries)
+{
+    std::vector<double> dts;
+    for (const std::string& raw : entries)
+    {
+        const std::string entry = trim(raw);
+        double dt = 0.0;
+        const auto [end, error] = std::from_chars(entry.data(), entry.data() + entry.size(), dt);
+        if (entry.empty() || error != std::errc() || end != entry.data() + entry.size() ||
+            !std::isfinite(dt) || dt <= 0.0)
+        {
+            throw SweepInputError("--dt: '" + raw + "' is not a positive time step in seconds");
+        }
+        if (std::find(dts.begin(), dts.end(), dt) == dts.end())
+        {
+            dts.push_back(dt);
+        }
+    }
+    if (dts.empty())
+    {
+        throw SweepInputError("--dt: no time steps given");
+    }
+    std::sort(dts.begin(), dts.end(), std::greater<>());
+    return dts;
+}
+
+std::vector<SolverChoice> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations)
+{
+    std::vector<SolverChoice> solvers;
+    for (const std::string& raw : entries)
+    {
+        const std::string entry = trim(raw);
+        SolverChoice choice;
+        choice.pgsIterations = scenePgsIterations;
+        if (entry.rfind("pgs:", 0) == 0)
+        {
+            const std::string count = entry.substr(4);
+            int iterations = 0;
+            const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), iterations);
+            if (count.empty() || error != std::errc() || end != count.data() + count.size() ||
+                iterations < 1 || iterations > cMaxPgsIterations)
+            {
+                throw SweepInputError("--solver: '" + raw +
+                                      "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
+                                      std::to_string(cMaxPgsIterations));
+            }
+            choice.solver = core::SolverKind::Pgs;
+            choice.pgsIterations = iterations;
+        }
+        else if (const auto kind = core::solverFromName(entry))
+        {
+            choice.solver = *kind;
+        }
+        else
+        {
+            throw SweepInputError("--solver: unknown solver '" + raw +
+                                  "' (expected linear, dense, pgs or pgs:K with K sweeps)");
+        }
+        const bool seen =
+            std::any_of(solvers.begin(), solvers.end(),
+                        [&](const SolverChoice& s)
+                        {
+                            return s.solver == choice.solver && (s.solver != core::SolverKind::Pgs ||
+                                                                 s.pgsIterations == choice.pgsIterations);
+                        });
+        if (!seen)
+        {
+            solvers.push_back(choice);
+        }
+    }
+    if (solvers.empty())
+    {
+        throw SweepInputError("--solver: no solvers given");
+    }
+    return solvers;
+}
+
+std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries)
+{
+    std::vector<core::IntegratorKind> integrators;
+    for (const std::string& raw : entries)
+    {
+        const auto kind = core::integratorFromName(trim(raw));
+        if (!kind)
+        {
+            throw SweepInputError("--integrator: unknown integrator '" + raw +
+                                  "' (expected euler or rattle)");
+        }
+        if (std::find(integrators.begin(), integrators.end(), *kind) == integrators.end())
+        {
+            integrators.push_back(*kind);
+        }
+    }
+    if (integrators.empty())
+    {
+        throw SweepInputError("--integrator: no integrators given");
+    }
+    return integrators;
+}
+
+std::vector<double> defaultTimeSteps(double sceneDt)
+{
+    std::vector<double> dts;
+    for (int k = cDefaultLadderSteps - 1; k >= 0; --k)
+    {
+        dts.push_back(std::ldexp(sceneDt, k)); // exact: a power of two times the scene's dt
+    }
+    return dts;
+}
+
+SweepSchedule planSchedule(const std::vector<double>& dts, double durationS)
+{
+    const double largest = *std::max_element(dts.begin(), dts.end());
+    SweepSchedule schedule;
+    for (long m = 1; m <= cMaxUnitMultiple && schedule.unitS == 0.0; ++m)
+    {
+        const double candidate = static_cast<double>(m) * largest;
+        if (std::all_of(dts.begin(), dts.end(), [&](double dt) { return isWholeRatio(candidate / dt); }))
+        {
+            schedule.unitS = candidate;
+        }
+    }
+    if (schedule.unitS == 0.0)
+    {
+        double offender = largest;
+        for (double dt : dts)
+        {
+            if (!isWholeRatio(largest / dt))
+            {
+                offender = dt;
+                break;
+            }
+        }
+        throw SweepInputError(
+            "--dt: " + formatSeconds(offender) + " s does not divide " + formatSeconds(largest) +
+            " s (the largest time step) a whole number of times, and the time steps have no "
+            "common multiple below " +
+            std::to_string(cMaxUnitMultiple) +
+            " x the largest: every run must reach the same sample times (use halvings of "
+            "the largest time step)");
+    }
+    schedule.units = static_cast<long>(std::floor(durationS / schedule.unitS * (1.0 + 1e-9)));
+    if (schedule.units < 1)
+    {
+        throw SweepInputError("--duration: " + formatSeconds(durationS) + " s is shorter than " +
+                              formatSeconds(schedule.unitS) +
+                              " s, the smallest common multiple of the time steps (every run must reach it)");
+    }
+    const long count = std::min<long>(cSampleCount, schedule.units);
+    for (long i = 1; i <= count; ++i)
+    {
+        schedule.sampleUnits.push_back((i * schedule.units + count / 2) / count);
+    }
+    return schedule;
+}
+
+SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
+                     const SweepProgress& progress)
+{
+    SweepResult result;
+    result.schedule = schedule;
+    const std::vector<int> bodies = movingBodies(model);
+    result.bodies = static_cast<int>(bodies.size());
+    const int runCount =
+        1 + static_cast<int>(grid.integrators.size() * grid.solvers.size() * grid.dts.size());
+    auto report = [&](const std::string& run, int index)
+    {
+        return [&progress, run, index, runCount](double fraction)
+        {
+            if (progress)
+            {
+                progress(run, index, runCount, fraction);
+            }
+        };
+    };
+
+    // The reference: rattle linear at the finest dt / cReferenceRefinement, euler when rattle fails.
+    core::Model work = model;
+    SweepReference& reference = result.reference;
+    reference.dt = *std::min_element(grid.dts.begin(), grid.dts.end()) / cReferenceRefinement;
+    reference.steps = schedule.units * stepsPerUnit(schedule.unitS, reference.dt);
+    work.simulation.dt = reference.dt;
+    work.simulation.duration = schedule.durationS();
+    work.simulation.solver = core::SolverKind::Linear;
+    Samples referenceSamples;
+    for (core::IntegratorKind integrator : {core::IntegratorKind::Rattle, core::IntegratorKind::Euler})
+    {
+        reference.method = {integrator, core::SolverKind::Linear, work.simulation.pgsIterations};
+        work.simulation.integrator = integrator;
+        const bool last = integrator == core::IntegratorKind::Euler;
+        std::string failure;
+        try
+        {
+            SampledRun run = runSampled(
+                work, schedule, bodies,
+                report("reference " + reference.method.label() + " dt " + formatSeconds(reference.dt) + " s",
+                       0),
+                {});
+            reference.wallSeconds = run.summary.wallSeconds;
+            if (run.summary.finite && run.samples.size() == schedule.sampleUnits.size() &&
+                allFinite(run.samples))
+            {
+                referenceSamples = std::move(run.samples);
+                break;
+            }
+            failure = run.summary.failure.empty() ? "it did not stay finite" : run.summary.failure;
+        }
+        catch (const core::UnsupportedModelError& e)
+        {
+            if (last)
+            {
+                throw;
+            }
+            failure = e.what();
+        }
+        catch (const core::SingularJointError& e)
+        {
+            failure = e.what();
+        }
+        if (last)
+        {
+            throw SweepReferenceError("the reference run (euler linear, dt " + formatSeconds(reference.dt) +
+                                      " s) failed: " + failure);
+        }
+        reference.fallback = "rattle: " + failure;
+    }
+
+    // The cells, one after another.
+    int index = 0;
+    for (core::IntegratorKind integrator : grid.integrators)
+    {
+        for (const SolverChoice& solver : grid.solvers)
+        {
+            for (double dt : grid.dts)
+            {
+                ++index;
+                SweepCell cell;
+                cell.method = {integrator, solver.solver, solver.pgsIterations};
+                cell.dt = dt;
+                cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
+                cell.bodies = result.bodies;
+                work.simulation.dt = dt;
+                work.simulation.integrator = integrator;
+                work.simulation.solver = solver.solver;
+                work.simulation.pgsIterations = solver.pgsIterations;
+                double trajectoryError = 0.0;
+                std::size_t compared = 0;
+                const auto compare = [&](std::size_t sample, const core::State& state)
+                {
+                    double finalError = 0.0;
+                    for (std::size_t b = 0; b < bodies.size(); ++b)
+                    {
+                        const double error = (state.bodies[static_cast<std::size_t>(bodies[b])].position_W -
+                                              referenceSamples[sample][b])
+                                                 .norm();
+                        // NaN-aware: a non-finite position makes the error NaN.
+                        trajectoryError =
+                            (error > trajectoryError || std::isnan(error)) ? error : trajectoryError;
+                        if (sample + 1 == schedule.sampleUnits.size() && (error > finalError || b == 0))
+                        {
+                            finalError = error;
+                            cell.worstBody = model.bodies[static_cast<std::size_t>(bodies[b])].name;
+                        }
+                    }
+                    cell.finalErrorM = finalError;
+                    ++compared;
+                };
+                try
+                {
+                    const SampledRun run = runSampled(
+                        work, schedule, bodies,
+                        report(cell.method.label() + " dt " + formatSeconds(dt) + " s", index), compare);
+                    const RunSummary& s = run.summary;
+                    cell.stepsRun = s.steps;
+                    cell.wallSeconds = s.wallSeconds;
+                    cell.maxJointErrorM = s.maxJointErrorM;
+                    cell.maxJointErrorRad = s.maxJointErrorRad;
+                    cell.maxPenetrationM = s.maxPenetrationM;
+                    cell.energyDriftJ =
+                        std::max(s.energyMaxJ - s.energyInitialJ, s.energyInitialJ - s.energyMinJ);
+                    cell.energyDriftRel =
+                        s.energyInitialJ != 0.0 ? cell.energyDriftJ / std::abs(s.energyInitialJ) : cNaN;
+                    cell.survived =
+                        s.finite && compared == schedule.sampleUnits.size() && std::isfinite(trajectoryError);
+                    cell.failure = s.failure;
+                    if (cell.failure.empty() && !cell.survived)
+                    {
+                        cell.failure = "the run did not stay finite";
+                    }
+                    // Repeats give the same trajectory (the runs are deterministic); only the time differs.
+                    double spent = s.wallSeconds;
+                    RunSettings again;
+                    again.steps = cell.steps;
+                    for (int repeat = 1; cell.survived && repeat < cMaxTimingRuns && spent < cTimingSeconds;
+                         ++repeat)
+                    {
+                        const double wall = runSimulation(work, again, {}).wallSeconds;
+                        cell.wallSeconds = std::min(cell.wallSeconds, wall);
+                        spent += wall;
+                    }
+                }
+                catch (const std::exception& e) // an integrator that cannot be built, a singular joint
+                {
+                    cell.failure = e.what();
+                    cell.survived = false;
+                }
+                const double simulated = static_cast<double>(cell.stepsRun) * dt;
+                cell.secondsPerSimSecond = cell.stepsRun > 0 ? cell.wallSeconds / simulated : cNaN;
+                cell.usPerBodyStep =
+                    cell.stepsRun > 0 && cell.bodies > 0
+                        ? 1e6 * cell.wallSeconds / (static_cast<double>(cell.stepsRun) * cell.bodies)
+                        : cNaN;
+                cell.trajectoryErrorM = cell.survived ? trajectoryError : cNaN;
+                if (!cell.survived)
+                {
+                    cell.finalErrorM = cNaN;
+                    cell.worstBody.clear();
+                }
+                if (cell.stepsRun == 0)
+                {
+                    cell.maxJointErrorM = cell.maxJointErrorRad = cell.energyDriftJ = cell.energyDriftRel =
+                        cell.maxPenetrationM = cNaN;
+                }
+                result.cells.push_back(std::move(cell));
+            }
+        }
+    }
+    return result;
+}
+
+std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells)
+{
+    std::vector<std::size_t> candidates;
+    for (std::size_t i = 0; i < cells.size(); ++i)
+    {
+        const SweepCell& c = cells[i];
+        if (c.survived && std::isfinite(c.secondsPerSimSecond) && std::isfinite(c.trajectoryErrorM))
+        {
+            candidates.push_back(i);
+        }
+    }
+    // By cost, then error: a cell is on the front when it is more accurate than every cheaper one.
+    std::sort(candidates.begin(), candidates.end(),
+              [&](std::size_t a, std::size_t b)
+              {
+                  if (cells[a].secondsPerSimSecond != cells[b].secondsPerSimSecond)
+                  {
+                      return cells[a].secondsPerSimSecond < cells[b].secondsPerSimSecond;
+                  }
+                  return cells[a].trajectoryErrorM < cells[b].trajectoryErrorM;
+              });
+    std::vector<std::size_t> front;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i : candidates)
+    {
+        if (cells[i].trajectoryErrorM < best)
+        {
+            front.push_back(i);
+            best = cells[i].trajectoryErrorM;
+        }
+    }
+    return front;
+}
+
+} // namespace frontier::app

@@ -1,0 +1,163 @@
+// app/sweep_command.cpp: `frontier sweep`: parse the lists, run the grid (app/sweep.h), write
+// DIR/sweep.csv, print the table, draw DIR/sweep.png (app/sweep_chart.h).
+#include "app/commands.h"
+#include "app/progress.h"
+#include "app/sweep.h"
+#include "app/sweep_chart.h"
+#include "app/sweep_report.h"
+#include "core/simulator.h"
+#include "io/atomic_file.h"
+#include "io/scene.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace frontier::app
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+int fail(const std::string& message, int code)
+{
+    std::cerr << "frontier: " << message << "\n";
+    return code;
+}
+} // namespace
+
+int sweepCommand(const SweepOptions& options)
+{
+    core::Model model;
+    SweepGrid grid;
+    SweepSchedule schedule;
+    double requestedS = 0.0;
+    const fs::path folder(options.out);
+    try
+    {
+        model = io::loadScene(options.scene);
+        grid.dts = options.dts.empty() ? defaultTimeSteps(model.simulation.dt) : parseTimeSteps(options.dts);
+        grid.solvers = options.solvers.empty()
+                           ? parseSolvers({"linear"}, model.simulation.pgsIterations)
+                           : parseSolvers(options.solvers, model.simulation.pgsIterations);
+        grid.integrators = options.integrators.empty() ? parseIntegrators({"euler", "rattle"})
+                                                       : parseIntegrators(options.integrators);
+        requestedS =
+            options.duration ? *options.duration : std::min(model.simulation.duration, cDefaultMaxDuration);
+        schedule = planSchedule(grid.dts, requestedS);
+        // The folder must take our files before minutes of simulation are spent.
+        fs::create_directories(folder);
+        io::AtomicFile probe((folder / "sweep.csv").string()); // removed again, never committed
+    }
+    catch (const io::InputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    catch (const SweepInputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    catch (const io::OutputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    catch (const fs::filesystem_error& e)
+    {
+        return fail(options.out + ": cannot create the output folder: " + e.code().message(), cExitBadInput);
+    }
+    if (schedule.durationS() < requestedS * (1.0 - 1e-9))
+    {
+        std::printf(
+            "note: simulating %.9g s instead of %.9g s: the runs end at a multiple of %.9g s, which every "
+            "time step reaches\n",
+            schedule.durationS(), requestedS, schedule.unitS);
+    }
+
+    const bool terminal = stderrIsTerminal();
+    int lastPercent = -1;
+    int lastIndex = -1;
+    const SweepProgress progress = [&](const std::string& run, int index, int count, double fraction)
+    {
+        const int percent = static_cast<int>(100.0 * fraction);
+        if (!terminal || (percent == lastPercent && index == lastIndex))
+        {
+            return;
+        }
+        lastPercent = percent;
+        lastIndex = index;
+        std::fprintf(stderr, "\r\033[Ksweep %d/%d  %s  %3d%%", index + 1, count, run.c_str(), percent);
+    };
+    SweepResult result;
+    try
+    {
+        result = runSweep(model, grid, schedule, progress);
+    }
+    catch (const core::UnsupportedModelError& e)
+    {
+        return fail(options.scene + ": " + e.what(), cExitBadInput);
+    }
+    catch (const SweepReferenceError& e)
+    {
+        if (terminal)
+        {
+            std::fprintf(stderr, "\r\033[K");
+        }
+        return fail(options.scene + ": " + e.what(), cExitFailed);
+    }
+    if (terminal)
+    {
+        std::fprintf(stderr, "\r\033[K");
+    }
+
+    const std::string csv = (folder / "sweep.csv").string();
+    try
+    {
+        writeSweepCsv(csv, options.scene, result);
+    }
+    catch (const io::OutputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    std::printf("%s: %d moving bod%s, %.9g s simulated per run\n%s\n\n%s", model.name.c_str(), result.bodies,
+                result.bodies == 1 ? "y" : "ies", schedule.durationS(), describeReference(result).c_str(),
+                formatSweepTable(result).c_str());
+    std::fflush(stdout);
+
+    const bool anySurvived =
+        std::any_of(result.cells.begin(), result.cells.end(), [](const SweepCell& c) { return c.survived; });
+    try
+    {
+        if (drawSweepChart(options.out, model.name, result))
+        {
+            std::printf("Wrote %s and %s (gnuplot script %s).\n", csv.c_str(), (folder / "sweep.png").c_str(),
+                        (folder / "sweep.gp").c_str());
+        }
+        else
+        {
+            std::printf("Wrote %s and the chart script %s.\n", csv.c_str(), (folder / "sweep.gp").c_str());
+            std::cerr
+                << "frontier: note: gnuplot is not installed, so there is no chart "
+                << (folder / "sweep.png").string()
+                << ". Install it (apt-get install gnuplot-nox, or scripts/install-deps.sh), then draw it "
+                   "with: cd "
+                << folder.string() << " && gnuplot sweep.gp\n";
+        }
+    }
+    catch (const io::OutputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    catch (const ChartError& e)
+    {
+        return fail(e.what() + std::string(" (") + csv + " is written)", cExitFailed);
+    }
+    if (!anySurvived)
+    {
+        return fail("no cell of the sweep survived (see the failures above)", cExitFailed);
+    }
+    return cExitOk;
+}
+
+} // namespace frontier::app

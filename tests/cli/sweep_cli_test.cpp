@@ -1,0 +1,179 @@
+// tests/cli/sweep_cli_test.cpp: `frontier sweep` end to end: the CSV's header and rows, the
+// accuracy ordering of euler over time steps, the chart, bad input, and no gnuplot.
+#include "app_test_util.h"
+#include "render/renderer.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <gtest/gtest.h>
+#include <map>
+#include <sstream>
+
+namespace
+{
+using frontier::app::test::readText;
+using frontier::app::test::Result;
+using frontier::app::test::shellQuote;
+using frontier::app::test::TestDir;
+namespace fs = std::filesystem;
+
+// The documented header (README.md, "Speed against accuracy"): a change here is a change of the
+// file format.
+const char* const cHeader =
+    "scene,integrator,solver,pgs_iterations,dt,steps,bodies,survived,wall_seconds,seconds_per_sim_second,"
+    "us_per_body_step,trajectory_error_m,final_error_m,worst_body,max_joint_error_m,max_joint_error_rad,"
+    "energy_drift_j,energy_drift_rel,max_penetration_m,failure";
+
+std::vector<std::string> lines(const std::string& text)
+{
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line))
+    {
+        out.push_back(line);
+    }
+    return out;
+}
+
+// Fields of a CSV line without quoted fields that hold commas (enough for the columns read here,
+// which come before the free-text failure column).
+std::vector<std::string> fields(const std::string& line)
+{
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    std::string field;
+    while (std::getline(ss, field, ','))
+    {
+        out.push_back(field);
+    }
+    return out;
+}
+
+// Sets PATH for the lifetime of the object (the child inherits it).
+class ScopedPath
+{
+  public:
+    explicit ScopedPath(const std::string& path)
+    {
+        const char* old = std::getenv("PATH");
+        mOld = old != nullptr ? old : "";
+        setenv("PATH", path.c_str(), 1);
+    }
+    ~ScopedPath() { setenv("PATH", mOld.c_str(), 1); }
+    ScopedPath(const ScopedPath&) = delete;
+    ScopedPath& operator=(const ScopedPath&) = delete;
+
+  private:
+    std::string mOld;
+};
+
+// The double pendulum over 0.5 s at 4, 2 and 1 ms, euler and rattle: one row per cell, the
+// documented header, euler's trajectory error shrinking with dt (first order: about 5x from 4 ms
+// to 1 ms against a reference at 0.25 ms), and a chart that reads back.
+TEST(SweepCli, DoublePendulumCsvChartAndEulerConverges)
+{
+    TestDir dir;
+    const std::string out = dir.out("sweep");
+    const Result r = dir.run("sweep scenes/double_pendulum.yaml --duration 0.5 --dt 0.004,0.002,0.001 "
+                             "--integrator euler,rattle --out " +
+                             shellQuote(out));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("Pareto front"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("euler linear"), std::string::npos) << r.out;
+
+    const std::vector<std::string> csv = lines(readText(out + "/sweep.csv"));
+    ASSERT_EQ(csv.size(), 2u + 6u) << "a comment line, the header, 2 integrators x 3 time steps";
+    EXPECT_EQ(csv[0].rfind("# frontier sweep: scene=scenes/double_pendulum.yaml ", 0), 0u) << csv[0];
+    EXPECT_EQ(csv[1], cHeader);
+    const std::vector<std::string> header = fields(csv[1]);
+    auto column = [&](const std::string& name)
+    {
+        const auto found = std::find(header.begin(), header.end(), name);
+        EXPECT_NE(found, header.end()) << name;
+        return static_cast<std::size_t>(found - header.begin());
+    };
+    std::map<double, double> eulerError; // dt (s) -> trajectory error (m)
+    for (std::size_t i = 2; i < csv.size(); ++i)
+    {
+        const std::vector<std::string> row = fields(csv[i]);
+        ASSERT_GE(row.size(), header.size() - 1) << csv[i];
+        EXPECT_EQ(row[column("scene")], "scenes/double_pendulum.yaml");
+        EXPECT_EQ(row[column("solver")], "linear");
+        EXPECT_EQ(row[column("bodies")], "2");
+        const double dt = std::stod(row[column("dt")]);
+        EXPECT_EQ(std::stol(row[column("steps")]), std::lround(0.5 / dt)) << csv[i];
+        if (row[column("integrator")] == "euler")
+        {
+            ASSERT_EQ(row[column("survived")], "true") << csv[i];
+            const double error = std::stod(row[column("trajectory_error_m")]);
+            EXPECT_TRUE(std::isfinite(error) && error > 0.0) << csv[i];
+            EXPECT_LE(std::stod(row[column("final_error_m")]), error) << csv[i];
+            EXPECT_FALSE(row[column("worst_body")].empty()) << csv[i];
+            EXPECT_GT(std::stod(row[column("seconds_per_sim_second")]), 0.0) << csv[i];
+            EXPECT_LT(std::stod(row[column("max_joint_error_m")]), 1e-6) << csv[i];
+            eulerError[dt] = error;
+        }
+        else
+        {
+            EXPECT_EQ(row[column("integrator")], "rattle");
+        }
+    }
+    ASSERT_EQ(eulerError.size(), 3u);
+    std::printf("double pendulum, euler: trajectory error %.3g m at 4 ms, %.3g m at 2 ms, %.3g m at 1 ms\n",
+                eulerError[0.004], eulerError[0.002], eulerError[0.001]);
+    EXPECT_LT(eulerError[0.002], eulerError[0.004]);
+    EXPECT_LT(eulerError[0.001], eulerError[0.002]);
+    EXPECT_GT(eulerError[0.004] / eulerError[0.001], 2.0) << "euler is first order";
+
+    const frontier::render::Image chart = frontier::render::readPng(out + "/sweep.png");
+    EXPECT_GT(chart.width, 0);
+    EXPECT_GT(chart.height, 0);
+    EXPECT_TRUE(fs::exists(out + "/sweep.gp"));
+    EXPECT_TRUE(fs::exists(out + "/sweep.dat"));
+}
+
+TEST(SweepCli, UnknownSolverExitsTwoNamingIt)
+{
+    TestDir dir;
+    const Result r =
+        dir.run("sweep scenes/pendulum.yaml --duration 0.1 --solver linear,pgs:20,simplex --out " +
+                shellQuote(dir.out("sweep")));
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("'simplex'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.out("sweep") + "/sweep.csv"));
+}
+
+TEST(SweepCli, NonPositiveTimeStepExitsTwoNamingIt)
+{
+    TestDir dir;
+    for (const std::string bad : {"-0.002", "0"})
+    {
+        const Result r = dir.run("sweep scenes/pendulum.yaml --duration 0.1 --dt 0.004," + bad + " --out " +
+                                 shellQuote(dir.out("sweep")));
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find("'" + bad + "'"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir.out("sweep") + "/sweep.csv"));
+    }
+}
+
+// Without gnuplot the CSV and the chart script are written, the note says how to install it,
+// and the exit code is 0.
+TEST(SweepCli, WithoutGnuplotWritesCsvAndScript)
+{
+    TestDir dir;
+    const std::string out = dir.out("sweep");
+    Result r;
+    {
+        const ScopedPath noGnuplot((dir.path() / "empty-path").string());
+        r = dir.run("sweep scenes/pendulum.yaml --duration 0.2 --dt 0.004,0.002 --integrator euler --out " +
+                    shellQuote(out));
+    }
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("apt-get install gnuplot-nox"), std::string::npos) << r.err;
+    EXPECT_EQ(lines(readText(out + "/sweep.csv")).size(), 2u + 2u);
+    EXPECT_TRUE(fs::exists(out + "/sweep.gp"));
+    EXPECT_FALSE(fs::exists(out + "/sweep.png"));
+}
+
+} // namespace

@@ -1,0 +1,43 @@
+// tests/stability/stability_cli_test.cpp: `frontier stability` end to end (a child process in a
+// per-test folder, tests/app/app_test_util.h).
+#include "app/commands.h"
+#include "app_test_util.h"
+
+#include <gtest/gtest.h>
+
+namespace frontier::app::test
+{
+namespace
+{
+
+TEST(StabilityCli, WritesTheTable)
+{
+    TestDir dir;
+    const Result r =
+        dir.run("stability scenes/stability/tunnelling_small_step.yaml scenes/stability/tunnelling.yaml "
+                "--methods linear/euler,pgs:5/euler --quiet --out " +
+                shellQuote(dir.out("table.md")));
+    ASSERT_EQ(r.exitCode, cExitOk) << r.err;
+    const std::string table = readText(dir.out("table.md"));
+    EXPECT_EQ(table, r.out);
+    EXPECT_NE(table.find("| scene | linear/euler | pgs:5/euler |"), std::string::npos) << table;
+    EXPECT_NE(table.find("| tunnelling_small_step | ok | ok |"), std::string::npos) << table;
+    EXPECT_NE(table.find("| tunnelling | **FAILED**: tunnelled: 'bullet' through 'wall'"), std::string::npos)
+        << table;
+    EXPECT_TRUE(r.err.empty()) << r.err; // --quiet
+}
+
+TEST(StabilityCli, BadMethodOrSceneIsBadInput)
+{
+    TestDir dir;
+    Result r = dir.run("stability scenes/stability/tunnelling.yaml --methods linear/verlet");
+    EXPECT_EQ(r.exitCode, cExitBadInput);
+    EXPECT_NE(r.err.find("bad method 'linear/verlet'"), std::string::npos) << r.err;
+    r = dir.run("stability scenes/stability/no_such_scene.yaml");
+    EXPECT_EQ(r.exitCode, cExitBadInput);
+    EXPECT_NE(r.err.find("no_such_scene.yaml"), std::string::npos) << r.err;
+    EXPECT_TRUE(dir.outputs().empty());
+}
+
+} // namespace
+} // namespace frontier::app::test
