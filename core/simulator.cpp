@@ -88,13 +88,23 @@ Simulator::~Simulator() = default;
 
 void Simulator::step(State& state)
 {
-    if (mModel.simulation.integrator == IntegratorKind::Rattle)
-    {
-        stepRattle(state);
-    }
-    else
+    mRattleStep = mModel.simulation.integrator == IntegratorKind::Rattle;
+    mStats.firstOrderFallback = false;
+    if (!mRattleStep)
     {
         stepEuler(state);
+        return;
+    }
+    mStepStart = state;
+    if (!stepRattle(state))
+    {
+        // RATTLE's position iteration stalled (very fast rotation within the step): this step is
+        // taken again from its start by the robust first-order scheme.
+        state = mStepStart;
+        mRattleStep = false;
+        mFactoredPoseValid = false;
+        stepEuler(state);
+        mStats.firstOrderFallback = true;
     }
 }
 
@@ -125,7 +135,7 @@ void Simulator::stepEuler(State& state)
 // Second order (RATTLE): kick h/2 g; impulses at q_n (joints, contacts) that the Newton
 // iteration of stabilizeJoints completes into the multiplier putting q_{n+1} on the constraint
 // manifold; drift; kick h/2 g; velocity projection at q_{n+1}.
-void Simulator::stepRattle(State& state)
+bool Simulator::stepRattle(State& state)
 {
     StageClock clock(mStats.seconds);
     checkState(state, "start of step");
@@ -139,7 +149,10 @@ void Simulator::stepRattle(State& state)
     clock.lap(StepStage::Solve);
     integratePositions(state); // drift: x += h v, R by the free rotation at constant L
     removePenetration(state);
-    stabilizeJoints(state);      // Newton on C(q_{n+1}) = 0, impulses along J(q_n)^T
+    if (!stabilizeJoints(state)) // Newton on C(q_{n+1}) = 0, impulses along J(q_n)^T
+    {
+        return false;
+    }
     carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
     kickByGravity(state, 0.5 * mDt);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
@@ -147,6 +160,7 @@ void Simulator::stepRattle(State& state)
     ++state.step;
     checkState(state, "end of step");
     clock.lap(StepStage::Integrate);
+    return true;
 }
 
 // Rows and factorization at the start-of-step pose; the rattle scheme's last projection left
@@ -559,7 +573,7 @@ void Simulator::removePenetration(State& state)
 // rattle the free rigid-body rotation at the world angular momentum L = I_W(R_n) w.
 void Simulator::integratePositions(State& state)
 {
-    const bool rattle = mModel.simulation.integrator == IntegratorKind::Rattle;
+    const bool rattle = mRattleStep;
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         if (mModel.bodies[i].isStatic)
@@ -605,7 +619,7 @@ void Simulator::measureJointErrors(const RowSystem& rows)
 // configuration (once per step: re-factoring again made convergence worse in tests). A joint
 // still apart by more than cJointBlowUp after the last iteration is a
 // blow-up: the run stops naming the step, the joint and the gap, instead of going on with garbage.
-void Simulator::stabilizeJoints(State& state)
+bool Simulator::stabilizeJoints(State& state)
 {
     constexpr double cSlowContraction = 0.1;
     constexpr double cJointBlowUp = 1e-3; // m or rad
@@ -613,15 +627,13 @@ void Simulator::stabilizeJoints(State& state)
     double previous = std::numeric_limits<double>::infinity();
     bool loopsFactored = false;
     bool refactored = false;
-    // rattle: the quasi-Newton iteration keeps RATTLE's impulse direction J(q_n)^T (the step stays
-    // the symplectic map) while it contracts the error at all; only a step where it stalls
-    // (contraction worse than cRattleStall, very fast rotation within one step) is finished
-    // SHAKE-style, re-factored at the current rows.
+    // rattle: the quasi-Newton iteration keeps RATTLE's impulse direction J(q_n)^T (so the step is
+    // the symplectic map) and is never re-factored; when it stalls (contraction worse than
+    // cRattleStall, or not converged after cRattleIterations: very fast rotation within the
+    // step), it reports false and the step is taken again by the first-order scheme.
     constexpr double cRattleStall = 0.5;
-    constexpr int cRattleIterations = 12; // more than euler's: linear convergence
-    const bool rattle = mModel.simulation.integrator == IntegratorKind::Rattle;
-    const int maxIterations = mOptions.stabilizationIterations + (rattle ? cRattleIterations : 0);
-    const double slowContraction = rattle ? cRattleStall : cSlowContraction;
+    constexpr int cRattleIterations = 12;
+    const bool rattle = mRattleStep;
     for (int iteration = 0;; ++iteration)
     {
         assembleRows(mModel, mLayout, state, mRowsAfter);
@@ -631,7 +643,11 @@ void Simulator::stabilizeJoints(State& state)
         {
             break;
         }
-        if (iteration >= maxIterations)
+        if (rattle && (error > cRattleStall * previous || iteration >= cRattleIterations))
+        {
+            return false;
+        }
+        if (iteration >= mOptions.stabilizationIterations)
         {
             if (error > cJointBlowUp)
             {
@@ -651,8 +667,7 @@ void Simulator::stabilizeJoints(State& state)
             }
             break;
         }
-        const bool stalled = error > slowContraction * previous || (rattle && iteration >= cRattleIterations);
-        if (!refactored && stalled)
+        if (!refactored && error > cSlowContraction * previous)
         {
             refactored = true;
             mRowsRefactored = mRowsAfter;
@@ -702,6 +717,7 @@ void Simulator::stabilizeJoints(State& state)
         }
         integratePositions(state);
     }
+    return true;
 }
 
 // Loop rows in the projection: the tree correction du_0 leaves J_loop du_0 + C_loop / h; the loop

@@ -60,7 +60,7 @@ class UnsupportedModelError : public std::runtime_error
 struct StepOptions
 {
     double stabilizationTolerance = 1e-10; // m (rad for angular rows)
-    int stabilizationIterations = 8;
+    int stabilizationIterations = 40;
     double restitutionSpeed = 0.1;   // m/s: slower impacts do not bounce, so things come to rest
     double penetrationSlop = 5e-4;   // m: overlap left to the next steps' contacts, not projected
     double limitMargin = 0.02;       // rad or m: limit rows appear this close to a limit
@@ -85,10 +85,11 @@ struct StepStats
     double maxJointErrorM = 0.0;               // largest positional joint violation after the step (m)
     double maxJointErrorRad = 0.0;             // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
-    int contacts = 0;             // contact points found this step
-    int extraRows = 0;            // contact, loop and limit rows this step
-    int contactSweeps = 0;        // Gauss-Seidel sweeps of the contact problem
-    double maxPenetrationM = 0.0; // deepest contact overlap at the start of the step (m)
+    int contacts = 0;                // contact points found this step
+    int extraRows = 0;               // contact, loop and limit rows this step
+    int contactSweeps = 0;           // Gauss-Seidel sweeps of the contact problem
+    double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
+    bool firstOrderFallback = false; // a rattle step that stalled and was taken by euler instead
 };
 
 class Simulator
@@ -111,7 +112,9 @@ class Simulator
 
   private:
     void stepEuler(State& state);
-    void stepRattle(State& state);
+    bool stepRattle(State& state); // false: stalled, state partly stepped
+    bool mRattleStep = false;      // the step under way is a rattle step
+    State mStepStart;              // the state a rattle step started from
     void checkState(const State& state, const char* where) const;
     void detectContacts(const State& state);
     void computeFreeVelocities(State& state, double h);
@@ -122,7 +125,7 @@ class Simulator
     void solveImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
-    void stabilizeJoints(State& state);
+    bool stabilizeJoints(State& state); // false: a rattle step stalled
     void buildLoopRows(const RowSystem& rows);
     void correctLoops();
     void displacePositions(State& state, const BlockVector& displacement);

@@ -112,15 +112,15 @@ TEST(Convergence, TenLinkChainIsFirstOrderWithEulerAndSecondOrderWithRattle)
     EXPECT_NEAR(r2, 2.0, 0.2);
 }
 
-// 1000 s of the conservative 10-link chain released at 0.5 rad, rattle at dt = 5 ms.
-// Bound (stated in the README): the energy error stays under 1e-4 of the chain's m g L (9.81 J)
-// and does not drift: its largest value over the last 100 s is at most three times that over the
+// 1000 s of the conservative 10-link chain released at 0.5 rad, rattle at dt = 2.5 ms.
+// Bound (stated in the README): the energy error stays under 1e-5 of the chain's m g L (9.81 J)
+// and does not drift: its largest value over the last 100 s is at most twice that over the
 // first 100 s (a symplectic scheme's error oscillates; a drifting one would grow tenfold from the
 // first to the tenth 100 s). Joint gaps under 1e-9 m after every step.
 TEST(RattleEnergy, TenLinkChainKeepsEnergyWithoutDriftForAThousandSeconds)
 {
     const core::Model model = withStep(io::loadSceneFromString(chainScene(10, 0.5), "chain10.yaml"),
-                                       core::IntegratorKind::Rattle, 0.005);
+                                       core::IntegratorKind::Rattle, 0.0025);
     core::State state = core::initialState(model);
     core::Simulator simulator(model);
     const double e0 = core::totalEnergy(model, state);
@@ -149,11 +149,11 @@ TEST(RattleEnergy, TenLinkChainKeepsEnergyWithoutDriftForAThousandSeconds)
     }
     RecordProperty("energy_error_relative", sci(worst / scale));
     std::printf(
-        "10-link chain, rattle, dt 5 ms, 1000 s: energy error up to %.3g J (%.3g of m g L), first 100 s "
+        "10-link chain, rattle, dt 2.5 ms, 1000 s: energy error up to %.3g J (%.3g of m g L), first 100 s "
         "%.3g J, last 100 s %.3g J; joint gap up to %.3g m\n",
         worst, worst / scale, first, last, gap);
-    EXPECT_LT(worst, 1e-4 * scale);
-    EXPECT_LT(last, 3.0 * first);
+    EXPECT_LT(worst, 1e-5 * scale);
+    EXPECT_LT(last, 2.0 * first);
 }
 
 } // namespace
