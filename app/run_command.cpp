@@ -80,6 +80,10 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.simulatedSeconds = static_cast<double>(s.steps) * model.simulation.dt;
     stats.extra["max_joint_error_rad"] = s.maxJointErrorRad;
     stats.extra["energy_max_j"] = s.energyMaxJ;
+    if (model.simulation.integrator == core::IntegratorKind::Rattle)
+    {
+        stats.extra["first_order_steps"] = static_cast<double>(s.firstOrderSteps);
+    }
     // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
     const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
                                                 "seconds_per_step_solve", "seconds_per_step_integrate"};

@@ -49,6 +49,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.maxJointErrorRad = std::max(summary.maxJointErrorRad, stats.maxJointErrorRad);
             summary.maxPenetrationM = std::max(summary.maxPenetrationM, stats.maxPenetrationM);
             summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
+            summary.firstOrderSteps += stats.firstOrderFallback ? 1 : 0;
             for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
             {
                 summary.stageSeconds[stage] += stats.seconds[stage];

@@ -31,6 +31,7 @@ struct RunSummary
     double maxPenetrationM = 0.0;
     std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;
+    long firstOrderSteps = 0; // rattle steps that stalled and were taken by euler instead
     bool finite = true;
     std::string failure; // the SimulationError message when the run blew up
 };
