@@ -2,6 +2,7 @@
 #include "app/stability.h"
 
 #include "app/run_loop.h"
+#include "app/solver_choice.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
 
@@ -43,32 +44,13 @@ std::optional<StabilityMethod> parseStabilityMethod(const std::string& text)
         }
         method.integrator = *integrator;
     }
-    const std::size_t colon = solver.find(':');
-    std::string iterations;
-    if (colon != std::string::npos)
-    {
-        iterations = solver.substr(colon + 1);
-        solver = solver.substr(0, colon);
-    }
-    const auto kind = core::solverFromName(solver);
-    if (!kind)
+    const std::optional<SolverChoice> choice = parseSolverChoice(solver, method.pgsIterations);
+    if (!choice)
     {
         return std::nullopt;
     }
-    method.solver = *kind;
-    if (colon != std::string::npos)
-    {
-        if (*kind != core::SolverKind::Pgs || iterations.empty() || iterations.size() > 6 ||
-            !std::all_of(iterations.begin(), iterations.end(), [](char c) { return c >= '0' && c <= '9'; }))
-        {
-            return std::nullopt;
-        }
-        method.pgsIterations = std::stoi(iterations);
-        if (method.pgsIterations < 1)
-        {
-            return std::nullopt;
-        }
-    }
+    method.solver = choice->solver;
+    method.pgsIterations = choice->pgsIterations;
     return method;
 }
 
@@ -85,23 +67,6 @@ std::vector<StabilityMethod> defaultStabilityMethods()
 
 namespace
 {
-
-double kineticEnergy(const core::Model& model, const core::State& state)
-{
-    double energy = 0.0;
-    for (std::size_t i = 0; i < model.bodies.size(); ++i)
-    {
-        const core::Body& body = model.bodies[i];
-        if (body.isStatic)
-        {
-            continue;
-        }
-        const core::BodyState& s = state.bodies[i];
-        energy += 0.5 * body.mass * s.velocity_W.squaredNorm() +
-                  0.5 * s.angularVelocity_W.dot(core::worldInertia(body, s) * s.angularVelocity_W);
-    }
-    return energy;
-}
 
 // No gravity, no static body, no joint to the world: total angular momentum is conserved.
 bool isFreeSystem(const core::Model& model)
@@ -293,7 +258,8 @@ double stabilityEnergyScale(const core::Model& model)
         }
     }
     const double diagonal = mass > 0.0 ? (high - low).norm() : 0.0;
-    return std::max(kineticEnergy(model, state) + mass * model.simulation.gravity.norm() * diagonal, 1e-9);
+    return std::max(core::kineticEnergy(model, state) + mass * model.simulation.gravity.norm() * diagonal,
+                    1e-9);
 }
 
 int denseRows(const core::Model& model)

@@ -21,7 +21,6 @@ constexpr double cNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr long cMaxUnitMultiple = 1000;
 // How far from a whole number (relative) a ratio of time steps may be and still count as one.
 constexpr double cRatioTolerance = 1e-6;
-constexpr int cMaxPgsIterations = 1000000;
 // A cell's run shorter than this (wall s) is repeated, up to cMaxTimingRuns runs in all, and the
 // fastest counts: one short run is mostly timer and cache noise.
 constexpr double cTimingSeconds = 0.05;
@@ -182,32 +181,19 @@ std::vector<SolverChoice> parseSolvers(const std::vector<std::string>& entries, 
     for (const std::string& raw : entries)
     {
         const std::string entry = trim(raw);
-        SolverChoice choice;
-        choice.pgsIterations = scenePgsIterations;
-        if (entry.rfind("pgs:", 0) == 0)
+        const std::optional<SolverChoice> parsed = parseSolverChoice(entry, scenePgsIterations);
+        if (!parsed && entry.rfind("pgs:", 0) == 0)
         {
-            const std::string count = entry.substr(4);
-            int iterations = 0;
-            const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), iterations);
-            if (count.empty() || error != std::errc() || end != count.data() + count.size() ||
-                iterations < 1 || iterations > cMaxPgsIterations)
-            {
-                throw SweepInputError("--solver: '" + raw +
-                                      "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
-                                      std::to_string(cMaxPgsIterations));
-            }
-            choice.solver = core::SolverKind::Pgs;
-            choice.pgsIterations = iterations;
+            throw SweepInputError("--solver: '" + raw +
+                                  "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
+                                  std::to_string(cMaxPgsIterations));
         }
-        else if (const auto kind = core::solverFromName(entry))
-        {
-            choice.solver = *kind;
-        }
-        else
+        if (!parsed)
         {
             throw SweepInputError("--solver: unknown solver '" + raw +
                                   "' (expected linear, dense, pgs or pgs:K with K sweeps)");
         }
+        const SolverChoice choice = *parsed;
         const bool seen =
             std::any_of(solvers.begin(), solvers.end(),
                         [&](const SolverChoice& s)

@@ -10,6 +10,7 @@
 // cell and the reference hit them exactly.
 #pragma once
 
+#include "app/solver_choice.h"
 #include "core/model.h"
 
 #include <functional>
@@ -56,11 +57,6 @@ struct SweepMethod
 // Time steps (s): positive finite numbers; duplicates removed; sorted coarse to fine.
 std::vector<double> parseTimeSteps(const std::vector<std::string>& entries);
 // Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps).
-struct SolverChoice
-{
-    core::SolverKind solver = core::SolverKind::Linear;
-    int pgsIterations = 20;
-};
 std::vector<SolverChoice> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
 // Integrators: euler, rattle.
 std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries);

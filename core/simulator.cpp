@@ -193,7 +193,6 @@ void Simulator::projectVelocities(State& state)
     mSolver->factor(mRows);
     mFactoredPose = state.bodies;
     mFactoredPoseValid = true;
-    mEndBlocks.clear();
     buildLoopRows(mRows);
     mEndBlocks = mLoopBlocks;
     for (const ExtraBlock& block : mExtra)

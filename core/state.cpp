@@ -29,7 +29,7 @@ Mat3 worldInertia(const Body& body, const BodyState& state)
     return r * body.inertia_B * r.transpose();
 }
 
-double totalEnergy(const Model& model, const State& state)
+double kineticEnergy(const Model& model, const State& state)
 {
     double energy = 0.0;
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
@@ -42,9 +42,21 @@ double totalEnergy(const Model& model, const State& state)
         const BodyState& s = state.bodies[i];
         energy += 0.5 * body.mass * s.velocity_W.squaredNorm();
         energy += 0.5 * s.angularVelocity_W.dot(worldInertia(body, s) * s.angularVelocity_W);
-        energy -= body.mass * model.simulation.gravity.dot(s.position_W);
     }
     return energy;
+}
+
+double totalEnergy(const Model& model, const State& state)
+{
+    double potential = 0.0; // J, zero at the origin
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (!model.bodies[i].isStatic)
+        {
+            potential -= model.bodies[i].mass * model.simulation.gravity.dot(state.bodies[i].position_W);
+        }
+    }
+    return kineticEnergy(model, state) + potential;
 }
 
 Momentum totalMomentum(const Model& model, const State& state)

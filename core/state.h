@@ -28,6 +28,9 @@ State initialState(const Model& model);
 // World-frame inertia R I_B R^T (kg m^2).
 Mat3 worldInertia(const Body& body, const BodyState& state);
 
+// Kinetic energy of the moving bodies, translational plus rotational (J).
+double kineticEnergy(const Model& model, const State& state);
+
 // Total mechanical energy: kinetic plus gravitational potential of moving bodies (J).
 double totalEnergy(const Model& model, const State& state);
 
