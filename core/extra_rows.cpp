@@ -1,4 +1,4 @@
-// core/extra_rows.cpp: contact, loop and limit rows, and their block Gauss-Seidel solve.
+// core/extra_rows.cpp: contact, loop and limit rows (their solve: core/extra_rows_solve.cpp).
 #include "core/extra_rows.h"
 
 #include "core/collision_response.h"
@@ -132,111 +132,6 @@ int layoutExtraRows(std::vector<ExtraBlock>& blocks)
         offset += block.count;
     }
     return offset;
-}
-
-ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
-                               const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch)
-{
-    ExtraSolveStats stats;
-    const Eigen::Index m = G.rows();
-    if (m == 0)
-    {
-        return stats;
-    }
-    // A row that can barely move (a point pinned by joints) has a tiny pivot: regularize it by a
-    // relative 1e-9 of the largest diagonal so the update stays bounded.
-    const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
-    // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
-    // tangential block, limits their one row.
-    std::vector<Mat6>& inverse = scratch.inverse;
-    inverse.assign(blocks.size(), Mat6::Zero());
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-    {
-        const int o = blocks[b].offset;
-        const int n = blocks[b].count;
-        if (blocks[b].kind == ExtraBlock::Kind::Loop)
-        {
-            const Eigen::MatrixXd block =
-                G.block(o, o, n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
-            inverse[b].topLeftCorner(n, n) = block.inverse();
-            continue;
-        }
-        inverse[b](0, 0) = 1.0 / (G(o, o) + regularization);
-        if (n == 3)
-        {
-            const Eigen::Matrix2d tt =
-                G.block<2, 2>(o + 1, o + 1) + regularization * Eigen::Matrix2d::Identity();
-            inverse[b].block<2, 2>(1, 1) = tt.inverse();
-        }
-    }
-    Eigen::VectorXd& velocity = scratch.velocity;
-    velocity.noalias() = freeVelocity;
-    velocity.noalias() += G * lambda; // J u with the current impulses
-    using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
-    {
-        double change = 0.0;
-        double largest = 0.0;
-        for (std::size_t b = 0; b < blocks.size(); ++b)
-        {
-            const ExtraBlock& block = blocks[b];
-            const int o = block.offset;
-            const int n = block.count;
-            const SmallVec old = lambda.segment(o, n);
-            SmallVec next = old;
-            if (block.kind == ExtraBlock::Kind::Loop)
-            {
-                const SmallVec target = block.target.head(n);
-                next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
-            }
-            else
-            {
-                // Normal (or limit) row: one-sided.
-                next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - velocity(o)));
-                if (n == 3)
-                {
-                    // Tangential rows after the normal change, then the friction cone
-                    // |lambda_t| <= mu lambda_n by radial projection.
-                    const Eigen::Vector2d vt =
-                        velocity.segment<2>(o + 1) + G.block<2, 1>(o + 1, o) * (next(0) - old(0));
-                    Eigen::Vector2d lt = old.segment<2>(1) - inverse[b].block<2, 2>(1, 1) * vt;
-                    const double limit = block.friction * next(0);
-                    const double tangential = lt.norm();
-                    if (tangential > limit)
-                    {
-                        // Sliding: the anisotropic 2x2 step would leave the friction off the
-                        // slip direction at the fixed point; an isotropic step (k = 2 / trace)
-                        // followed by the radial projection converges to friction opposing the slip.
-                        const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
-                        lt = old.segment<2>(1) - k * vt;
-                        const double slide = lt.norm();
-                        if (slide > limit)
-                        {
-                            lt *= slide > 0.0 ? limit / slide : 0.0;
-                        }
-                    }
-                    next.segment<2>(1) = lt;
-                }
-            }
-            const SmallVec delta = next - old;
-            const double step = delta.cwiseAbs().maxCoeff();
-            if (step > 0.0)
-            {
-                lambda.segment(o, n) = next;
-                velocity.noalias() += G.middleCols(o, n) * delta;
-            }
-            change = std::max(change, step);
-            largest = std::max(largest, next.cwiseAbs().maxCoeff());
-        }
-        stats.sweeps = sweep + 1;
-        stats.lastChange = largest > 0.0 ? change / largest : 0.0;
-        if (change <= settings.tolerance * largest || change < 1e-14)
-        {
-            break;
-        }
-    }
-    return stats;
 }
 
 } // namespace frontier::core

@@ -12,6 +12,7 @@
 #include "core/joints/joint_rows.h"
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 namespace frontier::core
@@ -53,18 +54,36 @@ double jointCoordinate(const Model& model, const State& state, int jointIndex);
 // Sets offsets; returns the number of rows in all.
 int layoutExtraRows(std::vector<ExtraBlock>& blocks);
 
+// When the block Gauss-Seidel stops: after a sweep that leaves every row's condition met to
+// velocityTolerance (conditionResidual below), or that changed no impulse by more than
+// `tolerance` of the largest, or after maxSweeps.
 struct ExtraSolveSettings
 {
-    double tolerance = 1e-6; // stop when the largest impulse change of a sweep is below this
-                             // fraction of the largest impulse (or 1e-14 N s absolute)
+    double velocityTolerance = 3e-5; // m/s (rad/s for angular rows): 30 nm of motion in a 1 ms step
+    double tolerance = 1e-6;         // relative impulse change (or 1e-14 N s absolute)
     int maxSweeps = 100;
 };
 
 struct ExtraSolveStats
 {
     int sweeps = 0;
-    double lastChange = 0.0; // relative impulse change of the last sweep
+    double lastChange = 0.0;   // relative impulse change of the last sweep
+    double lastResidual = 0.0; // conditionResidual after the last sweep (m/s)
 };
+
+// Which rows an impulse on each block can move: G_rs = 0 unless rows r and s have moving bodies
+// in a common tree (the joints pass impulses along a tree, never across). Per block, half-open
+// runs of rows; the Gauss-Seidel updates velocities only there.
+struct RowCoupling
+{
+    std::vector<std::pair<int, int>> runs;
+    std::vector<int> firstRun; // per block, its first run; one more entry past the last block
+};
+
+// Builds the coupling of laid-out blocks from the tree of each body (FrontierLayout::treeOfBody).
+// `scratch` holds per-tree row runs between calls.
+void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<int>& treeOfBody,
+                      RowCoupling& coupling, std::vector<std::vector<std::pair<int, int>>>& scratch);
 
 // Working storage of solveExtraRows, kept by the caller so that stepping does not allocate once
 // sizes have settled.
@@ -72,14 +91,24 @@ struct ExtraSolveScratch
 {
     std::vector<Mat6> inverse; // inverse pivots per block
     Eigen::VectorXd velocity;  // J u with the current impulses
+    RowCoupling dense;         // all rows for every block, when no coupling is given
 };
+
+// How far velocities v = J u and impulses are from the conditions of their rows (m/s; rad/s for
+// angular rows): bilateral rows |v - target|; a one-sided row |v - target| while it pushes, else
+// how far v is below its target; friction inside the cone the slip, on the cone's edge the slip
+// not opposite to the friction.
+double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
+                         const Eigen::VectorXd& lambda);
 
 // Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
 // given the others; a contact's normal row clamped at zero, then its two tangential rows solved
 // together and projected radially onto the friction cone |lambda_t| <= mu lambda_n; limit rows
 // clamped at zero. `lambda` is the warm start on entry (size = rows) and the result on exit.
+// `coupling` (optional) restricts each block's velocity updates to the rows it can move.
 ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch);
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
+                               const RowCoupling* coupling = nullptr);
 
 } // namespace frontier::core

@@ -225,7 +225,9 @@ void Simulator::projectVelocities(State& state)
         mSolver->delassus(mEndBlocks, rows, mEndG);
         extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
         mEndLambda.setZero(rows);
-        solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch);
+        coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mCoupling, mTreeRuns);
+        solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch,
+                       &mCoupling);
         mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
     }
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -429,12 +431,13 @@ void Simulator::solveImpulses(State& state)
     if (mStats.extraRows > 0)
     {
         mSolver->delassus(mExtra, mStats.extraRows, mG);
+        coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
         extraRowVelocities(mExtra, mSolution, mExtraVelocity);
         mExtraLambda.setZero(mStats.extraRows);
         warmStart();
-        mStats.contactSweeps =
-            solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda, mExtraScratch)
-                .sweeps;
+        mStats.contactSweeps = solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda,
+                                              mExtraScratch, &mCoupling)
+                                   .sweeps;
         mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
     }
     rememberImpulses();
@@ -561,8 +564,11 @@ void Simulator::removePenetration(State& state)
     mPenetrationG = mG(rows, rows); // the normal, limit and loop rows of the step's G
     mPenetrationFree.setZero(n);
     mPenetrationImpulse.setZero(n);
-    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, mOptions.contactSolve, mPenetrationImpulse,
-                   mExtraScratch);
+    ExtraSolveSettings settings = mOptions.contactSolve;
+    settings.velocityTolerance *= mDt; // here the rows are displacements (m), one step's worth
+    coupleRowsByTree(blocks, mLayout.treeOfBody, mCoupling, mTreeRuns);
+    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, settings, mPenetrationImpulse, mExtraScratch,
+                   &mCoupling);
     mCorrection.setZero();
     mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
     displacePositions(state, mCorrection);

@@ -140,6 +140,8 @@ class Simulator
     Eigen::MatrixXd mG;             // their Delassus matrix
     Eigen::VectorXd mExtraVelocity, mExtraLambda;
     ExtraSolveScratch mExtraScratch;
+    RowCoupling mCoupling;                                   // rows each extra block can move
+    std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
     // Scratch of removePenetration: its blocks, their rows in mG, their G, free velocity, impulses.
     std::vector<ExtraBlock> mPenetrationBlocks;
     std::vector<int> mPenetrationRows;

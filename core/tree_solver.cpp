@@ -11,6 +11,8 @@
 // body/joint-indexed inputs and outputs. Those are prefetched a few blocks ahead.
 #include "core/tree_solver.h"
 
+#include "core/fixed_rows.h"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -141,34 +143,6 @@ void choleskySolveInPlace(const double* l, int n, Mat6& z)
             }
             z(i, c) = s * l[tri(n, i, i)];
         }
-    }
-}
-
-// Calls f(std::integral_constant<int, rows>) for rows = 1..6.
-template <typename F> inline void withRows(int rows, F&& f)
-{
-    switch (rows)
-    {
-    case 1:
-        f(std::integral_constant<int, 1>{});
-        return;
-    case 2:
-        f(std::integral_constant<int, 2>{});
-        return;
-    case 3:
-        f(std::integral_constant<int, 3>{});
-        return;
-    case 4:
-        f(std::integral_constant<int, 4>{});
-        return;
-    case 5:
-        f(std::integral_constant<int, 5>{});
-        return;
-    case 6:
-        f(std::integral_constant<int, 6>{});
-        return;
-    default:
-        throw std::logic_error("tree solver: a joint block must have 1 to 6 rows");
     }
 }
 
@@ -372,158 +346,6 @@ void TreeSolver::applyPivotInverse(int block, Mat6& z) const
     if (info.flags & cEdge)
     {
         z.topRows(info.dim) = -z.topRows(info.dim);
-    }
-}
-
-void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
-{
-    const FrontierLayout& layout = *mSystem->layout;
-    mSlotOfBody.assign(mSystem->model->bodies.size(), -1);
-    std::vector<int> bodies;
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int body : {block.bodyA, block.bodyB})
-        {
-            if (body >= 0 && mSlotOfBody[static_cast<std::size_t>(body)] < 0)
-            {
-                mSlotOfBody[static_cast<std::size_t>(body)] = static_cast<int>(bodies.size());
-                bodies.push_back(body);
-            }
-        }
-    }
-    // Forward sweeps from each body's node to its root (block indices increase along a path).
-    mPaths.resize(bodies.size());
-    for (std::size_t s = 0; s < bodies.size(); ++s)
-    {
-        std::vector<PathEntry>& path = mPaths[s];
-        path.clear();
-        int block = layout.bodyBlock[static_cast<std::size_t>(bodies[s])];
-        Mat6 z = Mat6::Identity();
-        while (block >= 0)
-        {
-            PathEntry entry;
-            entry.block = block;
-            entry.Z = z;
-            entry.W = z;
-            applyPivotInverse(block, entry.W);
-            path.push_back(entry);
-            const BlockInfo& info = mBlocks[static_cast<std::size_t>(block)];
-            if (info.parent < 0)
-            {
-                break;
-            }
-            const int pd = info.parentDim;
-            const Eigen::Map<const Eigen::MatrixXd> coupling(
-                mArena.data() + mOffsets[static_cast<std::size_t>(block)] + triSize(info.dim), info.dim, pd);
-            Mat6 next = Mat6::Zero();
-            next.topRows(pd).noalias() = -coupling.transpose() * z.topRows(info.dim);
-            z = next;
-            block = info.parent;
-        }
-    }
-    // K_xy over the common suffix of the two paths (from the block where they meet to the root);
-    // zero for bodies of different trees.
-    const std::size_t k = bodies.size();
-    mK.assign(k * k, Mat6::Zero());
-    for (std::size_t i = 0; i < k; ++i)
-    {
-        const int treeI = layout.treeOfBody[static_cast<std::size_t>(bodies[i])];
-        for (std::size_t j = i; j < k; ++j)
-        {
-            if (layout.treeOfBody[static_cast<std::size_t>(bodies[j])] != treeI)
-            {
-                continue;
-            }
-            const std::vector<PathEntry>& a = mPaths[i];
-            const std::vector<PathEntry>& b = mPaths[j];
-            std::size_t ia = 0, ib = 0;
-            while (ia < a.size() && ib < b.size() && a[ia].block != b[ib].block)
-            {
-                if (a[ia].block < b[ib].block)
-                {
-                    ++ia;
-                }
-                else
-                {
-                    ++ib;
-                }
-            }
-            Mat6 sum = Mat6::Zero();
-            for (; ia < a.size() && ib < b.size(); ++ia, ++ib)
-            {
-                const int dim = mBlocks[static_cast<std::size_t>(a[ia].block)].dim;
-                sum.noalias() += a[ia].Z.topRows(dim).transpose() * b[ib].W.topRows(dim);
-            }
-            mK[i * k + j] = sum;
-            mK[j * k + i] = sum.transpose();
-        }
-    }
-    // Rows of each body stacked: J_x (m_x x 6) and their rows in G.
-    mBodyRows.resize(k);
-    mBodyJ.resize(k);
-    for (std::size_t s = 0; s < k; ++s)
-    {
-        mBodyRows[s].clear();
-    }
-    std::vector<int> count(k, 0);
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int side = 0; side < 2; ++side)
-        {
-            const int x = side == 0 ? block.bodyA : block.bodyB;
-            if (x >= 0)
-            {
-                count[static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)])] += block.count;
-            }
-        }
-    }
-    for (std::size_t s = 0; s < k; ++s)
-    {
-        mBodyJ[s].resize(count[s], 6);
-    }
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int side = 0; side < 2; ++side)
-        {
-            const int x = side == 0 ? block.bodyA : block.bodyB;
-            if (x < 0)
-            {
-                continue;
-            }
-            const std::size_t slot = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(x)]);
-            const Mat6& J = side == 0 ? block.J_A : block.J_B;
-            for (int r = 0; r < block.count; ++r)
-            {
-                mBodyJ[slot].row(static_cast<Eigen::Index>(mBodyRows[slot].size())) = J.row(r);
-                mBodyRows[slot].push_back(block.offset + r);
-            }
-        }
-    }
-    // G = sum over body pairs (x, y) of the same tree of J_x K_xy J_y^T, scattered into G's rows.
-    G.setZero(rows, rows);
-    Eigen::MatrixXd product;
-    for (std::size_t x = 0; x < k; ++x)
-    {
-        const int treeX = layout.treeOfBody[static_cast<std::size_t>(bodies[x])];
-        for (std::size_t y = 0; y < k; ++y)
-        {
-            if (layout.treeOfBody[static_cast<std::size_t>(bodies[y])] != treeX)
-            {
-                continue;
-            }
-            // Small products: coefficient-based (lazyProduct), not the general GEMM path.
-            mJK.noalias() = mBodyJ[x].lazyProduct(mK[x * k + y]);
-            product.noalias() = mJK.lazyProduct(mBodyJ[y].transpose());
-            const std::vector<int>& rx = mBodyRows[x];
-            const std::vector<int>& ry = mBodyRows[y];
-            for (std::size_t a = 0; a < rx.size(); ++a)
-            {
-                for (std::size_t b = 0; b < ry.size(); ++b)
-                {
-                    G(rx[a], ry[b]) += product(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-                }
-            }
-        }
     }
 }
 

@@ -33,12 +33,13 @@ class TreeSolver final : public ImpulseSolver
     void solve(const BlockVector& rhs, BlockVector& solution) override;
     const char* name() const override { return "linear"; }
 
-    // G = J_x H^-1 J_x^T from partial forward sweeps: with H = L D L^T, a unit impulse on body i
-    // enters the forward sweep at i's node and reaches only the blocks on i's path to its root,
-    // Z_i = L^-1 e_i there. Then K_ij = sum over the blocks common to both paths of
-    // Z_i^T D^-1 Z_j is the 6x6 inverse effective mass between bodies i and j, and
-    // G_rs = J_r,i K_ij J_s,j^T. Cost: O(k d) sweeps plus O(k^2) products for k bodies with extra
-    // rows at depth d, instead of one O(n) solve per row.
+    // G = J_x H^-1 J_x^T without one O(n) solve per row (core/tree_delassus.cpp): each body x
+    // with extra rows sends its stacked rows J_x^T up the forward sweep, which reaches only the
+    // blocks on x's path to its root (A_x = L^-1 J_x^T there). Two bodies' paths meet at a block
+    // c and share everything above it, so G_xy = A_x,c^T X_c A_y,c with X_c the diagonal block of
+    // H^-1 at c, computed top-down for the blocks on those paths (X_c = D_c^-1 + L_c X_p L_c^T,
+    // selected inversion). Cost: O(sum of path lengths) sweeps plus one small product per pair
+    // of bodies in the same tree.
     void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
 
   private:
@@ -70,18 +71,22 @@ class TreeSolver final : public ImpulseSolver
     std::vector<std::uint8_t> mSeen;  // scratch: per block, a child was met
     std::vector<int> mUnmappedBodies; // bodies without a block (static): zero in a solution
     std::vector<int> mUnmappedJoints; // joints without a block (loops): zero in a solution
+    // Scratch of delassus(), kept so that stepping does not allocate once sizes have settled.
     struct PathEntry
     {
         int block = 0;
-        Mat6 Z; // L^-1 e_i restricted to this block: dim x 6
-        Mat6 W; // D_b^-1 Z
+        std::uint32_t offset = 0; // A_x at this block: dim x (rows of x), column-major, in mPool
     };
-    std::vector<std::vector<PathEntry>> mPaths;                   // scratch: per body with extra rows
-    std::vector<int> mSlotOfBody;                                 // scratch: body -> path slot, -1
-    std::vector<Mat6> mK;                                         // scratch: K_xy per slot pair
-    std::vector<std::vector<int>> mBodyRows;                      // scratch: G rows of each slot's body
-    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> mBodyJ; // scratch: its stacked J rows
-    Eigen::Matrix<double, Eigen::Dynamic, 6> mJK;                 // scratch: J_x K_xy
+    std::vector<int> mSlotBodies;                       // bodies with extra rows
+    std::vector<int> mSlotOfBody;                       // body -> slot, -1
+    std::vector<std::vector<int>> mSlotRows;            // G rows of each slot's body, in stacking order
+    std::vector<std::vector<PathEntry>> mPaths;         // per slot: its node up to its root
+    std::vector<double> mPool;                          // the A_x blocks of every path
+    std::vector<int> mDiagonalOf;                       // block -> index in mDiagonal, -1 (kept all -1)
+    std::vector<int> mMarked;                           // blocks on some path, descending
+    std::vector<Mat6> mDiagonal;                        // X_c, dim x dim top-left, per marked block
+    Eigen::Matrix<double, 6, Eigen::Dynamic> mPairTemp; // X_c A_y of one pair
+    Eigen::MatrixXd mPairProduct;                       // A_x^T X_c A_y
 };
 
 } // namespace frontier::core

@@ -93,7 +93,7 @@ InclineRun runIncline(core::Model model, double seconds, double settle)
 }
 
 // tan(20 deg) = 0.364 < mu = 0.5: static friction holds the box. Bound: under 1 mm in 2 s
-// (it moves by round-off only: the contact rows are solved to 1e-6 relative each step).
+// (it moves 1e-7 m: the contact rows are solved to 3e-5 m/s each step, core/extra_rows.h).
 TEST(Incline, BoxSticksWhenTanAngleBelowMu)
 {
     core::Model model = io::loadScene(scenePath("box_incline.yaml"));
@@ -106,7 +106,7 @@ TEST(Incline, BoxSticksWhenTanAngleBelowMu)
 // tan(30 deg) = 0.577 > mu = 0.3: the box slides with g (sin - mu cos) = 2.3563 m/s^2. The
 // fit starts after 0.1 s of settling; bound 1% of the expected acceleration.
 // Measured with the contact solve of this writing: 2.518 m/s^2 (friction 6.4% short). The
-// cone projection in solveExtraRows (core/extra_rows.cpp) scales the step by the inverse of
+// cone projection in solveExtraRows (core/extra_rows_solve.cpp) scales the step by the inverse of
 // each contact's anisotropic 2x2 tangential Delassus block, then projects radially, so a
 // sliding corner's friction is not opposite to its slip; with an isotropic step before the
 // radial projection the fit matches to 1e-12.

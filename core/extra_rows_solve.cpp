@@ -1,0 +1,308 @@
+// core/extra_rows_solve.cpp: block projected Gauss-Seidel on the Delassus system of the extra
+// rows (PAPER.md §5): v = v_free + G lambda with the complementarity conditions of each block.
+//
+// G couples two rows only when their bodies share a tree (rows of different trees are exact
+// zeros, see TreeSolver::delassus), so each block keeps the runs of rows where its columns are
+// nonzero and a sweep updates velocities only there: a pile of separate articulated bodies costs
+// the sum of its trees' squares per sweep, not the square of the whole.
+#include "core/extra_rows.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace frontier::core
+{
+
+namespace
+{
+
+// Appends [begin, end) to sorted runs, merged with the last run when they touch or nearly do
+// (a gap of a few rows costs less than starting a new run).
+void appendRun(std::vector<std::pair<int, int>>& runs, int begin, int end)
+{
+    constexpr int cGap = 8;
+    if (!runs.empty() && begin - runs.back().second <= cGap)
+    {
+        runs.back().second = std::max(runs.back().second, end);
+        return;
+    }
+    runs.emplace_back(begin, end);
+}
+
+// velocity(rows in runs) += G(rows, o .. o + n - 1) delta (Eigen's vectorized kernels: the
+// build has no -march flags, and -O2 does not vectorize these loops by itself).
+void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, const std::pair<int, int>* first,
+                const std::pair<int, int>* last, Eigen::VectorXd& velocity)
+{
+    for (const std::pair<int, int>* run = first; run != last; ++run)
+    {
+        const Eigen::Index start = run->first;
+        const Eigen::Index length = run->second - run->first;
+        auto v = velocity.segment(start, length);
+        if (n == 3)
+        {
+            v += G.col(o).segment(start, length) * delta[0] + G.col(o + 1).segment(start, length) * delta[1] +
+                 G.col(o + 2).segment(start, length) * delta[2];
+            continue;
+        }
+        for (int q = 0; q < n; ++q)
+        {
+            v += G.col(o + q).segment(start, length) * delta[q];
+        }
+    }
+}
+
+} // namespace
+
+double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
+                         const Eigen::VectorXd& lambda)
+{
+    double worst = 0.0;
+    for (const ExtraBlock& block : blocks)
+    {
+        const int o = block.offset;
+        if (block.kind == ExtraBlock::Kind::Loop)
+        {
+            worst = std::max(
+                worst,
+                (velocity.segment(o, block.count) - block.target.head(block.count)).cwiseAbs().maxCoeff());
+            continue;
+        }
+        // One-sided row: at its target while it pushes, at or above it otherwise.
+        const double gap = velocity(o) - block.target(0);
+        worst = std::max(worst, lambda(o) > 0.0 ? std::abs(gap) : std::max(0.0, -gap));
+        if (block.count == 3)
+        {
+            // Friction inside the cone: no slip. On its edge: slip opposite to the friction.
+            const Eigen::Vector2d slip = velocity.segment<2>(o + 1);
+            const Eigen::Vector2d friction = lambda.segment<2>(o + 1);
+            const double limit = block.friction * lambda(o);
+            const double magnitude = friction.norm();
+            if (!(limit > 0.0))
+            {
+                continue; // no normal impulse, no friction: any slip
+            }
+            if (magnitude < (1.0 - 1e-9) * limit)
+            {
+                worst = std::max(worst, slip.cwiseAbs().maxCoeff());
+            }
+            else
+            {
+                worst = std::max(worst, (slip + slip.norm() / magnitude * friction).cwiseAbs().maxCoeff());
+            }
+        }
+    }
+    return worst;
+}
+
+void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<int>& treeOfBody,
+                      RowCoupling& coupling, std::vector<std::vector<std::pair<int, int>>>& scratch)
+{
+    auto treeOf = [&](int body) { return body >= 0 ? treeOfBody[static_cast<std::size_t>(body)] : -1; };
+    for (std::vector<std::pair<int, int>>& runs : scratch)
+    {
+        runs.clear();
+    }
+    for (const ExtraBlock& block : blocks) // blocks are in row order, so each tree's runs are sorted
+    {
+        const int a = treeOf(block.bodyA);
+        const int b = treeOf(block.bodyB);
+        for (int tree : {a, b})
+        {
+            if (tree >= 0 && (tree == a || b != a))
+            {
+                if (static_cast<std::size_t>(tree) >= scratch.size())
+                {
+                    scratch.resize(static_cast<std::size_t>(tree) + 1);
+                }
+                appendRun(scratch[static_cast<std::size_t>(tree)], block.offset, block.offset + block.count);
+            }
+            if (a == b)
+            {
+                break;
+            }
+        }
+    }
+    coupling.runs.clear();
+    coupling.firstRun.clear();
+    for (const ExtraBlock& block : blocks)
+    {
+        coupling.firstRun.push_back(static_cast<int>(coupling.runs.size()));
+        const int a = treeOf(block.bodyA);
+        const int b = treeOf(block.bodyB);
+        const std::vector<std::pair<int, int>>* first =
+            a >= 0 ? &scratch[static_cast<std::size_t>(a)] : nullptr;
+        const std::vector<std::pair<int, int>>* second =
+            b >= 0 && b != a ? &scratch[static_cast<std::size_t>(b)] : nullptr;
+        if (first == nullptr)
+        {
+            std::swap(first, second);
+        }
+        if (second == nullptr)
+        {
+            coupling.runs.insert(coupling.runs.end(), first->begin(), first->end());
+            continue;
+        }
+        // The union of two sorted run lists.
+        const std::size_t start = coupling.runs.size();
+        std::merge(first->begin(), first->end(), second->begin(), second->end(),
+                   std::back_inserter(coupling.runs));
+        std::vector<std::pair<int, int>> merged;
+        for (std::size_t r = start; r < coupling.runs.size(); ++r)
+        {
+            appendRun(merged, coupling.runs[r].first, coupling.runs[r].second);
+        }
+        coupling.runs.resize(start);
+        coupling.runs.insert(coupling.runs.end(), merged.begin(), merged.end());
+    }
+    coupling.firstRun.push_back(static_cast<int>(coupling.runs.size()));
+}
+
+ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                               const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
+                               const RowCoupling* coupling)
+{
+    ExtraSolveStats stats;
+    const Eigen::Index m = G.rows();
+    if (m == 0)
+    {
+        return stats;
+    }
+    // A row that can barely move (a point pinned by joints) has a tiny pivot: regularize it by a
+    // relative 1e-9 of the largest diagonal so the update stays bounded.
+    const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
+    // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
+    // tangential block, limits their one row. And the nonzero runs of each block's columns.
+    std::vector<Mat6>& inverse = scratch.inverse;
+    inverse.assign(blocks.size(), Mat6::Zero());
+    if (coupling == nullptr)
+    {
+        scratch.dense.runs.assign(blocks.size(), {0, static_cast<int>(m)});
+        scratch.dense.firstRun.resize(blocks.size() + 1);
+        for (std::size_t b = 0; b <= blocks.size(); ++b)
+        {
+            scratch.dense.firstRun[b] = static_cast<int>(b);
+        }
+        coupling = &scratch.dense;
+    }
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+    {
+        const int o = blocks[b].offset;
+        const int n = blocks[b].count;
+        if (blocks[b].kind == ExtraBlock::Kind::Loop)
+        {
+            const Eigen::MatrixXd block =
+                G.block(o, o, n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
+            inverse[b].topLeftCorner(n, n) = block.inverse();
+            continue;
+        }
+        inverse[b](0, 0) = 1.0 / (G(o, o) + regularization);
+        if (n == 3)
+        {
+            const Eigen::Matrix2d tt =
+                G.block<2, 2>(o + 1, o + 1) + regularization * Eigen::Matrix2d::Identity();
+            inverse[b].block<2, 2>(1, 1) = tt.inverse();
+            const Eigen::Matrix3d whole = G.block<3, 3>(o, o) + regularization * Eigen::Matrix3d::Identity();
+            inverse[b].block<3, 3>(3, 3) = whole.inverse(); // the sticking trial
+        }
+    }
+
+    Eigen::VectorXd& velocity = scratch.velocity;
+    velocity.noalias() = freeVelocity;
+    velocity.noalias() += G * lambda; // J u with the current impulses
+    double* v = velocity.data();
+    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+    {
+        double change = 0.0;  // largest impulse change of the sweep (N s)
+        double largest = 0.0; // largest impulse (N s)
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+        {
+            const ExtraBlock& block = blocks[b];
+            const int o = block.offset;
+            const int n = block.count;
+            using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+            const SmallVec old = lambda.segment(o, n);
+            SmallVec next = old;
+            if (block.kind == ExtraBlock::Kind::Loop)
+            {
+                const SmallVec target = block.target.head(n);
+                next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
+            }
+            else
+            {
+                bool stuck = false;
+                if (n == 3)
+                {
+                    // Sticking first (PAPER.md §2): the whole block's velocity to its target; kept
+                    // when the normal impulse pushes and the friction stays inside the cone.
+                    const Eigen::Vector3d target(block.target(0), 0.0, 0.0);
+                    const Eigen::Vector3d trial =
+                        old.head<3>() + inverse[b].block<3, 3>(3, 3) * (target - velocity.segment<3>(o));
+                    if (trial(0) >= 0.0 && trial.tail<2>().norm() <= block.friction * trial(0))
+                    {
+                        next.head<3>() = trial;
+                        stuck = true;
+                    }
+                }
+                // Normal (or limit) row: one-sided.
+                if (!stuck)
+                {
+                    next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - v[o]));
+                    if (n == 3)
+                    {
+                        // Tangential rows after the normal change, then the friction cone
+                        // |lambda_t| <= mu lambda_n by radial projection.
+                        const Eigen::Vector2d vt =
+                            velocity.segment<2>(o + 1) + G.block<2, 1>(o + 1, o) * (next(0) - old(0));
+                        Eigen::Vector2d lt = old.segment<2>(1) - inverse[b].block<2, 2>(1, 1) * vt;
+                        const double limit = block.friction * next(0);
+                        const double tangential = lt.norm();
+                        if (tangential > limit)
+                        {
+                            // Sliding: the anisotropic 2x2 step would leave the friction off the
+                            // slip direction at the fixed point; an isotropic step (k = 2 / trace)
+                            // followed by the radial projection converges to friction opposing the slip.
+                            const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
+                            lt = old.segment<2>(1) - k * vt;
+                            const double slide = lt.norm();
+                            if (slide > limit)
+                            {
+                                lt *= slide > 0.0 ? limit / slide : 0.0;
+                            }
+                        }
+                        next.segment<2>(1) = lt;
+                    }
+                }
+            }
+            double delta[6];
+            double step = 0.0;
+            for (int q = 0; q < n; ++q)
+            {
+                delta[q] = next(q) - old(q);
+                step = std::max(step, std::abs(delta[q]));
+            }
+            if (step > 0.0)
+            {
+                lambda.segment(o, n) = next;
+                addColumns(G, o, n, delta, coupling->runs.data() + coupling->firstRun[b],
+                           coupling->runs.data() + coupling->firstRun[b + 1], velocity);
+            }
+            change = std::max(change, step);
+            largest = std::max(largest, next.cwiseAbs().maxCoeff());
+        }
+        stats.sweeps = sweep + 1;
+        stats.lastChange = largest > 0.0 ? change / largest : 0.0;
+        stats.lastResidual = conditionResidual(blocks, velocity, lambda);
+        if (stats.lastResidual <= settings.velocityTolerance || change <= settings.tolerance * largest ||
+            change < 1e-14)
+        {
+            break;
+        }
+    }
+    return stats;
+}
+
+} // namespace frontier::core

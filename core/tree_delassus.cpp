@@ -1,0 +1,266 @@
+// core/tree_delassus.cpp: the Delassus matrix G = J_x H^-1 J_x^T of the extra rows (PAPER.md §5)
+// from the tree factorization H = L D L^T of core/tree_solver.cpp, without one O(n) solve per row.
+//
+// With z_x = L^-1 e_x (the forward sweep of a unit impulse on body x: nonzero only on x's path
+// to its root), (H^-1)_xy = sum over the blocks b common to both paths of z_x,b^T D_b^-1 z_y,b.
+// The paths of x and y meet at a block c and coincide above it, where z_x,b = Phi(b <- c) z_x,c.
+// So (H^-1)_xy = z_x,c^T X_c z_y,c with X_c = sum over b above c of Phi^T D_b^-1 Phi, the diagonal
+// block of H^-1 at c. Those blocks follow top-down from the root (Takahashi's selected
+// inversion): X_root = D_root^-1, X_c = D_c^-1 + L_c X_p(c) L_c^T. Carrying J_x^T instead of e_x,
+// G_xy = A_x,c^T X_c A_y,c with A_x = L^-1 J_x^T: one small product per pair of bodies instead of
+// a sum along their common path.
+#include "core/fixed_rows.h"
+#include "core/tree_solver.h"
+
+#include <algorithm>
+
+namespace frontier::core
+{
+
+namespace
+{
+
+// next = -L^T a: L is D x P (column-major), a is D x m, next P x m (the forward sweep's
+// z_p -= L_b^T z_b for m columns at once).
+template <int D, int P> void propagate(const double* l, const double* a, double* next, int m)
+{
+    const Eigen::Map<const Eigen::Matrix<double, D, P>> L(l);
+    const Eigen::Map<const Eigen::Matrix<double, D, Eigen::Dynamic>> A(a, D, m);
+    Eigen::Map<Eigen::Matrix<double, P, Eigen::Dynamic>> N(next, P, m);
+    N.noalias() = -(L.transpose() * A);
+}
+
+// X(0:D, 0:D) += L Xp L^T with L D x P (column-major) and Xp the top-left P x P of `parent`.
+template <int D, int P> void addCongruence(const double* l, const Mat6& parent, Mat6& X)
+{
+    const Eigen::Map<const Eigen::Matrix<double, D, P>> L(l);
+    const Eigen::Matrix<double, D, P> LX = L * parent.topLeftCorner<P, P>();
+    X.topLeftCorner<D, D>().noalias() += LX * L.transpose();
+}
+
+} // namespace
+
+void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+{
+    const FrontierLayout& layout = *mSystem->layout;
+    const std::size_t nblocks = mBlocks.size();
+    if (mSlotOfBody.size() != mSystem->model->bodies.size())
+    {
+        mSlotOfBody.assign(mSystem->model->bodies.size(), -1);
+    }
+    if (mDiagonalOf.size() != nblocks)
+    {
+        mDiagonalOf.assign(nblocks, -1);
+    }
+
+    // Bodies with extra rows (slots) and the G rows each one carries, in stacking order.
+    mSlotBodies.clear();
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int body : {block.bodyA, block.bodyB})
+        {
+            if (body >= 0 && mSlotOfBody[static_cast<std::size_t>(body)] < 0)
+            {
+                mSlotOfBody[static_cast<std::size_t>(body)] = static_cast<int>(mSlotBodies.size());
+                mSlotBodies.push_back(body);
+            }
+        }
+    }
+    const std::size_t k = mSlotBodies.size();
+    mSlotRows.resize(std::max(mSlotRows.size(), k));
+    mPaths.resize(std::max(mPaths.size(), k));
+    for (std::size_t s = 0; s < k; ++s)
+    {
+        mSlotRows[s].clear();
+        mPaths[s].clear();
+    }
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int side = 0; side < 2; ++side)
+        {
+            const int body = side == 0 ? block.bodyA : block.bodyB;
+            if (body >= 0)
+            {
+                std::vector<int>& slotRows =
+                    mSlotRows[static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)])];
+                for (int r = 0; r < block.count; ++r)
+                {
+                    slotRows.push_back(block.offset + r);
+                }
+            }
+        }
+    }
+
+    // Paths and room for their A blocks (at most 6 x m_x each).
+    std::size_t poolSize = 0;
+    for (std::size_t s = 0; s < k; ++s)
+    {
+        const std::size_t m = mSlotRows[s].size();
+        for (int b = layout.bodyBlock[static_cast<std::size_t>(mSlotBodies[s])]; b >= 0;
+             b = mBlocks[static_cast<std::size_t>(b)].parent)
+        {
+            mPaths[s].push_back({b, static_cast<std::uint32_t>(poolSize)});
+            poolSize += 6 * m;
+        }
+    }
+    mPool.resize(poolSize);
+
+    // Forward sweeps, A_x = L^-1 J_x^T: J_x^T at x's node, then A_p = -L_b^T A_b up the path.
+    for (std::size_t s = 0; s < k; ++s)
+    {
+        const int m = static_cast<int>(mSlotRows[s].size());
+        const std::vector<PathEntry>& path = mPaths[s];
+        Eigen::Map<Eigen::MatrixXd> node(mPool.data() + path[0].offset, 6, m);
+        const int body = mSlotBodies[s];
+        int column = 0;
+        for (const ExtraBlock& block : blocks)
+        {
+            for (int side = 0; side < 2; ++side)
+            {
+                if ((side == 0 ? block.bodyA : block.bodyB) == body)
+                {
+                    const Mat6& J = side == 0 ? block.J_A : block.J_B;
+                    node.middleCols(column, block.count) = J.topRows(block.count).transpose();
+                    column += block.count;
+                }
+            }
+        }
+        for (std::size_t e = 0; e + 1 < path.size(); ++e)
+        {
+            const BlockInfo& info = mBlocks[static_cast<std::size_t>(path[e].block)];
+            const double* coupling = mArena.data() + mOffsets[static_cast<std::size_t>(path[e].block)] +
+                                     info.dim * (info.dim + 1) / 2; // L_b, dim x parentDim
+            const double* a = mPool.data() + path[e].offset;
+            double* next = mPool.data() + path[e + 1].offset;
+            // A node's parent is its edge (r rows), an edge's parent a node (6 rows).
+            const bool edge = info.flags & cEdge;
+            withRows(edge ? info.dim : info.parentDim,
+                     [&](auto r)
+                     {
+                         constexpr int R = decltype(r)::value;
+                         if (edge)
+                         {
+                             propagate<R, 6>(coupling, a, next, m);
+                         }
+                         else
+                         {
+                             propagate<6, R>(coupling, a, next, m);
+                         }
+                     });
+        }
+    }
+
+    // X_c on the union of the paths, from the roots down (descending layout order).
+    mMarked.clear();
+    for (std::size_t s = 0; s < k; ++s)
+    {
+        for (const PathEntry& entry : mPaths[s])
+        {
+            if (mDiagonalOf[static_cast<std::size_t>(entry.block)] >= 0)
+            {
+                break; // the rest of this path is marked already
+            }
+            mDiagonalOf[static_cast<std::size_t>(entry.block)] = 0;
+            mMarked.push_back(entry.block);
+        }
+    }
+    std::sort(mMarked.begin(), mMarked.end(), std::greater<>());
+    mDiagonal.resize(std::max(mDiagonal.size(), mMarked.size()));
+    for (std::size_t i = 0; i < mMarked.size(); ++i)
+    {
+        const int b = mMarked[i];
+        mDiagonalOf[static_cast<std::size_t>(b)] = static_cast<int>(i);
+        const BlockInfo& info = mBlocks[static_cast<std::size_t>(b)];
+        Mat6& X = mDiagonal[i];
+        X.setIdentity();
+        applyPivotInverse(b, X); // D_b^-1 in the top-left dim x dim
+        if (info.parent >= 0)
+        {
+            const Mat6& parent =
+                mDiagonal[static_cast<std::size_t>(mDiagonalOf[static_cast<std::size_t>(info.parent)])];
+            const double* coupling =
+                mArena.data() + mOffsets[static_cast<std::size_t>(b)] + info.dim * (info.dim + 1) / 2;
+            const bool edge = info.flags & cEdge;
+            withRows(edge ? info.dim : info.parentDim,
+                     [&](auto r)
+                     {
+                         constexpr int R = decltype(r)::value;
+                         if (edge)
+                         {
+                             addCongruence<R, 6>(coupling, parent, X);
+                         }
+                         else
+                         {
+                             addCongruence<6, R>(coupling, parent, X);
+                         }
+                     });
+        }
+    }
+
+    // G_xy = A_x,c^T X_c A_y,c for every pair of slots in the same tree, c where their paths meet.
+    G.setZero(rows, rows);
+    for (std::size_t x = 0; x < k; ++x)
+    {
+        const std::vector<PathEntry>& px = mPaths[x];
+        const int treeX = layout.treeOfBody[static_cast<std::size_t>(mSlotBodies[x])];
+        const int mx = static_cast<int>(mSlotRows[x].size());
+        for (std::size_t y = x; y < k; ++y)
+        {
+            if (layout.treeOfBody[static_cast<std::size_t>(mSlotBodies[y])] != treeX)
+            {
+                continue;
+            }
+            const std::vector<PathEntry>& py = mPaths[y];
+            std::size_t ix = 0, iy = 0;
+            while (px[ix].block != py[iy].block) // block indices ascend along a path
+            {
+                if (px[ix].block < py[iy].block)
+                {
+                    ++ix;
+                }
+                else
+                {
+                    ++iy;
+                }
+            }
+            const int c = px[ix].block;
+            const int my = static_cast<int>(mSlotRows[y].size());
+            const Mat6& X = mDiagonal[static_cast<std::size_t>(mDiagonalOf[static_cast<std::size_t>(c)])];
+            // Two paths first meet at a node (an edge has one child), so c has 6 rows.
+            const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> ax(mPool.data() + px[ix].offset,
+                                                                                6, mx);
+            const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> ay(mPool.data() + py[iy].offset,
+                                                                                6, my);
+            mPairTemp.resize(6, my);
+            mPairTemp.noalias() = X * ay; // X_c A_y
+            mPairProduct.resize(mx, my);
+            mPairProduct.noalias() = ax.transpose().lazyProduct(mPairTemp);
+            const int* rx = mSlotRows[x].data();
+            const int* ry = mSlotRows[y].data();
+            for (int j = 0; j < my; ++j)
+            {
+                for (int i = 0; i < mx; ++i)
+                {
+                    const double g = mPairProduct(i, j);
+                    G(rx[i], ry[j]) += g;
+                    if (y != x)
+                    {
+                        G(ry[j], rx[i]) += g;
+                    }
+                }
+            }
+        }
+    }
+
+    // Leave the per-body and per-block maps all -1 for the next call.
+    for (int body : mSlotBodies)
+    {
+        mSlotOfBody[static_cast<std::size_t>(body)] = -1;
+    }
+    for (int b : mMarked)
+    {
+        mDiagonalOf[static_cast<std::size_t>(b)] = -1;
+    }
+}
+
+} // namespace frontier::core
