@@ -11,7 +11,9 @@
 //      that have at least one allowed partner (AABBs grown by the margin). Its callback only
 //      collects allowed shape pairs; they are sorted and then tested in that order, so the
 //      result never depends on the tree's traversal order.
-//   4. Narrowphase per pair with fcl::collide. Box-box keeps FCL's manifold (up to 4 points).
+//   4. Narrowphase per pair: spheres and capsules against each other in closed form
+//      (swept_spheres.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
+//      (up to 4 points).
 //      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
 //      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
 //      vertices, capsule end spheres, cylinder rim points and mesh vertices tested against the
@@ -175,6 +177,7 @@ struct ContactDetector::Impl
     Impl(const core::Model& model, double marginIn);
     void poseShape(int index, const core::State& state);
     void planePass(std::vector<Contact>& out);
+    void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
     void narrowphase(int i, int j, std::vector<Contact>& out);
     void emit(int bodyA, int bodyB, std::vector<Contact>& out);
     static bool broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
@@ -323,6 +326,11 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
     const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
     const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
     const bool mesh = a.type == core::ShapeType::Mesh || b.type == core::ShapeType::Mesh;
+    if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
+    {
+        sweptSpherePair(a, b, out);
+        return;
+    }
 
     result.clear(); // CollisionResult accumulates otherwise
     fcl::collide(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
@@ -392,6 +400,32 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
             if (d.norm() > 1e-12 && pa.allFinite() && pb.allFinite())
                 raw.push_back({0.5 * (pa + pb), d / d.norm(), -gap});
         }
+    }
+    detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
+    emit(a.body, b.body, out);
+}
+
+// Spheres and capsules in closed form (swept_spheres.cpp) instead of libccd's MPR and GJK; a
+// capsule pair then gets its feature points as FCL's point would, the closed-form point kept
+// unless the features reach its depth.
+void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b,
+                                            std::vector<Contact>& out)
+{
+    ++stats.narrowphaseTests;
+    raw.clear();
+    RawContact closest;
+    const bool near = detail::sweptSphereContact(a, b, margin, closest);
+    if (detail::usesFeatureManifold(a.type, b.type))
+    {
+        detail::featureContacts(a, b, near && closest.depth > 0.0 ? &closest : nullptr, margin, raw);
+    }
+    if (near)
+    {
+        double featureDepth = -std::numeric_limits<double>::infinity();
+        for (const RawContact& c : raw)
+            featureDepth = std::max(featureDepth, c.depth);
+        if (raw.empty() || closest.depth > featureDepth + std::max(0.1 * margin, 1e-6))
+            raw.push_back(closest);
     }
     detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
     emit(a.body, b.body, out);

@@ -91,6 +91,15 @@ bool usesFeatureManifold(core::ShapeType a, core::ShapeType b);
 void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact* reference,
                      double margin, std::vector<RawContact>& out);
 
+// --- swept_spheres.cpp ----------------------------------------------------------------------
+// Spheres and capsules (sphere-swept segments) against each other in closed form.
+bool isSweptSphere(core::ShapeType type);
+
+// The contact of two spheres or capsules when their separation is below margin (m): on the line
+// joining the closest points of their segments, normal from a towards b, depth = the radii less
+// the segments' distance (< 0 a gap). False when they are farther apart.
+bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out);
+
 // --- manifold.cpp ---------------------------------------------------------------------------
 // Cleans the contacts out[begin, end) of one shape pair in place and shrinks the vector: drops
 // non-finite ones, keeps the deepest of those closer than mergeDistance (m), and reduces the
