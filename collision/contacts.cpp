@@ -12,7 +12,8 @@
 //      collects allowed shape pairs; they are sorted and then tested in that order, so the
 //      result never depends on the tree's traversal order.
 //   4. Narrowphase per pair: spheres and capsules against each other in closed form
-//      (swept_spheres.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
+//      (swept_spheres.cpp); pairs proven apart by more than the margin along an axis are done
+//      (separation.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
 //      (up to 4 points).
 //      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
 //      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
@@ -329,6 +330,11 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
     if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
     {
         sweptSpherePair(a, b, out);
+        return;
+    }
+    if (detail::separatedBeyond(a, b, margin))
+    {
+        ++stats.separatedPairs; // no contact within the margin: nothing for FCL to do
         return;
     }
 

@@ -28,7 +28,8 @@ struct DetectorStats
     long detectCalls = 0;      // detect() calls
     long planeTests = 0;       // shape-plane tests that passed the bounding-sphere check
     long broadphasePairs = 0;  // shape pairs from the broadphase allowed by the filter
-    long narrowphaseTests = 0; // fcl::collide calls
+    long narrowphaseTests = 0; // narrowphase tests: fcl::collide calls and closed-form sphere/capsule pairs
+    long separatedPairs = 0;   // broadphase pairs proven apart beyond the margin, skipped
     long contacts = 0;         // contacts reported
 };
 

@@ -91,6 +91,11 @@ bool usesFeatureManifold(core::ShapeType a, core::ShapeType b);
 void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact* reference,
                      double margin, std::vector<RawContact>& out);
 
+// --- separation.cpp -------------------------------------------------------------------------
+// True when a and b are proven farther apart than margin (m) along some axis: the centre line,
+// a box's face normals, a capsule's or cylinder's axis. Meshes count as their bounding sphere.
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin);
+
 // --- swept_spheres.cpp ----------------------------------------------------------------------
 // Spheres and capsules (sphere-swept segments) against each other in closed form.
 bool isSweptSphere(core::ShapeType type);

@@ -10,6 +10,7 @@
 // G_xy = A_x,c^T X_c A_y,c with A_x = L^-1 J_x^T: one small product per pair of bodies instead of
 // a sum along their common path.
 #include "core/fixed_rows.h"
+#include "core/packed_cholesky.h"
 #include "core/tree_solver.h"
 
 #include <algorithm>
@@ -28,6 +29,18 @@ template <int D, int P> void propagate(const double* l, const double* a, double*
     const Eigen::Map<const Eigen::Matrix<double, D, Eigen::Dynamic>> A(a, D, m);
     Eigen::Map<Eigen::Matrix<double, P, Eigen::Dynamic>> N(next, P, m);
     N.noalias() = -(L.transpose() * A);
+}
+
+// X(0:N, 0:N) = D_b^-1 from the block's packed Cholesky factor l (of -D_b for an edge).
+template <int N> void pivotInverse(const double* l, bool negated, Mat6& X)
+{
+    Eigen::Matrix<double, N, N> inverse = Eigen::Matrix<double, N, N>::Identity();
+    choleskySolveInPlace<N, N>(l, inverse.data());
+    if (negated)
+    {
+        inverse = -inverse;
+    }
+    X.topLeftCorner<N, N>() = inverse;
 }
 
 // X(0:D, 0:D) += L Xp L^T with L D x P (column-major) and Xp the top-left P x P of `parent`.
@@ -172,8 +185,8 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
         mDiagonalOf[static_cast<std::size_t>(b)] = static_cast<int>(i);
         const BlockInfo& info = mBlocks[static_cast<std::size_t>(b)];
         Mat6& X = mDiagonal[i];
-        X.setIdentity();
-        applyPivotInverse(b, X); // D_b^-1 in the top-left dim x dim
+        const double* factor = mArena.data() + mOffsets[static_cast<std::size_t>(b)];
+        withRows(info.dim, [&](auto r) { pivotInverse<decltype(r)::value>(factor, info.flags & cEdge, X); });
         if (info.parent >= 0)
         {
             const Mat6& parent =

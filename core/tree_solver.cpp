@@ -12,6 +12,7 @@
 #include "core/tree_solver.h"
 
 #include "core/fixed_rows.h"
+#include "core/packed_cholesky.h"
 
 #include <cmath>
 #include <limits>
@@ -24,127 +25,6 @@ namespace frontier::core
 
 namespace
 {
-
-// Symmetric pivots and their Cholesky factors are stored as lower triangles packed by columns.
-// Doubles in an n x n lower triangle:
-constexpr int triSize(int n)
-{
-    return n * (n + 1) / 2;
-}
-constexpr int cTri6 = triSize(6);
-
-// Index of (i, j), i >= j, in an N x N packed lower triangle.
-template <int N> constexpr int tri(int i, int j)
-{
-    return i + j * (2 * N - j - 1) / 2;
-}
-inline int tri(int n, int i, int j)
-{
-    return i + j * (2 * n - j - 1) / 2;
-}
-
-// In-place lower Cholesky of the N x N packed symmetric matrix a; the factor's diagonal is
-// stored as reciprocals 1 / l_jj (the solves multiply instead of divide). Returns false when a
-// pivot falls below cRelativePivot times its own row's diagonal entry (cancellation: dependent
-// rows), never producing NaN. Per row, not against the largest diagonal entry: a positive
-// definite pivot may span many decades (a long revolute chain's articulated inertia about its
-// free axis vs its constrained axes; a light body carrying a heavy subtree) without being
-// singular.
-constexpr double cRelativePivot = 1e-12;
-
-template <int N> inline bool choleskyInPlace(double* a)
-{
-    double scale = 0.0;
-    for (int i = 0; i < N; ++i)
-    {
-        scale = std::max(scale, std::abs(a[tri<N>(i, i)]));
-    }
-    if (!(scale > 0.0) || !std::isfinite(scale))
-    {
-        return false;
-    }
-    for (int j = 0; j < N; ++j)
-    {
-        const double diagonal = a[tri<N>(j, j)];
-        double d = diagonal;
-        for (int k = 0; k < j; ++k)
-        {
-            d -= a[tri<N>(j, k)] * a[tri<N>(j, k)];
-        }
-        if (!(d > cRelativePivot * diagonal))
-        {
-            return false;
-        }
-        const double inverse = 1.0 / std::sqrt(d);
-        a[tri<N>(j, j)] = inverse;
-        for (int i = j + 1; i < N; ++i)
-        {
-            double s = a[tri<N>(i, j)];
-            for (int k = 0; k < j; ++k)
-            {
-                s -= a[tri<N>(i, k)] * a[tri<N>(j, k)];
-            }
-            a[tri<N>(i, j)] = s * inverse;
-        }
-    }
-    return true;
-}
-
-// x <- (L L^T)^-1 x for the N x N factor l of choleskyInPlace, on the C columns of the N x C
-// column-major x.
-template <int N, int C> inline void choleskySolveInPlace(const double* l, double* x)
-{
-    for (int i = 0; i < N; ++i)
-    {
-        for (int c = 0; c < C; ++c)
-        {
-            double s = x[i + c * N];
-            for (int k = 0; k < i; ++k)
-            {
-                s -= l[tri<N>(i, k)] * x[k + c * N];
-            }
-            x[i + c * N] = s * l[tri<N>(i, i)];
-        }
-    }
-    for (int i = N - 1; i >= 0; --i)
-    {
-        for (int c = 0; c < C; ++c)
-        {
-            double s = x[i + c * N];
-            for (int k = i + 1; k < N; ++k)
-            {
-                s -= l[tri<N>(k, i)] * x[k + c * N];
-            }
-            x[i + c * N] = s * l[tri<N>(i, i)];
-        }
-    }
-}
-
-// The same for any n (delassus): on the top n rows of z.
-void choleskySolveInPlace(const double* l, int n, Mat6& z)
-{
-    for (int c = 0; c < 6; ++c)
-    {
-        for (int i = 0; i < n; ++i)
-        {
-            double s = z(i, c);
-            for (int k = 0; k < i; ++k)
-            {
-                s -= l[tri(n, i, k)] * z(k, c);
-            }
-            z(i, c) = s * l[tri(n, i, i)];
-        }
-        for (int i = n - 1; i >= 0; --i)
-        {
-            double s = z(i, c);
-            for (int k = i + 1; k < n; ++k)
-            {
-                s -= l[tri(n, k, i)] * z(k, c);
-            }
-            z(i, c) = s * l[tri(n, i, i)];
-        }
-    }
-}
 
 inline void prefetch(const void* p)
 {
@@ -338,16 +218,6 @@ template <int N, int P> inline void backwardBlock(const double* block, double* x
 constexpr std::size_t cAhead = 8;
 
 } // namespace
-
-void TreeSolver::applyPivotInverse(int block, Mat6& z) const
-{
-    const BlockInfo& info = mBlocks[static_cast<std::size_t>(block)];
-    choleskySolveInPlace(mArena.data() + mOffsets[static_cast<std::size_t>(block)], info.dim, z);
-    if (info.flags & cEdge)
-    {
-        z.topRows(info.dim) = -z.topRows(info.dim);
-    }
-}
 
 void TreeSolver::factor(const RowSystem& system)
 {

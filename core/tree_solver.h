@@ -59,8 +59,6 @@ class TreeSolver final : public ImpulseSolver
     static constexpr std::uint8_t cChildIsJointChild = 8; // edge: its child node is the joint's child
                                                           // body (set during factor())
 
-    void applyPivotInverse(int block, Mat6& z) const; // top dim rows: z <- D_b^-1 z
-
     std::vector<BlockInfo> mBlocks; // layout order
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
     // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then

@@ -1,5 +1,6 @@
-// tests/collision/swept_spheres_test.cpp: sphere and capsule pairs, which the detector solves in
-// closed form (collision/swept_spheres.cpp), for random poses against two oracles: the distance
+// tests/collision/shortcuts_test.cpp: the detector's shortcuts past FCL, checked against FCL.
+// Sphere and capsule pairs, solved in closed form (collision/swept_spheres.cpp), for random
+// poses against two oracles: the distance
 // between the two axis segments by golden-section search (the distance from a point of one
 // segment to the other is convex along it), and FCL itself (fcl::collide says whether they
 // overlap; libccd's MPR depth is never below the true one; fcl::distance gives the gap).
@@ -7,7 +8,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
@@ -23,9 +26,17 @@ namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> fclShape(const core::Shape& s)
 {
-    if (s.type == core::ShapeType::Sphere)
+    switch (s.type)
+    {
+    case core::ShapeType::Sphere:
         return std::make_shared<fcl::Sphered>(s.radius);
-    return std::make_shared<fcl::Capsuled>(s.radius, s.length);
+    case core::ShapeType::Box:
+        return std::make_shared<fcl::Boxd>(s.size.x(), s.size.y(), s.size.z());
+    case core::ShapeType::Cylinder:
+        return std::make_shared<fcl::Cylinderd>(s.radius, s.length);
+    default:
+        return std::make_shared<fcl::Capsuled>(s.radius, s.length);
+    }
 }
 
 fcl::Transform3d pose(const Vec3& p, const Quat& q)
@@ -154,6 +165,69 @@ TEST(SweptSpheres, DepthsAndGapsMatchTheSegmentDistanceAndFcl)
     EXPECT_GT(apart, 30);
     EXPECT_LT(worstExact, 1e-9);
     EXPECT_LT(worstGapFcl, 1e-6); // the oracle agrees with FCL's GJK where both apply
+}
+
+// Pairs with a box or a cylinder that the detector proves apart along an axis (centre line, face
+// normals, axes: collision/separation.cpp) skip FCL. Whatever the path, for random poses: no
+// contact exactly when FCL's distance is at least the margin.
+TEST(SeparatedPairs, NoContactExactlyWhenFclSaysApartBeyondTheMargin)
+{
+    std::mt19937 rng(2027);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::uniform_real_distribution<double> size(0.05, 0.3);
+    constexpr double cMargin = 0.01; // m
+    long skipped = 0;
+    int apart = 0, near = 0;
+    for (int trial = 0; trial < 600; ++trial)
+    {
+        auto shape = [&](int k)
+        {
+            switch (k % 4)
+            {
+            case 0:
+                return box(size(rng), size(rng), size(rng));
+            case 1:
+                return cylinder(0.5 * size(rng), size(rng));
+            case 2:
+                return capsule(0.3 * size(rng), size(rng));
+            default:
+                return sphere(0.5 * size(rng));
+            }
+        };
+        const core::Shape a = shape(trial);
+        const core::Shape b = shape(trial / 4 + (trial % 4 == 3 ? 0 : 1)); // not two spheres/capsules only
+        const Quat qa = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+        const Quat qb = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
+        const Vec3 pb = 0.35 * Vec3(unit(rng), unit(rng), unit(rng));
+        core::Model model;
+        model.bodies.push_back(moving("a", a, Vec3::Zero(), qa));
+        model.bodies.push_back(moving("b", b, pb, qb));
+        ContactDetector detector(model, cMargin);
+        std::vector<Contact> contacts;
+        detector.detect(core::initialState(model), contacts);
+        skipped += detector.stats().separatedPairs;
+
+        fcl::CollisionObjectd oa(fclShape(a), pose(Vec3::Zero(), qa));
+        fcl::CollisionObjectd ob(fclShape(b), pose(pb, qb));
+        fcl::DistanceRequestd request(true);
+        fcl::DistanceResultd result;
+        const double gap = fcl::distance(&oa, &ob, request, result); // m; -1 when overlapping
+        if (gap >= cMargin + 1e-6)
+        {
+            ++apart;
+            EXPECT_TRUE(contacts.empty()) << "trial " << trial << ": gap " << gap << " m";
+        }
+        else if (gap < cMargin - 1e-6)
+        {
+            ++near;
+            EXPECT_FALSE(contacts.empty()) << "trial " << trial << ": gap " << gap << " m, no contact";
+        }
+    }
+    std::printf("%d pairs apart beyond the margin (%ld skipped without FCL), %d near or overlapping\n", apart,
+                skipped, near);
+    EXPECT_GT(apart, 100);
+    EXPECT_GT(near, 50);
+    EXPECT_GT(skipped, 100); // the shortcut is taken (others are culled by the AABBs first)
 }
 
 } // namespace frontier::collision::test
