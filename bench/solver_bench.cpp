@@ -2,7 +2,9 @@
 // `linear` (frontier-order elimination, O(n)), `dense` (Moore's dense solve, O(n^3)) and `pgs`
 // (20 projected Gauss-Seidel sweeps) solvers, on chains (ball or revolute joints) and random
 // trees (every joint type) of n bodies. The rows are assembled once, outside the timed loop
-// (BM_LinearAssemble times that step separately). Counter per_body: seconds per body per
+// (BM_LinearAssemble times that step separately). `linear` runs factor + solve as one call
+// (ImpulseSolver::factorAndSolve: the forward sweep fused into the elimination); the others
+// factor, then solve. Counter per_body: seconds per body per
 // factor + solve (inverted iteration-invariant rate).
 //
 //   solver_bench --benchmark_min_time=0.2
@@ -147,8 +149,7 @@ template <Shape S, core::SolverKind K> void BM_FactorSolve(benchmark::State& sta
     auto solver = core::makeSolver(K, 20);
     for (auto _ : state)
     {
-        solver->factor(problem.system);
-        solver->solve(problem.rhs, problem.solution);
+        solver->factorAndSolve(problem.system, problem.rhs, problem.solution);
         benchmark::DoNotOptimize(problem.solution.body.data());
         benchmark::ClobberMemory();
     }

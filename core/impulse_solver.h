@@ -66,6 +66,12 @@ class ImpulseSolver
     virtual void factor(const RowSystem& system) = 0;
     // One right-hand side; may be called many times per factor().
     virtual void solve(const BlockVector& rhs, BlockVector& solution) = 0;
+    // factor() and the first solve() in one call (the tree solver fuses them).
+    virtual void factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution)
+    {
+        factor(system);
+        solve(rhs, solution);
+    }
     virtual const char* name() const = 0;
 
     // Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; PAPER.md §5),

@@ -117,10 +117,13 @@ void Simulator::stepEuler(State& state)
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
     assembleRows(mModel, mLayout, state, mRows);
-    mSolver->factor(mRows); // PAPER.md §3 step 2 (eliminate), once per step
+    setMomentumRhs(state);
+    // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
+    // impulses of the free velocities, fused into one pass.
+    mSolver->factorAndSolve(mRows, mRhs, mSolution);
     clock.lap(StepStage::Factor);
     buildExtraRows(state);
-    solveImpulses(state); // §3 step 3 (back substitute), then the extra rows (§5)
+    solveContactImpulses(state); // the extra rows on top (§5)
     clock.lap(StepStage::Solve);
     integratePositions(state);
     removePenetration(state);
@@ -145,7 +148,9 @@ bool Simulator::stepRattle(State& state)
     factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
     clock.lap(StepStage::Factor);
     buildExtraRows(state);
-    solveImpulses(state);
+    setMomentumRhs(state);
+    mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
+    solveContactImpulses(state);
     clock.lap(StepStage::Solve);
     integratePositions(state); // drift: x += h v, R by the free rotation at constant L
     removePenetration(state);
@@ -205,19 +210,7 @@ void Simulator::projectVelocities(State& state)
             mEndBlocks.push_back(normal);
         }
     }
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (!mModel.bodies[i].isStatic)
-        {
-            const BodyState& s = state.bodies[i];
-            mRhs.body[i].head<3>() = mRows.mass[i] * s.velocity_W;
-            mRhs.body[i].tail<3>() = mRows.inertia_W[i] * s.angularVelocity_W;
-        }
-    }
-    for (Vec6& c : mRhs.joint)
-    {
-        c.setZero();
-    }
+    setMomentumRhs(state);
     mSolver->solve(mRhs, mCorrection);
     if (!mEndBlocks.empty())
     {
@@ -407,10 +400,8 @@ void Simulator::buildLoopRows(const RowSystem& rows)
     layoutExtraRows(mLoopBlocks);
 }
 
-// Joint impulses at velocity level, M u' - J^T lambda = M u*, J u' = 0 (the tree), then the
-// extra rows in constraint space: v = J_x u_free + G lambda_x with the complementarity
-// conditions, and u' = u_free + H^-1 J_x^T lambda_x.
-void Simulator::solveImpulses(State& state)
+// p = M u* for the joint-impulse solve M u' - J^T lambda = M u*, J u' = 0 (joint rhs c = 0).
+void Simulator::setMomentumRhs(const State& state)
 {
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
@@ -426,7 +417,13 @@ void Simulator::solveImpulses(State& state)
     {
         c.setZero();
     }
-    mSolver->solve(mRhs, mSolution);
+}
+
+// With the tree's solution u_free (mSolution), the extra rows in constraint space:
+// v = J_x u_free + G lambda_x with the complementarity conditions, and
+// u' = u_free + H^-1 J_x^T lambda_x; then the state takes u'.
+void Simulator::solveContactImpulses(State& state)
+{
     mStats.contactSweeps = 0;
     if (mStats.extraRows > 0)
     {

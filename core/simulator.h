@@ -2,8 +2,9 @@
 //
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
 // reads like the physics, in Simulator::step():
-//   checkState -> detectContacts -> computeFreeVelocities -> assembleRows -> factor (O(n))
-//   -> buildExtraRows -> solveImpulses -> integratePositions -> removePenetration
+//   checkState -> detectContacts -> computeFreeVelocities -> assembleRows -> setMomentumRhs
+//   -> factorAndSolve (O(n): elimination and the joint impulses in one pass) -> buildExtraRows
+//   -> solveContactImpulses -> integratePositions -> removePenetration
 //   -> stabilizeJoints -> carryAngularMomentum -> checkState
 // Contacts, loop-closing joints and joint limits are extra rows on top of the tree factorization
 // (PAPER.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
@@ -122,7 +123,8 @@ class Simulator
     void factorAtStart(const State& state);
     void projectVelocities(State& state);
     void buildExtraRows(const State& state);
-    void solveImpulses(State& state);
+    void setMomentumRhs(const State& state);
+    void solveContactImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
     bool stabilizeJoints(State& state); // false: a rattle step stalled

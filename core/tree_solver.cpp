@@ -221,6 +221,20 @@ constexpr std::size_t cAhead = 8;
 
 void TreeSolver::factor(const RowSystem& system)
 {
+    eliminateAll(system, nullptr);
+}
+
+void TreeSolver::factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution)
+{
+    eliminateAll(system, &rhs); // the forward sweep rides along with the elimination
+    solution.resize(rhs.body.size(), rhs.joint.size());
+    backwardSweep(solution);
+}
+
+// §3 step 2 in layout order; with a right-hand side, §3 step 3's forward sweep at each block as
+// soon as it is eliminated (its factors are still in cache).
+void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
+{
     mSystem = &system;
     const Model& model = *system.model;
     const FrontierLayout& layout = *system.layout;
@@ -311,84 +325,113 @@ void TreeSolver::factor(const RowSystem& system)
                 prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
                 if (ahead.parent >= 0)
                 {
-                    const std::size_t joint = static_cast<std::size_t>(blocks[ahead.parent].index);
+                    // Only the rows in use of both sides (the node reads one, its edge the
+                    // other): a whole JointRows is 632 bytes, a ball joint uses 288 of them.
+                    const BlockInfo& edge = blocks[ahead.parent];
+                    const std::size_t joint = static_cast<std::size_t>(edge.index);
+                    const std::size_t used = static_cast<std::size_t>(edge.dim) * 6 * sizeof(double);
                     prefetch(&model.joints[joint].child);
-                    prefetchRange(&system.joints[joint], sizeof(JointRows));
+                    prefetchRange(system.joints[joint].J_a.data(), used);
+                    prefetchRange(system.joints[joint].J_b.data(), used);
+                }
+            }
+            if (rhs != nullptr)
+            {
+                prefetchRange((ahead.flags & cEdge) ? &rhs->joint[static_cast<std::size_t>(ahead.index)]
+                                                    : &rhs->body[static_cast<std::size_t>(ahead.index)],
+                              sizeof(Vec6));
+                if (ahead.parent >= 0)
+                {
+                    prefetchForWrite(&mZ[static_cast<std::size_t>(ahead.parent)]);
                 }
             }
         }
 
-        BlockInfo& info = blocks[b];
-        double* own = arena + offsets[b];
-        const std::size_t index = static_cast<std::size_t>(info.index);
-        bool ok = true;
-        if (!(info.flags & cEdge))
+        eliminate(b);
+        if (rhs != nullptr)
         {
-            if (info.flags & cHasChildren)
-            {
-                addMassMatrix(own, system.mass[index], system.inertia_W[index]);
-            }
-            else
-            {
-                setMassMatrix(own, system.mass[index], system.inertia_W[index]);
-            }
-            if (info.parent < 0)
-            {
-                ok = factorNode<0>(own, nullptr, nullptr);
-            }
-            else
-            {
-                // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
-                BlockInfo& edge = blocks[info.parent];
-                const std::size_t joint = static_cast<std::size_t>(edge.index);
-                const JointRows& rows = system.joints[joint];
-                const bool jointChild = model.joints[joint].child == info.index;
-                if (jointChild)
-                {
-                    edge.flags |= cChildIsJointChild;
-                }
-                const double* J = (jointChild ? rows.J_b : rows.J_a).data();
-                double* edgePivot = arena + offsets[info.parent];
-                withRows(info.parentDim,
-                         [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
-            }
-            if (!ok)
-            {
-                const Body& body = model.bodies[index];
-                std::ostringstream msg;
-                msg << "body '" << body.name << "': mass matrix is not positive definite";
-                throw SingularJointError(body.name, msg.str());
-            }
-            continue;
+            forwardStep(b, *rhs);
         }
-        // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
-        // the joint is the one its child node is not on.
-        if (info.parent < 0)
+    }
+}
+
+// §3 step 2 at block b: its pivot's factor, L_b, and its contribution to its parent's pivot.
+void TreeSolver::eliminate(std::size_t b)
+{
+    const RowSystem& system = *mSystem;
+    const Model& model = *system.model;
+    double* arena = mArena.data();
+    BlockInfo* blocks = mBlocks.data();
+    const std::uint32_t* offsets = mOffsets.data();
+    BlockInfo& info = blocks[b];
+    double* own = arena + offsets[b];
+    const std::size_t index = static_cast<std::size_t>(info.index);
+    bool ok = true;
+    if (!(info.flags & cEdge))
+    {
+        if (info.flags & cHasChildren)
         {
-            withRows(info.dim, [&](auto r)
-                     { ok = factorEdge<decltype(r)::value, false>(own, nullptr, nullptr, false); });
+            addMassMatrix(own, system.mass[index], system.inertia_W[index]);
         }
         else
         {
-            if (info.parentDim != 6 || !(info.flags & cHasChildren))
+            setMassMatrix(own, system.mass[index], system.inertia_W[index]);
+        }
+        if (info.parent < 0)
+        {
+            ok = factorNode<0>(own, nullptr, nullptr);
+        }
+        else
+        {
+            // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
+            BlockInfo& edge = blocks[info.parent];
+            const std::size_t joint = static_cast<std::size_t>(edge.index);
+            const JointRows& rows = system.joints[joint];
+            const bool jointChild = model.joints[joint].child == info.index;
+            if (jointChild)
             {
-                throw std::logic_error("tree solver: malformed frontier layout");
+                edge.flags |= cChildIsJointChild;
             }
-            const JointRows& rows = system.joints[index];
-            const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
-            double* parentPivot = arena + offsets[info.parent];
-            const bool first = info.flags & cFirstChild;
-            withRows(info.dim,
-                     [&](auto r) { ok = factorEdge<decltype(r)::value, true>(own, J, parentPivot, first); });
+            const double* J = (jointChild ? rows.J_b : rows.J_a).data();
+            double* edgePivot = arena + offsets[info.parent];
+            withRows(info.parentDim, [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
         }
         if (!ok)
         {
-            const Joint& joint = model.joints[index];
+            const Body& body = model.bodies[index];
             std::ostringstream msg;
-            msg << "joint '" << joint.name << "' (" << jointTypeName(joint.type)
-                << "): its constraint rows are dependent or degenerate at this configuration";
-            throw SingularJointError(joint.name, msg.str());
+            msg << "body '" << body.name << "': mass matrix is not positive definite";
+            throw SingularJointError(body.name, msg.str());
         }
+        return;
+    }
+    // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
+    // the joint is the one its child node is not on.
+    if (info.parent < 0)
+    {
+        withRows(info.dim,
+                 [&](auto r) { ok = factorEdge<decltype(r)::value, false>(own, nullptr, nullptr, false); });
+    }
+    else
+    {
+        if (info.parentDim != 6 || !(info.flags & cHasChildren))
+        {
+            throw std::logic_error("tree solver: malformed frontier layout");
+        }
+        const JointRows& rows = system.joints[index];
+        const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
+        double* parentPivot = arena + offsets[info.parent];
+        const bool first = info.flags & cFirstChild;
+        withRows(info.dim,
+                 [&](auto r) { ok = factorEdge<decltype(r)::value, true>(own, J, parentPivot, first); });
+    }
+    if (!ok)
+    {
+        const Joint& joint = model.joints[index];
+        std::ostringstream msg;
+        msg << "joint '" << joint.name << "' (" << jointTypeName(joint.type)
+            << "): its constraint rows are dependent or degenerate at this configuration";
+        throw SingularJointError(joint.name, msg.str());
     }
 }
 
@@ -396,70 +439,81 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
 {
     const std::size_t nblocks = mBlocks.size();
     const BlockInfo* blocks = mBlocks.data();
-    const std::uint32_t* offsets = mOffsets.data();
-    const double* arena = mArena.data();
-    Vec6* z = mZ.data();
-    auto rhsOf = [&](const BlockInfo& info) -> const Vec6&
-    {
-        return (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
-                                    : rhs.body[static_cast<std::size_t>(info.index)];
-    };
-    // Forward, front to back. The KKT right-hand side (p for nodes, c for edges) is added to a
-    // block's z when the block is reached; every rhs read happens here, before `solution` is
-    // written, so the two may be the same object.
+    // Forward, front to back. Every rhs read happens here, before `solution` is written, so the
+    // two may be the same object.
     for (std::size_t b = 0; b < nblocks; ++b)
     {
         if (b + cAhead < nblocks)
         {
             const BlockInfo& ahead = blocks[b + cAhead];
-            prefetchRange(&rhsOf(ahead), sizeof(Vec6));
+            prefetchRange((ahead.flags & cEdge) ? &rhs.joint[static_cast<std::size_t>(ahead.index)]
+                                                : &rhs.body[static_cast<std::size_t>(ahead.index)],
+                          sizeof(Vec6));
             if (ahead.parent >= 0)
             {
-                prefetchForWrite(&z[ahead.parent]);
-                prefetchForWrite(z[ahead.parent].data() + 5);
+                prefetchForWrite(&mZ[static_cast<std::size_t>(ahead.parent)]);
+                prefetchForWrite(mZ[static_cast<std::size_t>(ahead.parent)].data() + 5);
             }
         }
+        forwardStep(b, rhs);
+    }
+    solution.resize(rhs.body.size(), rhs.joint.size());
+    backwardSweep(solution);
+}
 
-        const BlockInfo& info = blocks[b];
-        const double* own = arena + offsets[b];
-        double* zb = z[b].data();
-        const Vec6& rb = rhsOf(info);
-        if (info.flags & cHasChildren)
+// §3 step 3, forward sweep at block b: the KKT right-hand side (p for nodes, c for edges) is
+// added to z_b (its children's terms are in: they come earlier), then z_p -= L_b^T z_b and
+// z_b <- D_b^-1 z_b.
+void TreeSolver::forwardStep(std::size_t b, const BlockVector& rhs)
+{
+    const BlockInfo& info = mBlocks[b];
+    const double* own = mArena.data() + mOffsets[b];
+    Vec6* z = mZ.data();
+    double* zb = z[b].data();
+    const Vec6& rb = (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
+                                          : rhs.body[static_cast<std::size_t>(info.index)];
+    if (info.flags & cHasChildren)
+    {
+        z[b] += rb;
+    }
+    else
+    {
+        z[b] = rb;
+    }
+    double* zp = info.parent >= 0 ? z[static_cast<std::size_t>(info.parent)].data() : nullptr;
+    const bool first = info.flags & cFirstChild;
+    if (!(info.flags & cEdge))
+    {
+        if (zp == nullptr)
         {
-            z[b] += rb;
+            forwardBlock<6, 0, false>(own, zb, nullptr, false);
         }
         else
         {
-            z[b] = rb;
-        }
-        double* zp = info.parent >= 0 ? z[static_cast<std::size_t>(info.parent)].data() : nullptr;
-        const bool first = info.flags & cFirstChild;
-        if (!(info.flags & cEdge))
-        {
-            if (zp == nullptr)
-            {
-                forwardBlock<6, 0, false>(own, zb, nullptr, false);
-            }
-            else
-            {
-                withRows(info.parentDim,
-                         [&](auto r) { forwardBlock<6, decltype(r)::value, false>(own, zb, zp, first); });
-            }
-        }
-        else if (zp == nullptr)
-        {
-            withRows(info.dim,
-                     [&](auto r) { forwardBlock<decltype(r)::value, 0, true>(own, zb, nullptr, false); });
-        }
-        else
-        {
-            withRows(info.dim,
-                     [&](auto r) { forwardBlock<decltype(r)::value, 6, true>(own, zb, zp, first); });
+            withRows(info.parentDim,
+                     [&](auto r) { forwardBlock<6, decltype(r)::value, false>(own, zb, zp, first); });
         }
     }
-    // Backward (§3 step 3): x_b -= L_b x_p from the last block to the first, each x_b written
-    // out as soon as it is final. The KKT unknown of an edge is -lambda.
-    solution.resize(rhs.body.size(), rhs.joint.size());
+    else if (zp == nullptr)
+    {
+        withRows(info.dim,
+                 [&](auto r) { forwardBlock<decltype(r)::value, 0, true>(own, zb, nullptr, false); });
+    }
+    else
+    {
+        withRows(info.dim, [&](auto r) { forwardBlock<decltype(r)::value, 6, true>(own, zb, zp, first); });
+    }
+}
+
+// Backward (§3 step 3): x_b -= L_b x_p from the last block to the first, each x_b written out as
+// soon as it is final (`solution` sized by the caller). The KKT unknown of an edge is -lambda.
+void TreeSolver::backwardSweep(BlockVector& solution)
+{
+    const std::size_t nblocks = mBlocks.size();
+    const BlockInfo* blocks = mBlocks.data();
+    const std::uint32_t* offsets = mOffsets.data();
+    const double* arena = mArena.data();
+    Vec6* z = mZ.data();
     for (std::size_t b = nblocks; b-- > 0;)
     {
         if (b >= cAhead)

@@ -31,6 +31,9 @@ class TreeSolver final : public ImpulseSolver
   public:
     void factor(const RowSystem& system) override;
     void solve(const BlockVector& rhs, BlockVector& solution) override;
+    // One pass fewer over the factors: the forward sweep runs block by block with the
+    // elimination, while each block's factors are still in cache.
+    void factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution) override;
     const char* name() const override { return "linear"; }
 
     // G = J_x H^-1 J_x^T without one O(n) solve per row (core/tree_delassus.cpp): each body x
@@ -53,6 +56,11 @@ class TreeSolver final : public ImpulseSolver
         std::uint8_t flags = 0;     // the c* bits below
         std::uint8_t unused = 0;
     };
+    void eliminateAll(const RowSystem& system, const BlockVector* rhs);
+    void eliminate(std::size_t block);                           // §3 step 2 at one block
+    void forwardStep(std::size_t block, const BlockVector& rhs); // §3 step 3, forward, one block
+    void backwardSweep(BlockVector& solution);                   // §3 step 3, backward
+
     static constexpr std::uint8_t cEdge = 1;              // a joint block; its pivot factor is of -D_b
     static constexpr std::uint8_t cHasChildren = 2;       // some earlier block has this one as parent
     static constexpr std::uint8_t cFirstChild = 4;        // the first (in layout order) child of its parent

@@ -385,6 +385,42 @@ TEST(TreeSolver, RefactorAtANewConfigurationReusesStorage)
     }
 }
 
+// factorAndSolve (the forward sweep fused into the elimination) computes exactly what factor()
+// then solve() do, in the same order: bit-identical results, also for later solves with the
+// same factorization.
+TEST(TreeSolver, FusedFactorAndSolveIsBitIdenticalToFactorThenSolve)
+{
+    for (unsigned seed : {501u, 502u, 503u})
+    {
+        const Model model = randomForest(seed, 4, 60);
+        const auto problem = makeProblem(model);
+        const BlockVector rhs = momentumRhs(model, problem->state, problem->system);
+        core::TreeSolver separate, fused;
+        BlockVector x, y, x2, y2;
+        separate.factor(problem->system);
+        separate.solve(rhs, x);
+        fused.factorAndSolve(problem->system, rhs, y);
+        ASSERT_EQ(x.body.size(), y.body.size());
+        for (std::size_t i = 0; i < x.body.size(); ++i)
+        {
+            EXPECT_EQ(x.body[i], y.body[i]) << "seed " << seed << " body " << i;
+        }
+        for (std::size_t k = 0; k < x.joint.size(); ++k)
+        {
+            EXPECT_EQ(x.joint[k], y.joint[k]) << "seed " << seed << " joint " << k;
+        }
+        BlockVector second = rhs;
+        for (Vec6& p : second.body)
+        {
+            p = -0.5 * p;
+        }
+        separate.solve(second, x2);
+        fused.solve(second, y2);
+        EXPECT_EQ(bodyDiff(x2, y2), 0.0);
+        EXPECT_GT(bodyNorm(y), 0.0);
+    }
+}
+
 // Well-posed pivots that span many decades are not singular. A light link (1 g) nailed to the
 // world carries 100 heavy revolute links (1 t each): the light link's pivot has its own tiny
 // inertia about the hinge axis next to the subtree's huge inertia about the other axes. (The
