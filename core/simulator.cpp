@@ -96,6 +96,7 @@ void Simulator::step(State& state)
         return;
     }
     mStepStart = state;
+    mEndRowsValid = false; // the rattle projection swaps mRowsAfter away
     if (!stepRattle(state))
     {
         // RATTLE's position iteration stalled (very fast rotation within the step): this step is
@@ -116,7 +117,7 @@ void Simulator::stepEuler(State& state)
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
-    assembleRows(mModel, mLayout, state, mRows);
+    rowsAtStart(state);
     setMomentumRhs(state);
     // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
     // impulses of the free velocities, fused into one pass.
@@ -127,12 +128,43 @@ void Simulator::stepEuler(State& state)
     clock.lap(StepStage::Solve);
     integratePositions(state);
     removePenetration(state);
-    stabilizeJoints(state);
+    stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
     carryAngularMomentum(state);
     state.time += mDt;
     ++state.step;
     checkState(state, "end of step");
+    mEndPose = state.bodies;
+    mEndRowsValid = true;
     clock.lap(StepStage::Integrate);
+}
+
+// Rows at the start-of-step pose: the last step's drift correction evaluated them at its end
+// pose, which is this one unless the state was changed between steps (bit-identical either way).
+void Simulator::rowsAtStart(const State& state)
+{
+    if (mEndRowsValid && samePose(state, mEndPose))
+    {
+        std::swap(mRows, mRowsAfter);
+    }
+    else
+    {
+        assembleRows(mModel, mLayout, state, mRows);
+    }
+    mEndRowsValid = false;
+}
+
+bool Simulator::samePose(const State& state, const std::vector<BodyState>& pose) const
+{
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        const BodyState& now = state.bodies[i];
+        const BodyState& then = pose[i];
+        if (now.position_W != then.position_W || now.orientation_WB.coeffs() != then.orientation_WB.coeffs())
+        {
+            return false;
+        }
+    }
+    return true;
 }
 
 // Second order (RATTLE): kick h/2 g; impulses at q_n (joints, contacts) that the Newton
@@ -172,15 +204,7 @@ bool Simulator::stepRattle(State& state)
 // them factored at exactly this pose unless the state was changed between steps.
 void Simulator::factorAtStart(const State& state)
 {
-    bool reuse = mFactoredPoseValid;
-    for (std::size_t i = 0; reuse && i < mModel.bodies.size(); ++i)
-    {
-        const BodyState& now = state.bodies[i];
-        const BodyState& then = mFactoredPose[i];
-        reuse =
-            now.position_W == then.position_W && now.orientation_WB.coeffs() == then.orientation_WB.coeffs();
-    }
-    if (!reuse)
+    if (!(mFactoredPoseValid && samePose(state, mFactoredPose)))
     {
         assembleRows(mModel, mLayout, state, mRows);
         mSolver->factor(mRows);
@@ -751,6 +775,7 @@ void Simulator::carryAngularMomentum(State& state)
 
 std::pair<double, double> Simulator::jointErrors(const State& state)
 {
+    mEndRowsValid = false; // mRowsAfter is about to hold other rows
     assembleRows(mModel, mLayout, state, mRowsAfter);
     measureJointErrors(mRowsAfter);
     return {mStats.maxJointErrorM, mStats.maxJointErrorRad};

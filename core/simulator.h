@@ -121,6 +121,8 @@ class Simulator
     void computeFreeVelocities(State& state, double h);
     void kickByGravity(State& state, double h);
     void factorAtStart(const State& state);
+    void rowsAtStart(const State& state);
+    bool samePose(const State& state, const std::vector<BodyState>& pose) const;
     void projectVelocities(State& state);
     void buildExtraRows(const State& state);
     void setMomentumRhs(const State& state);
@@ -172,6 +174,10 @@ class Simulator
     std::vector<PrincipalAxes> mPrincipal;
     std::vector<BodyState> mFactoredPose;
     bool mFactoredPoseValid = false;
+    // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
+    // next step's mRows when it starts there).
+    std::vector<BodyState> mEndPose;
+    bool mEndRowsValid = false;
     std::vector<ExtraBlock> mEndBlocks;
     Eigen::MatrixXd mEndG;
     Eigen::VectorXd mEndVelocity, mEndLambda;

@@ -244,17 +244,26 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
                                                                                 6, mx);
             const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> ay(mPool.data() + py[iy].offset,
                                                                                 6, my);
-            mPairTemp.resize(6, my);
-            mPairTemp.noalias() = X * ay; // X_c A_y
-            mPairProduct.resize(mx, my);
-            mPairProduct.noalias() = ax.transpose().lazyProduct(mPairTemp);
+            // Scratch that only grows (a resize to another shape would reallocate every pair).
+            if (mPairTemp.size() < static_cast<std::size_t>(6 * my))
+            {
+                mPairTemp.resize(static_cast<std::size_t>(6 * my));
+            }
+            if (mPairProduct.size() < static_cast<std::size_t>(mx * my))
+            {
+                mPairProduct.resize(static_cast<std::size_t>(mx * my));
+            }
+            Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> xay(mPairTemp.data(), 6, my);
+            Eigen::Map<Eigen::MatrixXd> product(mPairProduct.data(), mx, my);
+            xay.noalias() = X * ay; // X_c A_y
+            product.noalias() = ax.transpose().lazyProduct(xay);
             const int* rx = mSlotRows[x].data();
             const int* ry = mSlotRows[y].data();
             for (int j = 0; j < my; ++j)
             {
                 for (int i = 0; i < mx; ++i)
                 {
-                    const double g = mPairProduct(i, j);
+                    const double g = product(i, j);
                     G(rx[i], ry[j]) += g;
                     if (y != x)
                     {

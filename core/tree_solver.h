@@ -83,16 +83,16 @@ class TreeSolver final : public ImpulseSolver
         int block = 0;
         std::uint32_t offset = 0; // A_x at this block: dim x (rows of x), column-major, in mPool
     };
-    std::vector<int> mSlotBodies;                       // bodies with extra rows
-    std::vector<int> mSlotOfBody;                       // body -> slot, -1
-    std::vector<std::vector<int>> mSlotRows;            // G rows of each slot's body, in stacking order
-    std::vector<std::vector<PathEntry>> mPaths;         // per slot: its node up to its root
-    std::vector<double> mPool;                          // the A_x blocks of every path
-    std::vector<int> mDiagonalOf;                       // block -> index in mDiagonal, -1 (kept all -1)
-    std::vector<int> mMarked;                           // blocks on some path, descending
-    std::vector<Mat6> mDiagonal;                        // X_c, dim x dim top-left, per marked block
-    Eigen::Matrix<double, 6, Eigen::Dynamic> mPairTemp; // X_c A_y of one pair
-    Eigen::MatrixXd mPairProduct;                       // A_x^T X_c A_y
+    std::vector<int> mSlotBodies;               // bodies with extra rows
+    std::vector<int> mSlotOfBody;               // body -> slot, -1
+    std::vector<std::vector<int>> mSlotRows;    // G rows of each slot's body, in stacking order
+    std::vector<std::vector<PathEntry>> mPaths; // per slot: its node up to its root
+    std::vector<double> mPool;                  // the A_x blocks of every path
+    std::vector<int> mDiagonalOf;               // block -> index in mDiagonal, -1 (kept all -1)
+    std::vector<int> mMarked;                   // blocks on some path, descending
+    std::vector<Mat6> mDiagonal;                // X_c, dim x dim top-left, per marked block
+    std::vector<double> mPairTemp;              // X_c A_y of one pair (6 x m_y)
+    std::vector<double> mPairProduct;           // A_x^T X_c A_y (m_x x m_y)
 };
 
 } // namespace frontier::core
