@@ -449,17 +449,19 @@ void Simulator::setMomentumRhs(const State& state)
 void Simulator::solveContactImpulses(State& state)
 {
     mStats.contactSweeps = 0;
+    mDelassusValid = false;
     if (mStats.extraRows > 0)
     {
-        mSolver->delassus(mExtra, mStats.extraRows, mG);
-        coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
-        extraRowVelocities(mExtra, mSolution, mExtraVelocity);
         mExtraLambda.setZero(mStats.extraRows);
-        warmStart();
-        mStats.contactSweeps = solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve, mExtraLambda,
-                                              mExtraScratch, &mCoupling)
-                                   .sweeps;
-        mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
+        if (!(warmStart() && lastImpulsesStillHold()))
+        {
+            buildDelassus();
+            extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+            mStats.contactSweeps = solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve,
+                                                  mExtraLambda, mExtraScratch, &mCoupling)
+                                       .sweeps;
+            mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
+        }
     }
     rememberImpulses();
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -472,10 +474,41 @@ void Simulator::solveContactImpulses(State& state)
     }
 }
 
+// Resting contact: the impulses carried over from the last step often still meet every
+// condition of this step to the solve's tolerance (core::conditionResidual). That is checked with
+// one O(n) solve, u = u_free + H^-1 J_x^T lambda and v = J_x u, without building G; when they
+// hold, the step keeps them (0 sweeps, the same criterion the Gauss-Seidel stops on).
+bool Simulator::lastImpulsesStillHold()
+{
+    mTrial = mSolution;
+    mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
+    extraRowVelocities(mExtra, mTrial, mExtraVelocity);
+    if (conditionResidual(mExtra, mExtraVelocity, mExtraLambda) > mOptions.contactSolve.velocityTolerance)
+    {
+        return false;
+    }
+    std::swap(mSolution, mTrial);
+    return true;
+}
+
+// The Delassus matrix of this step's extra rows and their coupling by tree, once per step and
+// only when needed.
+void Simulator::buildDelassus()
+{
+    if (!mDelassusValid)
+    {
+        mSolver->delassus(mExtra, mStats.extraRows, mG);
+        coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
+        mDelassusValid = true;
+    }
+}
+
 // Contacts persist from step to step: a contact between the same bodies within cWarmDistance of
 // one of the last step's starts from that one's impulse, so resting contact needs few sweeps.
-void Simulator::warmStart()
+// True when some impulse was carried over.
+bool Simulator::warmStart()
 {
+    bool any = false;
     constexpr double cWarmDistance = 5e-3; // m
     for (const ExtraBlock& block : mExtra)
     {
@@ -504,8 +537,10 @@ void Simulator::warmStart()
         {
             mExtraLambda.segment(block.offset, block.count) =
                 mPreviousImpulses[static_cast<std::size_t>(match)].head(block.count);
+            any = any || mExtraLambda(block.offset) > 0.0;
         }
     }
+    return any;
 }
 
 void Simulator::rememberImpulses()
@@ -582,6 +617,7 @@ void Simulator::removePenetration(State& state)
         return;
     }
     const int n = layoutExtraRows(blocks);
+    buildDelassus();
     mPenetrationG = mG(rows, rows); // the normal, limit and loop rows of the step's G
     mPenetrationFree.setZero(n);
     mPenetrationImpulse.setZero(n);

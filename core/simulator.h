@@ -159,13 +159,17 @@ class Simulator
     // Warm start: last step's contacts and their impulses (normal, two tangents; N s).
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;
-    void warmStart();
+    bool warmStart();
+    bool lastImpulsesStillHold();
+    void buildDelassus();
     void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;
-    RowSystem mRows;           // rows at the start of the step (the factored ones)
-    RowSystem mRowsAfter;      // rows re-evaluated after the position update (errors only)
-    RowSystem mRowsRefactored; // rows of a re-factorization when the quasi-Newton iteration is slow
+    RowSystem mRows;             // rows at the start of the step (the factored ones)
+    RowSystem mRowsAfter;        // rows re-evaluated after the position update (errors only)
+    RowSystem mRowsRefactored;   // rows of a re-factorization when the quasi-Newton iteration is slow
+    BlockVector mTrial;          // velocities with the last step's contact impulses
+    bool mDelassusValid = false; // mG and mCoupling belong to this step's extra rows
     BlockVector mRhs, mSolution, mCorrection;
     std::vector<BodyState> mStart; // poses at the start of the step
     std::vector<Vec3> mMomentum;   // world angular momentum per body during the step

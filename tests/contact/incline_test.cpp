@@ -93,7 +93,7 @@ InclineRun runIncline(core::Model model, double seconds, double settle)
 }
 
 // tan(20 deg) = 0.364 < mu = 0.5: static friction holds the box. Bound: under 1 mm in 2 s
-// (it moves 1e-7 m: the contact rows are solved to 3e-5 m/s each step, core/extra_rows.h).
+// (it creeps by about 2e-6 m: the contact rows are solved to 3e-5 m/s each step, core/extra_rows.h).
 TEST(Incline, BoxSticksWhenTanAngleBelowMu)
 {
     core::Model model = io::loadScene(scenePath("box_incline.yaml"));
