@@ -67,12 +67,34 @@ class MarginObject : public fcl::CollisionObjectd
   public:
     using fcl::CollisionObjectd::CollisionObjectd;
 
-    void computeInflatedAABB(double margin)
+    // Sets the AABB the broadphase sees: the shape's own grown by the margin would do, but it
+    // moves a little every step and FCL re-inserts a leaf whose box changed. So the box kept is
+    // grown by twice the margin and only replaced when the margin-grown one leaves it (a "fat"
+    // AABB): a body at rest, or moving less than a margin, keeps its leaf. Returns true when the
+    // box changed. The broadphase then reports a few more pairs, all of them at least a margin
+    // apart, which the narrowphase rejects: the contacts are the same.
+    bool updateFatAABB(double margin)
     {
         computeAABB();
-        aabb.min_.array() -= margin;
-        aabb.max_.array() += margin;
+        fcl::AABBd needed = aabb;
+        needed.min_.array() -= margin;
+        needed.max_.array() += margin;
+        if (mHasFat && mFat.contain(needed))
+        {
+            aabb = mFat;
+            return false;
+        }
+        mFat = needed;
+        mFat.min_.array() -= margin;
+        mFat.max_.array() += margin;
+        mHasFat = true;
+        aabb = mFat;
+        return true;
     }
+
+  private:
+    fcl::AABBd mFat;
+    bool mHasFat = false;
 };
 
 std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape)
@@ -158,6 +180,8 @@ struct ContactDetector::Impl
     std::vector<int> movingShapes;                        // shapes of moving bodies
     std::vector<int> staticShapes;                        // shapes of static bodies
     std::vector<fcl::CollisionObjectd*> movingRegistered; // moving objects in the manager
+    std::vector<char> registeredMoving;                   // per shape: in movingRegistered
+    std::vector<fcl::CollisionObjectd*> changed;          // scratch: their AABBs changed this step
     fcl::DynamicAABBTreeCollisionManagerd manager;
     bool useBroadphase = false;
     bool staticPosed = false;
@@ -216,7 +240,7 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(
                 tf.translation() = shapes.back().p_WS;
                 object = std::make_unique<MarginObject>(geometry, tf);
                 object->setUserData(indexToUserData(index));
-                object->computeInflatedAABB(margin);
+                object->updateFatAABB(margin);
             }
             objects.push_back(std::move(object));
             std::unique_ptr<fcl::CollisionObjectd> inflated;
@@ -237,6 +261,7 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(
         if (objects[s] && (fclBodies.empty() || fclBodies.back() != shapes[s].body))
             fclBodies.push_back(shapes[s].body);
     std::vector<char> inBroadphase(model.bodies.size(), 0);
+    registeredMoving.assign(shapes.size(), 0);
     const int others = static_cast<int>(fclBodies.size()) - 1;
     for (const int b : fclBodies)
     {
@@ -251,7 +276,10 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(
             continue;
         manager.registerObject(objects[s].get()); // one at a time (DEPS.md §3)
         if (!filter.isStatic(shapes[s].body))
+        {
             movingRegistered.push_back(objects[s].get());
+            registeredMoving[s] = 1;
+        }
     }
     useBroadphase = !movingRegistered.empty();
     if (useBroadphase)
@@ -269,7 +297,8 @@ void ContactDetector::Impl::poseShape(int index, const core::State& state)
         tf.linear() = s.R_WS;
         tf.translation() = s.p_WS;
         object->setTransform(tf);
-        object->computeInflatedAABB(margin);
+        if (object->updateFatAABB(margin) && registeredMoving[static_cast<std::size_t>(index)])
+            changed.push_back(object);
         if (fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(index)].get())
             inflated->setTransform(tf);
     }
@@ -452,6 +481,7 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
     out.clear();
     ++m.stats.detectCalls;
 
+    m.changed.clear();
     for (const int index : m.movingShapes)
         m.poseShape(index, state);
     if (!m.staticPosed)
@@ -462,8 +492,8 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
         if (m.useBroadphase)
             m.manager.update();
     }
-    else if (m.useBroadphase)
-        m.manager.update(m.movingRegistered);
+    else if (m.useBroadphase && !m.changed.empty())
+        m.manager.update(m.changed);
 
     m.planePass(out);
 
