@@ -5,6 +5,14 @@
 #include <stdexcept>
 #include <type_traits>
 
+// Full unrolling of the kernels' loops over block rows (at most 6): -O2 alone keeps them as
+// loops with a counter, which costs as much as the arithmetic at these sizes.
+#if defined(__clang__) || defined(__GNUC__)
+#define FRONTIER_UNROLL _Pragma("GCC unroll 8")
+#else
+#define FRONTIER_UNROLL
+#endif
+
 namespace frontier::core
 {
 

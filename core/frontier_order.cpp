@@ -183,7 +183,8 @@ FrontierLayout buildFrontierLayout(const Model& model)
         {
             const Joint& joint = model.joints[static_cast<std::size_t>(block.index)];
             const int child = layout.blocks[k - 1].index;
-            const int other = joint.child == child ? joint.parent : joint.child;
+            block.childIsJointChild = joint.child == child;
+            const int other = block.childIsJointChild ? joint.parent : joint.child;
             block.parent = jointToWorld(model, joint) && other == joint.parent
                                ? -1
                                : layout.bodyBlock[static_cast<std::size_t>(other)];

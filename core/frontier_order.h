@@ -30,6 +30,8 @@ struct LayoutBlock
     int dim = 6;     // rows of the block
     int parent = -1; // layout index of the one later neighbour, -1 for the last block of a tree
     int offset = 0;  // first scalar row of the block in the whole system
+    // Edge: its child node (the block just before it) is the joint's child body (else its parent).
+    bool childIsJointChild = false;
 };
 
 struct FrontierLayout

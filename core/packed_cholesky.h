@@ -3,6 +3,8 @@
 // compile-time sizes so they unroll.
 #pragma once
 
+#include "core/fixed_rows.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -39,6 +41,7 @@ constexpr double cRelativePivot = 1e-12;
 template <int N> inline bool choleskyInPlace(double* a)
 {
     double scale = 0.0;
+    FRONTIER_UNROLL
     for (int i = 0; i < N; ++i)
     {
         scale = std::max(scale, std::abs(a[tri<N>(i, i)]));
@@ -47,10 +50,12 @@ template <int N> inline bool choleskyInPlace(double* a)
     {
         return false;
     }
+    FRONTIER_UNROLL
     for (int j = 0; j < N; ++j)
     {
         const double diagonal = a[tri<N>(j, j)];
         double d = diagonal;
+        FRONTIER_UNROLL
         for (int k = 0; k < j; ++k)
         {
             d -= a[tri<N>(j, k)] * a[tri<N>(j, k)];
@@ -61,9 +66,11 @@ template <int N> inline bool choleskyInPlace(double* a)
         }
         const double inverse = 1.0 / std::sqrt(d);
         a[tri<N>(j, j)] = inverse;
+        FRONTIER_UNROLL
         for (int i = j + 1; i < N; ++i)
         {
             double s = a[tri<N>(i, j)];
+            FRONTIER_UNROLL
             for (int k = 0; k < j; ++k)
             {
                 s -= a[tri<N>(i, k)] * a[tri<N>(j, k)];
@@ -78,11 +85,14 @@ template <int N> inline bool choleskyInPlace(double* a)
 // column-major x.
 template <int N, int C> inline void choleskySolveInPlace(const double* l, double* x)
 {
+    FRONTIER_UNROLL
     for (int i = 0; i < N; ++i)
     {
+        FRONTIER_UNROLL
         for (int c = 0; c < C; ++c)
         {
             double s = x[i + c * N];
+            FRONTIER_UNROLL
             for (int k = 0; k < i; ++k)
             {
                 s -= l[tri<N>(i, k)] * x[k + c * N];
@@ -90,11 +100,14 @@ template <int N, int C> inline void choleskySolveInPlace(const double* l, double
             x[i + c * N] = s * l[tri<N>(i, i)];
         }
     }
+    FRONTIER_UNROLL
     for (int i = N - 1; i >= 0; --i)
     {
+        FRONTIER_UNROLL
         for (int c = 0; c < C; ++c)
         {
             double s = x[i + c * N];
+            FRONTIER_UNROLL
             for (int k = i + 1; k < N; ++k)
             {
                 s -= l[tri<N>(k, i)] * x[k + c * N];

@@ -59,16 +59,20 @@ inline void prefetchRange(const void* p, std::size_t bytes)
 // eliminated child edges.
 inline void setMassMatrix(double* pivot, double mass, const Mat3& inertia)
 {
+    FRONTIER_UNROLL
     for (int j = 0; j < 6; ++j)
     {
+        FRONTIER_UNROLL
         for (int i = j; i < 6; ++i)
         {
             pivot[tri<6>(i, j)] = 0.0;
         }
     }
+    FRONTIER_UNROLL
     for (int i = 0; i < 3; ++i)
     {
         pivot[tri<6>(i, i)] = mass;
+        FRONTIER_UNROLL
         for (int k = i; k < 3; ++k)
         {
             pivot[tri<6>(3 + k, 3 + i)] = inertia(k, i);
@@ -78,9 +82,11 @@ inline void setMassMatrix(double* pivot, double mass, const Mat3& inertia)
 
 inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
 {
+    FRONTIER_UNROLL
     for (int i = 0; i < 3; ++i)
     {
         pivot[tri<6>(i, i)] += mass;
+        FRONTIER_UNROLL
         for (int k = i; k < 3; ++k)
         {
             pivot[tri<6>(3 + k, 3 + i)] += inertia(k, i);
@@ -101,19 +107,24 @@ template <int R> inline bool factorNode(double* block, const double* J, double* 
     if constexpr (R > 0)
     {
         double* l = block + cTri6;
+        FRONTIER_UNROLL
         for (int c = 0; c < R; ++c)
         {
+            FRONTIER_UNROLL
             for (int i = 0; i < 6; ++i)
             {
                 l[i + c * 6] = J[c * 6 + i]; // J(c, i), row-major
             }
         }
         choleskySolveInPlace<6, R>(block, l);
+        FRONTIER_UNROLL
         for (int j = 0; j < R; ++j)
         {
+            FRONTIER_UNROLL
             for (int i = j; i < R; ++i)
             {
                 double s = 0.0;
+                FRONTIER_UNROLL
                 for (int k = 0; k < 6; ++k)
                 {
                     s += J[i * 6 + k] * l[k + j * 6];
@@ -139,19 +150,24 @@ inline bool factorEdge(double* block, const double* J, double* parentPivot, bool
     if constexpr (HasParent)
     {
         double* l = block + triSize(R);
+        FRONTIER_UNROLL
         for (int c = 0; c < 6; ++c)
         {
+            FRONTIER_UNROLL
             for (int i = 0; i < R; ++i)
             {
                 l[i + c * R] = -J[i * 6 + c];
             }
         }
         choleskySolveInPlace<R, 6>(block, l); // L_e = D_e^-1 J = -(-D_e)^-1 J
+        FRONTIER_UNROLL
         for (int j = 0; j < 6; ++j)
         {
+            FRONTIER_UNROLL
             for (int i = j; i < 6; ++i)
             {
                 double s = 0.0;
+                FRONTIER_UNROLL
                 for (int k = 0; k < R; ++k)
                 {
                     s += J[k * 6 + i] * l[k + j * R];
@@ -179,9 +195,11 @@ inline void forwardBlock(const double* block, double* zb, double* zp, bool first
     if constexpr (P > 0)
     {
         const double* l = block + triSize(N);
+        FRONTIER_UNROLL
         for (int j = 0; j < P; ++j)
         {
             double s = 0.0;
+            FRONTIER_UNROLL
             for (int k = 0; k < N; ++k)
             {
                 s += l[k + j * N] * zb[k];
@@ -192,6 +210,7 @@ inline void forwardBlock(const double* block, double* zb, double* zp, bool first
     choleskySolveInPlace<N, 1>(block, zb);
     if constexpr (Negated)
     {
+        FRONTIER_UNROLL
         for (int i = 0; i < N; ++i)
         {
             zb[i] = -zb[i];
@@ -203,9 +222,11 @@ inline void forwardBlock(const double* block, double* zb, double* zp, bool first
 template <int N, int P> inline void backwardBlock(const double* block, double* xb, const double* xp)
 {
     const double* l = block + triSize(N);
+    FRONTIER_UNROLL
     for (int i = 0; i < N; ++i)
     {
         double s = 0.0;
+        FRONTIER_UNROLL
         for (int k = 0; k < P; ++k)
         {
             s += l[i + k * N] * xp[k];
@@ -236,7 +257,6 @@ void TreeSolver::factorAndSolve(const RowSystem& system, const BlockVector& rhs,
 void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
 {
     mSystem = &system;
-    const Model& model = *system.model;
     const FrontierLayout& layout = *system.layout;
     const std::size_t nblocks = layout.blocks.size();
 
@@ -269,6 +289,10 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
         info.dim = static_cast<std::uint8_t>(block.dim);
         info.parentDim = static_cast<std::uint8_t>(parentDim);
         info.flags = edge ? cEdge : 0;
+        if (edge && block.childIsJointChild)
+        {
+            info.flags |= cChildIsJointChild;
+        }
         if (mSeen[b])
         {
             info.flags |= cHasChildren;
@@ -283,6 +307,13 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
         {
             throw std::length_error("tree solver: system too large");
         }
+    }
+    // Each parent's arena offset next to its child's entry: the elimination then reaches (and
+    // prefetches) a far-away parent pivot without first loading its offset from a random place.
+    for (std::size_t b = 0; b < nblocks; ++b)
+    {
+        const int parent = mBlocks[b].parent;
+        mBlocks[b].parentOffset = parent >= 0 ? mOffsets[static_cast<std::size_t>(parent)] : 0;
     }
     mArena.resize(offset);
     mZ.resize(nblocks);
@@ -306,7 +337,6 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
     // §3 step 2: eliminate in layout order.
     double* arena = mArena.data();
     BlockInfo* blocks = mBlocks.data();
-    const std::uint32_t* offsets = mOffsets.data();
     for (std::size_t b = 0; b < nblocks; ++b)
     {
         if (b + cAhead < nblocks)
@@ -316,7 +346,7 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
             {
                 if (ahead.parent >= 0)
                 {
-                    prefetchRange(arena + offsets[ahead.parent], cTri6 * sizeof(double));
+                    prefetchRange(arena + ahead.parentOffset, cTri6 * sizeof(double));
                 }
             }
             else
@@ -330,7 +360,6 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
                     const BlockInfo& edge = blocks[ahead.parent];
                     const std::size_t joint = static_cast<std::size_t>(edge.index);
                     const std::size_t used = static_cast<std::size_t>(edge.dim) * 6 * sizeof(double);
-                    prefetch(&model.joints[joint].child);
                     prefetchRange(system.joints[joint].J_a.data(), used);
                     prefetchRange(system.joints[joint].J_b.data(), used);
                 }
@@ -384,16 +413,11 @@ void TreeSolver::eliminate(std::size_t b)
         else
         {
             // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
-            BlockInfo& edge = blocks[info.parent];
-            const std::size_t joint = static_cast<std::size_t>(edge.index);
-            const JointRows& rows = system.joints[joint];
-            const bool jointChild = model.joints[joint].child == info.index;
-            if (jointChild)
-            {
-                edge.flags |= cChildIsJointChild;
-            }
+            const BlockInfo& edge = blocks[info.parent];
+            const JointRows& rows = system.joints[static_cast<std::size_t>(edge.index)];
+            const bool jointChild = edge.flags & cChildIsJointChild;
             const double* J = (jointChild ? rows.J_b : rows.J_a).data();
-            double* edgePivot = arena + offsets[info.parent];
+            double* edgePivot = arena + info.parentOffset;
             withRows(info.parentDim, [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
         }
         if (!ok)
@@ -420,7 +444,7 @@ void TreeSolver::eliminate(std::size_t b)
         }
         const JointRows& rows = system.joints[index];
         const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
-        double* parentPivot = arena + offsets[info.parent];
+        double* parentPivot = arena + info.parentOffset;
         const bool first = info.flags & cFirstChild;
         withRows(info.dim,
                  [&](auto r) { ok = factorEdge<decltype(r)::value, true>(own, J, parentPivot, first); });

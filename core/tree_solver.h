@@ -46,11 +46,12 @@ class TreeSolver final : public ImpulseSolver
     void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
 
   private:
-    // One block in layout order (12 bytes, so the sweeps read little besides the factors).
+    // One block in layout order (16 bytes, so the sweeps read little besides the factors).
     struct BlockInfo
     {
-        int parent = -1; // layout index of p(b), -1 for the last block of a tree
-        int index = 0;   // body (node) or joint (edge) index
+        int parent = -1;                // layout index of p(b), -1 for the last block of a tree
+        int index = 0;                  // body (node) or joint (edge) index
+        std::uint32_t parentOffset = 0; // mOffsets[parent]: its address without a random load
         std::uint8_t dim = 0;
         std::uint8_t parentDim = 0; // 0 without a parent
         std::uint8_t flags = 0;     // the c* bits below
@@ -65,7 +66,7 @@ class TreeSolver final : public ImpulseSolver
     static constexpr std::uint8_t cHasChildren = 2;       // some earlier block has this one as parent
     static constexpr std::uint8_t cFirstChild = 4;        // the first (in layout order) child of its parent
     static constexpr std::uint8_t cChildIsJointChild = 8; // edge: its child node is the joint's child
-                                                          // body (set during factor())
+                                                          // body (LayoutBlock::childIsJointChild)
 
     std::vector<BlockInfo> mBlocks; // layout order
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
