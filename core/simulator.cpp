@@ -2,6 +2,7 @@
 // schemes.
 #include "core/simulator.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -519,13 +520,19 @@ bool Simulator::warmStart()
         const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
         double best = cWarmDistance * cWarmDistance;
         int match = -1;
-        for (std::size_t p = 0; p < mPreviousContacts.size(); ++p)
-        {
-            const Contact& q = mPreviousContacts[p];
-            if (q.bodyA != c.bodyA || q.bodyB != c.bodyB)
+        // The last step's contacts of the same body pair (mPreviousOrder: by pair, then index).
+        const auto samePair = std::equal_range(
+            mPreviousOrder.begin(), mPreviousOrder.end(), -1,
+            [&](int x, int y)
             {
-                continue;
-            }
+                const Contact& a = x < 0 ? c : mPreviousContacts[static_cast<std::size_t>(x)];
+                const Contact& b = y < 0 ? c : mPreviousContacts[static_cast<std::size_t>(y)];
+                return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
+            });
+        for (auto it = samePair.first; it != samePair.second; ++it)
+        {
+            const std::size_t p = static_cast<std::size_t>(*it);
+            const Contact& q = mPreviousContacts[p];
             const double d = (q.point_W - c.point_W).squaredNorm();
             if (d < best && q.normal_W.dot(c.normal_W) > 0.99)
             {
@@ -546,6 +553,18 @@ bool Simulator::warmStart()
 void Simulator::rememberImpulses()
 {
     mPreviousContacts = mContacts;
+    mPreviousOrder.resize(mContacts.size());
+    for (std::size_t k = 0; k < mContacts.size(); ++k)
+    {
+        mPreviousOrder[k] = static_cast<int>(k);
+    }
+    std::stable_sort(mPreviousOrder.begin(), mPreviousOrder.end(),
+                     [&](int x, int y)
+                     {
+                         const Contact& a = mContacts[static_cast<std::size_t>(x)];
+                         const Contact& b = mContacts[static_cast<std::size_t>(y)];
+                         return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
+                     });
     mPreviousImpulses.assign(mContacts.size(), Vec3::Zero());
     for (const ExtraBlock& block : mExtra)
     {
@@ -805,7 +824,9 @@ void Simulator::carryAngularMomentum(State& state)
         }
         BodyState& s = state.bodies[i];
         const Vec3 momentum = mRows.inertia_W[i] * s.angularVelocity_W;
-        s.angularVelocity_W = worldInertia(body, s).ldlt().solve(momentum);
+        // I_W^-1 L in the principal frame P of the new orientation: w = R_WP diag(1/I) R_WP^T L.
+        const Quat toWorld = s.orientation_WB * mPrincipal[i].rotation_BP;
+        s.angularVelocity_W = toWorld * (toWorld.conjugate() * momentum).cwiseQuotient(mPrincipal[i].moments);
     }
 }
 

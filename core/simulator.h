@@ -159,6 +159,7 @@ class Simulator
     // Warm start: last step's contacts and their impulses (normal, two tangents; N s).
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;
+    std::vector<int> mPreviousOrder; // mPreviousContacts by body pair (stable: index order within)
     bool warmStart();
     bool lastImpulsesStillHold();
     void buildDelassus();
