@@ -243,9 +243,9 @@ void Simulator::projectVelocities(State& state)
         mSolver->delassus(mEndBlocks, rows, mEndG);
         extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
         mEndLambda.setZero(rows);
-        coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mCoupling, mTreeRuns);
+        coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
         solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch,
-                       &mCoupling);
+                       &mEndCoupling);
         mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
     }
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -343,6 +343,26 @@ void Simulator::buildExtraRows(const State& state)
     for (std::size_t c = 0; c < mContacts.size(); ++c)
     {
         const Contact& contact = mContacts[c];
+        // A gap that the bodies cannot close within cSpeculativeSteps steps, even moving straight
+        // at each other at their relative speed plus this step's gravity, needs no row: only the
+        // rows a scene needs are built (resting bodies near each other add none).
+        constexpr double cSpeculativeSteps = 3.0;
+        if (contact.depth < 0.0)
+        {
+            Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
+            const BodyState& a = mStart[static_cast<std::size_t>(contact.bodyA)];
+            relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
+            if (contact.bodyB >= 0 && !mModel.bodies[static_cast<std::size_t>(contact.bodyB)].isStatic)
+            {
+                const BodyState& b = mStart[static_cast<std::size_t>(contact.bodyB)];
+                relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
+            }
+            const double closing = relative.norm() + mModel.simulation.gravity.norm() * mDt;
+            if (closing * mDt * cSpeculativeSteps < -contact.depth)
+            {
+                continue;
+            }
+        }
         ExtraBlock block =
             makeContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c));
         // Normal velocity before this step's gravity (m/s); < 0 approaching.
@@ -354,26 +374,6 @@ void Simulator::buildExtraRows(const State& state)
         {
             const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
             approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
-        }
-        // A gap that the bodies cannot close within cSpeculativeSteps steps, even moving straight
-        // at each other at their relative speed plus this step's gravity, needs no row: only the
-        // rows a scene needs are built (resting bodies near each other add none).
-        constexpr double cSpeculativeSteps = 3.0;
-        if (contact.depth < 0.0)
-        {
-            Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
-            const BodyState& a = mStart[static_cast<std::size_t>(block.bodyA)];
-            relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
-            if (block.bodyB >= 0)
-            {
-                const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
-                relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
-            }
-            const double closing = relative.norm() + mModel.simulation.gravity.norm() * mDt;
-            if (closing * mDt * cSpeculativeSteps < -contact.depth)
-            {
-                continue;
-            }
         }
         const bool closes = contact.depth >= 0.0 || approach * mDt <= contact.depth;
         if (!closes)
@@ -605,12 +605,27 @@ void Simulator::removePenetration(State& state)
     {
         return;
     }
+    // Overlap predicted after this step (m or rad): now minus h times the separating speed; the
+    // part beyond the slop (contacts) or the limit is removed. Most steps have none.
+    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+    auto excessOf = [&](const ExtraBlock& block)
+    {
+        const double predicted = block.error(0) - mDt * mExtraVelocity(block.offset);
+        return predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
+    };
+    bool any = false;
+    for (const ExtraBlock& block : mExtra)
+    {
+        any = any || (block.kind != ExtraBlock::Kind::Loop && excessOf(block) > 0.0);
+    }
+    if (!any)
+    {
+        return;
+    }
     std::vector<ExtraBlock>& blocks = mPenetrationBlocks;
     std::vector<int>& rows = mPenetrationRows;
     blocks.clear();
     rows.clear();
-    bool any = false;
-    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
     for (const ExtraBlock& block : mExtra)
     {
         ExtraBlock p = block;
@@ -618,22 +633,13 @@ void Simulator::removePenetration(State& state)
         if (block.kind != ExtraBlock::Kind::Loop)
         {
             p.count = 1;
-            // Overlap predicted after this step (m or rad): now minus h times the separating speed.
-            const double predicted = block.error(0) - mDt * mExtraVelocity(block.offset);
-            const double excess =
-                predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
-            p.target(0) = std::max(0.0, excess);
-            any = any || excess > 0.0;
+            p.target(0) = std::max(0.0, excessOf(block));
         }
         for (int k = 0; k < p.count; ++k)
         {
             rows.push_back(block.offset + k);
         }
         blocks.push_back(p);
-    }
-    if (!any)
-    {
-        return;
     }
     const int n = layoutExtraRows(blocks);
     buildDelassus();
@@ -642,9 +648,9 @@ void Simulator::removePenetration(State& state)
     mPenetrationImpulse.setZero(n);
     ExtraSolveSettings settings = mOptions.contactSolve;
     settings.velocityTolerance *= mDt; // here the rows are displacements (m), one step's worth
-    coupleRowsByTree(blocks, mLayout.treeOfBody, mCoupling, mTreeRuns);
+    coupleRowsByTree(blocks, mLayout.treeOfBody, mPenetrationCoupling, mTreeRuns);
     solveExtraRows(blocks, mPenetrationG, mPenetrationFree, settings, mPenetrationImpulse, mExtraScratch,
-                   &mCoupling);
+                   &mPenetrationCoupling);
     mCorrection.setZero();
     mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
     displacePositions(state, mCorrection);

@@ -145,6 +145,8 @@ class Simulator
     Eigen::VectorXd mExtraVelocity, mExtraLambda;
     ExtraSolveScratch mExtraScratch;
     RowCoupling mCoupling;                                   // rows each extra block can move
+    RowCoupling mPenetrationCoupling;                        // the same for removePenetration's rows
+    RowCoupling mEndCoupling;                                // and for the rattle projection's
     std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
     // Scratch of removePenetration: its blocks, their rows in mG, their G, free velocity, impulses.
     std::vector<ExtraBlock> mPenetrationBlocks;
