@@ -34,8 +34,8 @@ template <int D, int P> void propagate(const double* l, const double* a, double*
 // X(0:N, 0:N) = D_b^-1 from the block's packed Cholesky factor l (of -D_b for an edge).
 template <int N> void pivotInverse(const double* l, bool negated, Mat6& X)
 {
-    Eigen::Matrix<double, N, N> inverse = Eigen::Matrix<double, N, N>::Identity();
-    choleskySolveInPlace<N, N>(l, inverse.data());
+    Eigen::Matrix<double, N, N> inverse;
+    choleskyInverse<N>(l, inverse.data());
     if (negated)
     {
         inverse = -inverse;
@@ -239,35 +239,24 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             const int c = px[ix].block;
             const int my = static_cast<int>(mSlotRows[y].size());
             const Mat6& X = mDiagonal[static_cast<std::size_t>(mDiagonalOf[static_cast<std::size_t>(c)])];
-            // Two paths first meet at a node (an edge has one child), so c has 6 rows.
-            const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> ax(mPool.data() + px[ix].offset,
-                                                                                6, mx);
-            const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> ay(mPool.data() + py[iy].offset,
-                                                                                6, my);
-            // Scratch that only grows (a resize to another shape would reallocate every pair).
-            if (mPairTemp.size() < static_cast<std::size_t>(6 * my))
-            {
-                mPairTemp.resize(static_cast<std::size_t>(6 * my));
-            }
-            if (mPairProduct.size() < static_cast<std::size_t>(mx * my))
-            {
-                mPairProduct.resize(static_cast<std::size_t>(mx * my));
-            }
-            Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> xay(mPairTemp.data(), 6, my);
-            Eigen::Map<Eigen::MatrixXd> product(mPairProduct.data(), mx, my);
-            xay.noalias() = X * ay; // X_c A_y
-            product.noalias() = ax.transpose().lazyProduct(xay);
+            // Two paths first meet at a node (an edge has one child), so c has 6 rows: every
+            // product below is of fixed-size 6-vectors. G(rx_i, ry_j) += A_x,i . (X_c A_y,j),
+            // mirrored for x != y.
+            const double* ax = mPool.data() + px[ix].offset; // 6 x mx, column-major
+            const double* ay = mPool.data() + py[iy].offset; // 6 x my
             const int* rx = mSlotRows[x].data();
             const int* ry = mSlotRows[y].data();
             for (int j = 0; j < my; ++j)
             {
+                const Vec6 t = X * Eigen::Map<const Vec6>(ay + 6 * j);
+                const int column = ry[j];
                 for (int i = 0; i < mx; ++i)
                 {
-                    const double g = product(i, j);
-                    G(rx[i], ry[j]) += g;
+                    const double g = Eigen::Map<const Vec6>(ax + 6 * i).dot(t);
+                    G(rx[i], column) += g;
                     if (y != x)
                     {
-                        G(ry[j], rx[i]) += g;
+                        G(column, rx[i]) += g;
                     }
                 }
             }

@@ -92,8 +92,6 @@ class TreeSolver final : public ImpulseSolver
     std::vector<int> mDiagonalOf;               // block -> index in mDiagonal, -1 (kept all -1)
     std::vector<int> mMarked;                   // blocks on some path, descending
     std::vector<Mat6> mDiagonal;                // X_c, dim x dim top-left, per marked block
-    std::vector<double> mPairTemp;              // X_c A_y of one pair (6 x m_y)
-    std::vector<double> mPairProduct;           // A_x^T X_c A_y (m_x x m_y)
 };
 
 } // namespace frontier::core
