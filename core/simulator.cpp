@@ -363,8 +363,9 @@ void Simulator::buildExtraRows(const State& state)
                 continue;
             }
         }
-        ExtraBlock block =
-            makeContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c));
+        mExtra.push_back(
+            makeContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c)));
+        ExtraBlock& block = mExtra.back();
         // Normal velocity before this step's gravity (m/s); < 0 approaching.
         double approach =
             block.J_A.row(0).dot((Vec6() << mStart[static_cast<std::size_t>(block.bodyA)].velocity_W,
@@ -384,7 +385,6 @@ void Simulator::buildExtraRows(const State& state)
         {
             block.target(0) = -e * approach; // Newton restitution
         }
-        mExtra.push_back(block);
     }
     buildLoopRows(mRows);
     for (const ExtraBlock& loop : mLoopBlocks)
