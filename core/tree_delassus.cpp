@@ -118,26 +118,32 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
     }
     mPool.resize(poolSize);
 
-    // Forward sweeps, A_x = L^-1 J_x^T: J_x^T at x's node, then A_p = -L_b^T A_b up the path.
+    // Each body's J_x^T at its node, its columns in the order of its rows (one pass over the
+    // blocks, with a column cursor per slot).
+    mSlotColumn.assign(k, 0);
+    for (const ExtraBlock& block : blocks)
+    {
+        for (int side = 0; side < 2; ++side)
+        {
+            const int body = side == 0 ? block.bodyA : block.bodyB;
+            if (body < 0)
+            {
+                continue;
+            }
+            const std::size_t s = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)]);
+            const Mat6& J = side == 0 ? block.J_A : block.J_B;
+            Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> columns(
+                mPool.data() + mPaths[s][0].offset + 6 * mSlotColumn[s], 6, block.count);
+            columns = J.topRows(block.count).transpose();
+            mSlotColumn[s] += block.count;
+        }
+    }
+
+    // Forward sweeps, A_x = L^-1 J_x^T: from x's node, A_p = -L_b^T A_b up the path.
     for (std::size_t s = 0; s < k; ++s)
     {
         const int m = static_cast<int>(mSlotRows[s].size());
         const std::vector<PathEntry>& path = mPaths[s];
-        Eigen::Map<Eigen::MatrixXd> node(mPool.data() + path[0].offset, 6, m);
-        const int body = mSlotBodies[s];
-        int column = 0;
-        for (const ExtraBlock& block : blocks)
-        {
-            for (int side = 0; side < 2; ++side)
-            {
-                if ((side == 0 ? block.bodyA : block.bodyB) == body)
-                {
-                    const Mat6& J = side == 0 ? block.J_A : block.J_B;
-                    node.middleCols(column, block.count) = J.topRows(block.count).transpose();
-                    column += block.count;
-                }
-            }
-        }
         for (std::size_t e = 0; e + 1 < path.size(); ++e)
         {
             const BlockInfo& info = mBlocks[static_cast<std::size_t>(path[e].block)];

@@ -87,6 +87,7 @@ class TreeSolver final : public ImpulseSolver
     std::vector<int> mSlotBodies;               // bodies with extra rows
     std::vector<int> mSlotOfBody;               // body -> slot, -1
     std::vector<std::vector<int>> mSlotRows;    // G rows of each slot's body, in stacking order
+    std::vector<int> mSlotColumn;               // scratch: column cursor per slot
     std::vector<std::vector<PathEntry>> mPaths; // per slot: its node up to its root
     std::vector<double> mPool;                  // the A_x blocks of every path
     std::vector<int> mDiagonalOf;               // block -> index in mDiagonal, -1 (kept all -1)
