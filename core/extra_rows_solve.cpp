@@ -20,10 +20,11 @@ namespace
 
 // Appends [begin, end) to sorted runs, merged with the last run when they touch or nearly do
 // (a gap of a few rows costs less than starting a new run).
+constexpr int cRunGap = 8; // rows
+
 void appendRun(std::vector<std::pair<int, int>>& runs, int begin, int end)
 {
-    constexpr int cGap = 8;
-    if (!runs.empty() && begin - runs.back().second <= cGap)
+    if (!runs.empty() && begin - runs.back().second <= cRunGap)
     {
         runs.back().second = std::max(runs.back().second, end);
         return;
@@ -145,17 +146,25 @@ void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<i
             coupling.runs.insert(coupling.runs.end(), first->begin(), first->end());
             continue;
         }
-        // The union of two sorted run lists.
+        // The union of two sorted run lists, overlapping runs joined in place (no allocation
+        // once the vector has grown).
         const std::size_t start = coupling.runs.size();
         std::merge(first->begin(), first->end(), second->begin(), second->end(),
                    std::back_inserter(coupling.runs));
-        std::vector<std::pair<int, int>> merged;
+        std::size_t kept = start;
         for (std::size_t r = start; r < coupling.runs.size(); ++r)
         {
-            appendRun(merged, coupling.runs[r].first, coupling.runs[r].second);
+            const std::pair<int, int> run = coupling.runs[r];
+            if (kept > start && run.first - coupling.runs[kept - 1].second <= cRunGap)
+            {
+                coupling.runs[kept - 1].second = std::max(coupling.runs[kept - 1].second, run.second);
+            }
+            else
+            {
+                coupling.runs[kept++] = run;
+            }
         }
-        coupling.runs.resize(start);
-        coupling.runs.insert(coupling.runs.end(), merged.begin(), merged.end());
+        coupling.runs.resize(kept);
     }
     coupling.firstRun.push_back(static_cast<int>(coupling.runs.size()));
 }
