@@ -13,6 +13,7 @@
 #include "core/extra_rows.h"
 #include "core/frontier_order.h"
 #include "core/joints/joint_rows.h"
+#include "core/large_vector.h"
 #include "core/state.h"
 
 #include <memory>
@@ -28,9 +29,9 @@ struct RowSystem
 {
     const Model* model = nullptr;
     const FrontierLayout* layout = nullptr;
-    std::vector<double> mass;      // kg, per body index (0 for static bodies)
-    std::vector<Mat3> inertia_W;   // kg m^2, per body index, world frame
-    std::vector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
+    LargeVector<double> mass;      // kg, per body index (0 for static bodies)
+    LargeVector<Mat3> inertia_W;   // kg m^2, per body index, world frame
+    LargeVector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
     int rowCount = 0;              // tree joint rows in all
 };
 
@@ -40,8 +41,8 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
 // Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
 struct BlockVector
 {
-    std::vector<Vec6> body;  // per body index: p (N s, N m s) in, u (m/s, rad/s) out
-    std::vector<Vec6> joint; // per joint index: c (m/s, rad/s) in, lambda (N s or N m s) out
+    LargeVector<Vec6> body;  // per body index: p (N s, N m s) in, u (m/s, rad/s) out
+    LargeVector<Vec6> joint; // per joint index: c (m/s, rad/s) in, lambda (N s or N m s) out
     void resize(std::size_t bodies, std::size_t joints);
     void setZero();
 };

@@ -109,7 +109,7 @@ class Simulator
     // Joint violations of a state (m, rad), without stepping.
     std::pair<double, double> jointErrors(const State& state);
     // Joint impulses of the last step (per joint index; N s or N m s).
-    const std::vector<Vec6>& jointImpulses() const { return mSolution.joint; }
+    const LargeVector<Vec6>& jointImpulses() const { return mSolution.joint; }
 
   private:
     void stepEuler(State& state);

@@ -68,13 +68,13 @@ class TreeSolver final : public ImpulseSolver
     static constexpr std::uint8_t cChildIsJointChild = 8; // edge: its child node is the joint's child
                                                           // body (LayoutBlock::childIsJointChild)
 
-    std::vector<BlockInfo> mBlocks; // layout order
+    LargeVector<BlockInfo> mBlocks; // layout order
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
     // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then
     // L_b = D_b^-1 H_bp, dim x parentDim column-major.
-    std::vector<std::uint32_t> mOffsets;
-    std::vector<double> mArena;
-    std::vector<Vec6> mZ;             // scratch: one vector per block
+    LargeVector<std::uint32_t> mOffsets;
+    LargeVector<double> mArena; // huge pages at large n (core/large_vector.h)
+    LargeVector<Vec6> mZ;       // scratch: one vector per block
     std::vector<std::uint8_t> mSeen;  // scratch: per block, a child was met
     std::vector<int> mUnmappedBodies; // bodies without a block (static): zero in a solution
     std::vector<int> mUnmappedJoints; // joints without a block (loops): zero in a solution
