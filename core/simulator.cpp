@@ -450,17 +450,32 @@ void Simulator::setMomentumRhs(const State& state)
 void Simulator::solveContactImpulses(State& state)
 {
     mStats.contactSweeps = 0;
+    mStats.contactRoute = ContactRoute::None;
     mDelassusValid = false;
+    if (mDelassusAge >= 0)
+    {
+        ++mDelassusAge;
+    }
     if (mStats.extraRows > 0)
     {
         mExtraLambda.setZero(mStats.extraRows);
-        if (!(warmStart() && lastImpulsesStillHold()))
+        const bool warm = warmStart();
+        if (warm && lastImpulsesStillHold())
         {
+            mStats.contactRoute = ContactRoute::Carried;
+        }
+        else if (warm && mOptions.reuseDelassus && solveWithLastDelassus())
+        {
+            mStats.contactRoute = ContactRoute::Reused;
+        }
+        else
+        {
+            mStats.contactRoute = ContactRoute::Built;
             buildDelassus();
             extraRowVelocities(mExtra, mSolution, mExtraVelocity);
-            mStats.contactSweeps = solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve,
-                                                  mExtraLambda, mExtraScratch, &mCoupling)
-                                       .sweeps;
+            mStats.contactSweeps += solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve,
+                                                   mExtraLambda, mExtraScratch, &mCoupling)
+                                        .sweeps;
             mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
         }
     }
@@ -493,7 +508,7 @@ bool Simulator::lastImpulsesStillHold()
 }
 
 // The Delassus matrix of this step's extra rows and their coupling by tree, once per step and
-// only when needed.
+// only when needed. The rows it was built for are remembered for solveWithLastDelassus.
 void Simulator::buildDelassus()
 {
     if (!mDelassusValid)
@@ -501,7 +516,84 @@ void Simulator::buildDelassus()
         mSolver->delassus(mExtra, mStats.extraRows, mG);
         coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
         mDelassusValid = true;
+        mDelassusRows.clear();
+        for (const ExtraBlock& block : mExtra)
+        {
+            mDelassusRows.push_back(rowKey(block));
+        }
+        mDelassusAge = 0;
     }
+}
+
+Simulator::RowKey Simulator::rowKey(const ExtraBlock& block) const
+{
+    RowKey key{block.kind, block.count, block.bodyA, block.bodyB, block.source, Vec3::Zero(), Vec3::Zero()};
+    if (block.kind == ExtraBlock::Kind::Contact)
+    {
+        const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
+        key.source = -1; // contact indices are not stable; the point and normal are compared
+        key.point_W = c.point_W;
+        key.normal_W = c.normal_W;
+    }
+    return key;
+}
+
+// The same rows as when mG was built, each contact within cReuseDistance of its point then.
+bool Simulator::sameRowsAsLastDelassus() const
+{
+    constexpr double cReuseDistance = 1e-3; // m
+    if (mDelassusAge < 0 || mDelassusAge > cMaxDelassusAge || mDelassusRows.size() != mExtra.size())
+    {
+        return false;
+    }
+    for (std::size_t b = 0; b < mExtra.size(); ++b)
+    {
+        const RowKey now = rowKey(mExtra[b]);
+        const RowKey& then = mDelassusRows[b];
+        if (now.kind != then.kind || now.count != then.count || now.bodyA != then.bodyA ||
+            now.bodyB != then.bodyB || now.source != then.source ||
+            (now.point_W - then.point_W).squaredNorm() > cReuseDistance * cReuseDistance ||
+            now.normal_W.dot(then.normal_W) < 0.999)
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Resting contact whose carried-over impulses just miss the tolerance: the Delassus matrix G~ of
+// a recent step (same rows, contacts within a millimetre) stands in for this step's G in a defect
+// correction. With the exact row velocities v(lambda) = J_x (u_free + H^-1 J_x^T lambda) (one
+// O(n) solve), Gauss-Seidel solves v(lambda) + G~ (lambda' - lambda) against the contact
+// conditions; the result is accepted only when the exact velocities meet every condition to the
+// solve's tolerance (core::conditionResidual), the criterion of the full solve. Building G costs
+// a path sweep per body and a product per pair of bodies; a round here costs one O(n) solve and a
+// few sweeps. False (after cReuseRounds) leaves the full solve to the caller.
+bool Simulator::solveWithLastDelassus()
+{
+    constexpr int cReuseRounds = 2;
+    if (!sameRowsAsLastDelassus())
+    {
+        return false;
+    }
+    ExtraSolveSettings settings = mOptions.contactSolve;
+    settings.velocityTolerance *= 0.9; // margin for the difference between G~ and G
+    for (int round = 0; round < cReuseRounds; ++round)
+    {
+        mReuseFree.noalias() = mExtraVelocity - mG * mExtraLambda; // v(lambda) - G~ lambda
+        mStats.contactSweeps +=
+            solveExtraRows(mExtra, mG, mReuseFree, settings, mExtraLambda, mExtraScratch, &mCoupling).sweeps;
+        mTrial = mSolution;
+        mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
+        extraRowVelocities(mExtra, mTrial, mExtraVelocity);
+        if (conditionResidual(mExtra, mExtraVelocity, mExtraLambda) <=
+            mOptions.contactSolve.velocityTolerance)
+        {
+            std::swap(mSolution, mTrial);
+            return true;
+        }
+    }
+    return false;
 }
 
 // Contacts persist from step to step: a contact between the same bodies within cWarmDistance of

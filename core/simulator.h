@@ -66,6 +66,19 @@ struct StepOptions
     double penetrationSlop = 5e-4;   // m: overlap left to the next steps' contacts, not projected
     double limitMargin = 0.02;       // rad or m: limit rows appear this close to a limit
     ExtraSolveSettings contactSolve; // tolerance of the contact problem
+    // Resting contact may solve with the Delassus matrix of a recent step with the same rows, the
+    // result checked exactly against this step's (Simulator::solveWithLastDelassus); false always
+    // builds this step's matrix when the carried-over impulses do not hold.
+    bool reuseDelassus = true;
+};
+
+// How a step's contact problem was solved.
+enum class ContactRoute
+{
+    None,    // no extra rows
+    Carried, // the last step's impulses still met every condition
+    Reused,  // Gauss-Seidel on a recent step's G, checked exactly against this step's rows
+    Built,   // this step's G, then Gauss-Seidel
 };
 
 // Stages of a step, timed (wall seconds): contact detection; free velocities, rows and the O(n)
@@ -86,9 +99,10 @@ struct StepStats
     double maxJointErrorM = 0.0;               // largest positional joint violation after the step (m)
     double maxJointErrorRad = 0.0;             // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
-    int contacts = 0;                // contact points found this step
-    int extraRows = 0;               // contact, loop and limit rows this step
-    int contactSweeps = 0;           // Gauss-Seidel sweeps of the contact problem
+    int contacts = 0;      // contact points found this step
+    int extraRows = 0;     // contact, loop and limit rows this step
+    int contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem
+    ContactRoute contactRoute = ContactRoute::None;
     double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
     bool firstOrderFallback = false; // a rattle step that stalled and was taken by euler instead
 };
@@ -164,7 +178,21 @@ class Simulator
     std::vector<int> mPreviousOrder; // mPreviousContacts by body pair (stable: index order within)
     bool warmStart();
     bool lastImpulsesStillHold();
+    bool solveWithLastDelassus();
     void buildDelassus();
+    // What identifies an extra block for reusing mG (contacts by bodies, point and normal).
+    struct RowKey
+    {
+        ExtraBlock::Kind kind;
+        int count, bodyA, bodyB, source;
+        Vec3 point_W, normal_W;
+    };
+    RowKey rowKey(const ExtraBlock& block) const;
+    bool sameRowsAsLastDelassus() const;
+    static constexpr int cMaxDelassusAge = 50; // steps a G~ may stand in for the current G
+    std::vector<RowKey> mDelassusRows;         // the blocks mG was built for
+    int mDelassusAge = -1;                     // steps since mG was built, -1 none
+    Eigen::VectorXd mReuseFree;
     void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;
