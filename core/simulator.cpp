@@ -452,9 +452,9 @@ void Simulator::solveContactImpulses(State& state)
     mStats.contactSweeps = 0;
     mStats.contactRoute = ContactRoute::None;
     mDelassusValid = false;
-    if (mDelassusAge >= 0)
+    if (mDelassusAge >= 0 && mDelassusAge <= cMaxDelassusAge)
     {
-        ++mDelassusAge;
+        ++mDelassusAge; // stops one past the limit
     }
     if (mStats.extraRows > 0)
     {
@@ -527,13 +527,19 @@ void Simulator::buildDelassus()
 
 Simulator::RowKey Simulator::rowKey(const ExtraBlock& block) const
 {
-    RowKey key{block.kind, block.count, block.bodyA, block.bodyB, block.source, Vec3::Zero(), Vec3::Zero()};
+    RowKey key{block.kind, block.count, block.bodyA, block.bodyB, block.source, Vec3::Zero(), Vec6::Zero()};
     if (block.kind == ExtraBlock::Kind::Contact)
     {
         const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
         key.source = -1; // contact indices are not stable; the point and normal are compared
         key.point_W = c.point_W;
-        key.normal_W = c.normal_W;
+        key.direction.head<3>() = c.normal_W;
+    }
+    else
+    {
+        // Loops and limits by joint; the first row tells which side a limit is on (its sign
+        // flips between the lower and the upper limit).
+        key.direction = (block.bodyA >= 0 ? block.J_A : block.J_B).row(0).transpose();
     }
     return key;
 }
@@ -551,9 +557,17 @@ bool Simulator::sameRowsAsLastDelassus() const
         const RowKey now = rowKey(mExtra[b]);
         const RowKey& then = mDelassusRows[b];
         if (now.kind != then.kind || now.count != then.count || now.bodyA != then.bodyA ||
-            now.bodyB != then.bodyB || now.source != then.source ||
-            (now.point_W - then.point_W).squaredNorm() > cReuseDistance * cReuseDistance ||
-            now.normal_W.dot(then.normal_W) < 0.999)
+            now.bodyB != then.bodyB || now.source != then.source)
+        {
+            return false;
+        }
+        const bool contact = now.kind == ExtraBlock::Kind::Contact;
+        if (contact && ((now.point_W - then.point_W).squaredNorm() > cReuseDistance * cReuseDistance ||
+                        now.direction.dot(then.direction) < 0.999))
+        {
+            return false;
+        }
+        if (!contact && !(now.direction.dot(then.direction) > 0.0))
         {
             return false;
         }
@@ -569,6 +583,11 @@ bool Simulator::sameRowsAsLastDelassus() const
 // solve's tolerance (core::conditionResidual), the criterion of the full solve. Building G costs
 // a path sweep per body and a product per pair of bodies; a round here costs one O(n) solve and a
 // few sweeps. False (after cReuseRounds) leaves the full solve to the caller.
+//
+// Reads mExtraVelocity as lastImpulsesStillHold leaves it (the exact row velocities at the
+// carried-over impulses), so it runs only after that check has failed. When it gives up, the
+// full solve starts from the impulses reached here (one-sided and inside the cone), and the
+// step's sweep count includes both.
 bool Simulator::solveWithLastDelassus()
 {
     constexpr int cReuseRounds = 2;
@@ -598,7 +617,8 @@ bool Simulator::solveWithLastDelassus()
 
 // Contacts persist from step to step: a contact between the same bodies within cWarmDistance of
 // one of the last step's starts from that one's impulse, so resting contact needs few sweeps.
-// True when some impulse was carried over.
+// Loop and limit blocks start from their joint's impulse of the last step. True when some
+// impulse was carried over.
 bool Simulator::warmStart()
 {
     bool any = false;
@@ -607,6 +627,17 @@ bool Simulator::warmStart()
     {
         if (block.kind != ExtraBlock::Kind::Contact)
         {
+            // Loops and limits by joint, a limit only on the same side as last step.
+            for (const JointImpulse& previous : mPreviousJointImpulses)
+            {
+                if (previous.kind == block.kind && previous.joint == block.source &&
+                    previous.direction.dot(rowKey(block).direction) > 0.0)
+                {
+                    mExtraLambda.segment(block.offset, block.count) = previous.lambda.head(block.count);
+                    any = any || previous.lambda.head(block.count).cwiseAbs().maxCoeff() > 0.0;
+                    break;
+                }
+            }
             continue;
         }
         const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
@@ -658,12 +689,19 @@ void Simulator::rememberImpulses()
                          return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
                      });
     mPreviousImpulses.assign(mContacts.size(), Vec3::Zero());
+    mPreviousJointImpulses.clear();
     for (const ExtraBlock& block : mExtra)
     {
         if (block.kind == ExtraBlock::Kind::Contact)
         {
             mPreviousImpulses[static_cast<std::size_t>(block.source)].head(block.count) =
                 mExtraLambda.segment(block.offset, block.count);
+        }
+        else
+        {
+            JointImpulse previous{block.kind, block.source, rowKey(block).direction, Vec6::Zero()};
+            previous.lambda.head(block.count) = mExtraLambda.segment(block.offset, block.count);
+            mPreviousJointImpulses.push_back(previous);
         }
     }
 }

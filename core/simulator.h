@@ -176,6 +176,14 @@ class Simulator
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;
     std::vector<int> mPreviousOrder; // mPreviousContacts by body pair (stable: index order within)
+    struct JointImpulse              // last step's impulse of a loop or limit block
+    {
+        ExtraBlock::Kind kind;
+        int joint;
+        Vec6 direction; // RowKey::direction: a limit's side
+        Vec6 lambda;    // N s or N m s
+    };
+    std::vector<JointImpulse> mPreviousJointImpulses;
     bool warmStart();
     bool lastImpulsesStillHold();
     bool solveWithLastDelassus();
@@ -185,7 +193,8 @@ class Simulator
     {
         ExtraBlock::Kind kind;
         int count, bodyA, bodyB, source;
-        Vec3 point_W, normal_W;
+        Vec3 point_W;   // contacts (m)
+        Vec6 direction; // contacts: the normal; loops, limits: the first row of J
     };
     RowKey rowKey(const ExtraBlock& block) const;
     bool sameRowsAsLastDelassus() const;

@@ -73,8 +73,8 @@ class TreeSolver final : public ImpulseSolver
     // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then
     // L_b = D_b^-1 H_bp, dim x parentDim column-major.
     LargeVector<std::uint32_t> mOffsets;
-    LargeVector<double> mArena; // huge pages at large n (core/large_vector.h)
-    LargeVector<Vec6> mZ;       // scratch: one vector per block
+    LargeVector<double> mArena;       // huge pages at large n (core/large_vector.h)
+    LargeVector<Vec6> mZ;             // scratch: one vector per block
     std::vector<std::uint8_t> mSeen;  // scratch: per block, a child was met
     std::vector<int> mUnmappedBodies; // bodies without a block (static): zero in a solution
     std::vector<int> mUnmappedJoints; // joints without a block (loops): zero in a solution

@@ -98,5 +98,32 @@ TEST(DelassusReuse, FallingDollComesToRestAsWithTheMatrixBuiltEveryStep)
               built.routes[static_cast<std::size_t>(core::ContactRoute::Built)]);
 }
 
+// Joint limits and loops carry their impulses to the next step (by joint, a limit on the same
+// side) like contacts do, and take part in the reuse. scenes/limits.yaml (a limited pendulum and
+// slider, no contacts): with its limit rows active the carried impulses hold on most steps
+// (without the carry, none could: a pushing limit started from zero). scenes/doll_urdf_scene.yaml
+// (two URDF dolls whose joints have limits, falling onto the floor and each other): both routes
+// taken, the matrix built on under 3/4 of the steps it takes when built every time (measured
+// 1 054 against 1 895 in 2 s: the dolls are still moving), no energy gained either way.
+TEST(DelassusReuse, LimitImpulsesAreCarriedAndReused)
+{
+    const RouteRun limits = runWith("limits.yaml", 3.0, true);
+    print("limits, reuse", limits);
+    const long withRows = limits.routes[1] + limits.routes[2] + limits.routes[3];
+    EXPECT_GT(withRows, 0);
+    EXPECT_GT(2 * limits.routes[static_cast<std::size_t>(core::ContactRoute::Carried)], withRows);
+
+    const RouteRun reused = runWith("doll_urdf_scene.yaml", 2.0, true);
+    const RouteRun built = runWith("doll_urdf_scene.yaml", 2.0, false);
+    print("URDF dolls, reuse", reused);
+    print("URDF dolls, built every step", built);
+    EXPECT_GT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Carried)], 0);
+    EXPECT_GT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Reused)], 0);
+    EXPECT_LT(4 * reused.routes[static_cast<std::size_t>(core::ContactRoute::Built)],
+              3 * built.routes[static_cast<std::size_t>(core::ContactRoute::Built)]);
+    EXPECT_LE(reused.maxEnergyRise, 0.0);
+    EXPECT_LE(built.maxEnergyRise, 0.0);
+}
+
 } // namespace
 } // namespace frontier::test
