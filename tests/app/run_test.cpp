@@ -155,6 +155,13 @@ TEST(Run, PendulumTrajectoryStatsAndSummaryAgree)
     expectPrintedAs(s.energyInitialJ, printed.energyInitialJ, 6, "energy_initial_j");
     expectPrintedAs(s.energyFinalJ, printed.energyFinalJ, 6, "energy_final_j");
     EXPECT_LT(s.maxJointErrorM, 1e-6);
+    // No contacts, loops or limits: no contact problem was solved.
+    for (const char* key :
+         {"contact_steps_carried", "contact_steps_reused", "contact_steps_built", "contact_sweeps"})
+    {
+        ASSERT_EQ(s.extra.count(key), 1u) << key;
+        EXPECT_EQ(s.extra.at(key), 0.0) << key;
+    }
 
     // The energies, recomputed from the first and last rows and the scene's mass properties.
     const core::Model model = io::loadScene(sourcePath("scenes/pendulum.yaml"));
@@ -217,6 +224,25 @@ bodies:
     EXPECT_NE(r.err.find("velocity"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(traj));
     EXPECT_TRUE(dir.outputs().empty()) << "left behind: " << dir.outputs().front();
+}
+
+// The stats count how each step's contact problem was solved: the five boxes touch from the first
+// step, so every step took one of the three routes; the carried-over impulses hold on some (the
+// stack at rest) and the first step must build its matrix.
+TEST(Run, BoxStackStatsCountTheContactRoutes)
+{
+    const TestDir dir;
+    const std::string stats = dir.out("stack.json");
+    const Result r = dir.run("run scenes/box_stack.yaml --quiet --duration 0.5 --stats " + shellQuote(stats));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const io::RunStats s = io::readStats(stats);
+    const double carried = s.extra.at("contact_steps_carried");
+    const double reused = s.extra.at("contact_steps_reused");
+    const double built = s.extra.at("contact_steps_built");
+    EXPECT_EQ(carried + reused + built, static_cast<double>(s.steps));
+    EXPECT_GT(carried, 0.0);
+    EXPECT_GE(built, 1.0);
+    EXPECT_GE(s.extra.at("contact_sweeps"), built);
 }
 
 // The same run twice, with contacts: the same bytes.
