@@ -86,9 +86,12 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     }
     // How the contact problem was solved (core::ContactRoute): steps that kept the last impulses,
     // that finished on a recent step's Delassus matrix, that built their own; sweeps in all.
-    stats.extra["contact_steps_carried"] = static_cast<double>(s.contactRoutes[1]);
-    stats.extra["contact_steps_reused"] = static_cast<double>(s.contactRoutes[2]);
-    stats.extra["contact_steps_built"] = static_cast<double>(s.contactRoutes[3]);
+    stats.extra["contact_steps_carried"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Carried)]);
+    stats.extra["contact_steps_reused"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Reused)]);
+    stats.extra["contact_steps_built"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Built)]);
     stats.extra["contact_sweeps"] = static_cast<double>(s.contactSweeps);
     // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
     const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",

@@ -50,7 +50,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.maxPenetrationM = std::max(summary.maxPenetrationM, stats.maxPenetrationM);
             summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
             summary.firstOrderSteps += stats.firstOrderFallback ? 1 : 0;
-            ++summary.contactRoutes[static_cast<std::size_t>(stats.contactRoute)];
+            ++summary.contactRoutes[core::routeIndex(stats.contactRoute)];
             summary.contactSweeps += stats.contactSweeps;
             for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
             {

@@ -31,9 +31,9 @@ struct RunSummary
     double maxPenetrationM = 0.0;
     std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;
-    long firstOrderSteps = 0;            // rattle steps that stalled and were taken by euler instead
-    std::array<long, 4> contactRoutes{}; // steps by core::ContactRoute (none, carried, reused, built)
-    long contactSweeps = 0;              // Gauss-Seidel sweeps of the contact problem, all steps
+    long firstOrderSteps = 0; // rattle steps that stalled and were taken by euler instead
+    std::array<long, core::cContactRoutes> contactRoutes{}; // steps by core::ContactRoute
+    long contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem, all steps
     bool finite = true;
     std::string failure; // the SimulationError message when the run blew up
 };

@@ -567,12 +567,17 @@ bool Simulator::sameRowsAsLastDelassus() const
         {
             return false;
         }
-        if (!contact && !(now.direction.dot(then.direction) > 0.0))
+        if (!contact && !sameJointRows(now, then))
         {
             return false;
         }
     }
     return true;
+}
+
+bool Simulator::sameJointRows(const RowKey& now, const RowKey& then)
+{
+    return now.kind == then.kind && now.source == then.source && now.direction.dot(then.direction) > 0.0;
 }
 
 // Resting contact whose carried-over impulses just miss the tolerance: the Delassus matrix G~ of
@@ -628,10 +633,10 @@ bool Simulator::warmStart()
         if (block.kind != ExtraBlock::Kind::Contact)
         {
             // Loops and limits by joint, a limit only on the same side as last step.
+            const RowKey key = rowKey(block);
             for (const JointImpulse& previous : mPreviousJointImpulses)
             {
-                if (previous.kind == block.kind && previous.joint == block.source &&
-                    previous.direction.dot(rowKey(block).direction) > 0.0)
+                if (sameJointRows(key, previous.key))
                 {
                     mExtraLambda.segment(block.offset, block.count) = previous.lambda.head(block.count);
                     any = any || previous.lambda.head(block.count).cwiseAbs().maxCoeff() > 0.0;
@@ -699,7 +704,7 @@ void Simulator::rememberImpulses()
         }
         else
         {
-            JointImpulse previous{block.kind, block.source, rowKey(block).direction, Vec6::Zero()};
+            JointImpulse previous{rowKey(block), Vec6::Zero()};
             previous.lambda.head(block.count) = mExtraLambda.segment(block.offset, block.count);
             mPreviousJointImpulses.push_back(previous);
         }

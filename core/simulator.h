@@ -80,6 +80,13 @@ enum class ContactRoute
     Reused,  // Gauss-Seidel on a recent step's G, checked exactly against this step's rows
     Built,   // this step's G, then Gauss-Seidel
 };
+inline constexpr std::size_t cContactRoutes = 4;
+
+// Index of a route in per-route counts (arrays of cContactRoutes).
+constexpr std::size_t routeIndex(ContactRoute route)
+{
+    return static_cast<std::size_t>(route);
+}
 
 // Stages of a step, timed (wall seconds): contact detection; free velocities, rows and the O(n)
 // factorization; the impulse solve with the contact problem; positions, penetration and drift
@@ -176,14 +183,6 @@ class Simulator
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;
     std::vector<int> mPreviousOrder; // mPreviousContacts by body pair (stable: index order within)
-    struct JointImpulse              // last step's impulse of a loop or limit block
-    {
-        ExtraBlock::Kind kind;
-        int joint;
-        Vec6 direction; // RowKey::direction: a limit's side
-        Vec6 lambda;    // N s or N m s
-    };
-    std::vector<JointImpulse> mPreviousJointImpulses;
     bool warmStart();
     bool lastImpulsesStillHold();
     bool solveWithLastDelassus();
@@ -197,6 +196,14 @@ class Simulator
         Vec6 direction; // contacts: the normal; loops, limits: the first row of J
     };
     RowKey rowKey(const ExtraBlock& block) const;
+    // Loops and limits: the same kind of block of the same joint, a limit on the same side.
+    static bool sameJointRows(const RowKey& now, const RowKey& then);
+    struct JointImpulse // last step's impulse of a loop or limit block
+    {
+        RowKey key;
+        Vec6 lambda; // N s or N m s
+    };
+    std::vector<JointImpulse> mPreviousJointImpulses;
     bool sameRowsAsLastDelassus() const;
     static constexpr int cMaxDelassusAge = 50; // steps a G~ may stand in for the current G
     std::vector<RowKey> mDelassusRows;         // the blocks mG was built for

@@ -16,10 +16,10 @@ namespace
 
 struct RouteRun
 {
-    std::array<long, 4> routes{}; // steps by core::ContactRoute
-    double maxEnergyRise = 0.0;   // J above the start
-    double endSpeed = 0.0;        // largest point speed at the end (m/s)
-    std::vector<Vec3> positions;  // centres at the end (m)
+    std::array<long, core::cContactRoutes> routes{}; // steps by core::ContactRoute
+    double maxEnergyRise = 0.0;                      // J above the start
+    double endSpeed = 0.0;                           // largest point speed at the end (m/s)
+    std::vector<Vec3> positions;                     // centres at the end (m)
 };
 
 RouteRun runWith(const std::string& scene, double seconds, bool reuse)
@@ -32,7 +32,7 @@ RouteRun runWith(const std::string& scene, double seconds, bool reuse)
     for (long k = 0; k < run.stepsFor(seconds); ++k)
     {
         run.step();
-        ++r.routes[static_cast<std::size_t>(run.simulator.lastStep().contactRoute)];
+        ++r.routes[core::routeIndex(run.simulator.lastStep().contactRoute)];
         r.maxEnergyRise = std::max(r.maxEnergyRise, core::totalEnergy(run.model, run.state) - start);
     }
     r.endSpeed = maxPointSpeed(run.model, run.state);
@@ -61,21 +61,21 @@ double largestDistance(const RouteRun& a, const RouteRun& b)
 }
 
 // Five boxes standing 2 s: with reuse, most steps that cannot keep the last impulses take the
-// reused route (none without);
-// both runs end at rest with the same poses within 0.1 mm (the contact conditions hold to 3e-5
-// m/s, so two valid solves can move a body by at most about that times 2 s = 6e-5 m).
+// reused route (none without); both runs end at rest with the same poses within 0.1 mm (the
+// contact conditions hold to 3e-5 m/s, so two valid solves can move a body by at most about that
+// times 2 s = 6e-5 m).
 TEST(DelassusReuse, BoxStackRestsAsWithTheMatrixBuiltEveryStep)
 {
     const RouteRun reused = runWith("box_stack.yaml", 2.0, true);
     const RouteRun built = runWith("box_stack.yaml", 2.0, false);
     print("box stack, reuse", reused);
     print("box stack, built every step", built);
-    EXPECT_EQ(built.routes[static_cast<std::size_t>(core::ContactRoute::Reused)], 0);
+    EXPECT_EQ(built.routes[core::routeIndex(core::ContactRoute::Reused)], 0);
     // Of the steps whose carried-over impulses miss, most are finished on the reused matrix.
-    EXPECT_GT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Reused)],
-              3 * reused.routes[static_cast<std::size_t>(core::ContactRoute::Built)]);
-    EXPECT_LT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Built)],
-              built.routes[static_cast<std::size_t>(core::ContactRoute::Built)] / 4);
+    EXPECT_GT(reused.routes[core::routeIndex(core::ContactRoute::Reused)],
+              3 * reused.routes[core::routeIndex(core::ContactRoute::Built)]);
+    EXPECT_LT(reused.routes[core::routeIndex(core::ContactRoute::Built)],
+              built.routes[core::routeIndex(core::ContactRoute::Built)] / 4);
     EXPECT_LT(largestDistance(reused, built), 1e-4);
     EXPECT_LT(reused.endSpeed, 1e-3);
     EXPECT_LT(built.endSpeed, 1e-3);
@@ -94,8 +94,8 @@ TEST(DelassusReuse, FallingDollComesToRestAsWithTheMatrixBuiltEveryStep)
     EXPECT_LT(reused.endSpeed, 1e-2);
     EXPECT_LT(built.endSpeed, 1e-2);
     EXPECT_LE(reused.maxEnergyRise, 0.0);
-    EXPECT_LT(2 * reused.routes[static_cast<std::size_t>(core::ContactRoute::Built)],
-              built.routes[static_cast<std::size_t>(core::ContactRoute::Built)]);
+    EXPECT_LT(2 * reused.routes[core::routeIndex(core::ContactRoute::Built)],
+              built.routes[core::routeIndex(core::ContactRoute::Built)]);
 }
 
 // Joint limits and loops carry their impulses to the next step (by joint, a limit on the same
@@ -109,18 +109,20 @@ TEST(DelassusReuse, LimitImpulsesAreCarriedAndReused)
 {
     const RouteRun limits = runWith("limits.yaml", 3.0, true);
     print("limits, reuse", limits);
-    const long withRows = limits.routes[1] + limits.routes[2] + limits.routes[3];
+    const long withRows = limits.routes[core::routeIndex(core::ContactRoute::Carried)] +
+                          limits.routes[core::routeIndex(core::ContactRoute::Reused)] +
+                          limits.routes[core::routeIndex(core::ContactRoute::Built)];
     EXPECT_GT(withRows, 0);
-    EXPECT_GT(2 * limits.routes[static_cast<std::size_t>(core::ContactRoute::Carried)], withRows);
+    EXPECT_GT(2 * limits.routes[core::routeIndex(core::ContactRoute::Carried)], withRows);
 
     const RouteRun reused = runWith("doll_urdf_scene.yaml", 2.0, true);
     const RouteRun built = runWith("doll_urdf_scene.yaml", 2.0, false);
     print("URDF dolls, reuse", reused);
     print("URDF dolls, built every step", built);
-    EXPECT_GT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Carried)], 0);
-    EXPECT_GT(reused.routes[static_cast<std::size_t>(core::ContactRoute::Reused)], 0);
-    EXPECT_LT(4 * reused.routes[static_cast<std::size_t>(core::ContactRoute::Built)],
-              3 * built.routes[static_cast<std::size_t>(core::ContactRoute::Built)]);
+    EXPECT_GT(reused.routes[core::routeIndex(core::ContactRoute::Carried)], 0);
+    EXPECT_GT(reused.routes[core::routeIndex(core::ContactRoute::Reused)], 0);
+    EXPECT_LT(4 * reused.routes[core::routeIndex(core::ContactRoute::Built)],
+              3 * built.routes[core::routeIndex(core::ContactRoute::Built)]);
     EXPECT_LE(reused.maxEnergyRise, 0.0);
     EXPECT_LE(built.maxEnergyRise, 0.0);
 }
