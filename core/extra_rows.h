@@ -111,4 +111,10 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
                                Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
                                const RowCoupling* coupling = nullptr);
 
+// The same sweeps from known row velocities: scratch.velocity holds J u at `lambda` on entry
+// (for instance computed exactly by an O(n) solve), so no product with G is formed first.
+ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                                   const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
+                                   ExtraSolveScratch& scratch, const RowCoupling* coupling = nullptr);
+
 } // namespace frontier::core

@@ -5,6 +5,7 @@
 // zeros, see TreeSolver::delassus), so each block keeps the runs of rows where its columns are
 // nonzero and a sweep updates velocities only there: a pile of separate articulated bodies costs
 // the sum of its trees' squares per sweep, not the square of the whole.
+#include "core/column_update.h"
 #include "core/extra_rows.h"
 
 #include <Eigen/Dense>
@@ -32,27 +33,67 @@ void appendRun(std::vector<std::pair<int, int>>& runs, int begin, int end)
     runs.emplace_back(begin, end);
 }
 
-// velocity(rows in runs) += G(rows, o .. o + n - 1) delta (Eigen's vectorized kernels: the
-// build has no -march flags, and -O2 does not vectorize these loops by itself).
+// velocity(rows in runs) += G(rows, o .. o + n - 1) delta (core/column_update.h: vectorized
+// kernels, four wide where the processor has AVX2).
 void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, const std::pair<int, int>* first,
                 const std::pair<int, int>* last, Eigen::VectorXd& velocity)
 {
+    const Eigen::Index ld = G.rows(); // column-major: column k starts at G.data() + k ld
     for (const std::pair<int, int>* run = first; run != last; ++run)
     {
         const Eigen::Index start = run->first;
         const Eigen::Index length = run->second - run->first;
-        auto v = velocity.segment(start, length);
+        double* v = velocity.data() + start;
+        const double* column = G.data() + o * ld + start;
         if (n == 3)
         {
-            v += G.col(o).segment(start, length) * delta[0] + G.col(o + 1).segment(start, length) * delta[1] +
-                 G.col(o + 2).segment(start, length) * delta[2];
+            addThreeColumns(v, column, column + ld, column + 2 * ld, delta[0], delta[1], delta[2], length);
             continue;
         }
         for (int q = 0; q < n; ++q)
         {
-            v += G.col(o + q).segment(start, length) * delta[q];
+            addOneColumn(v, column + q * ld, delta[q], length);
         }
     }
+}
+
+// One contact block with friction (rows normal, t1, t2), the others held: the new impulses.
+Eigen::Vector3d updateContact(const ExtraBlock& block, const Mat6& inverse, const Eigen::MatrixXd& G, int o,
+                              double regularization, const Eigen::VectorXd& velocity,
+                              const Eigen::Vector3d& old)
+{
+    // Sticking first (PAPER.md §2): the whole block's velocity to its target; kept when the
+    // normal impulse pushes and the friction stays inside the cone.
+    const Eigen::Vector3d target(block.target(0), 0.0, 0.0);
+    const Eigen::Vector3d trial = old + inverse.block<3, 3>(3, 3) * (target - velocity.segment<3>(o));
+    if (trial(0) >= 0.0 && trial.tail<2>().norm() <= block.friction * trial(0))
+    {
+        return trial;
+    }
+    // Normal row: one-sided.
+    Eigen::Vector3d next;
+    next(0) = std::max(0.0, old(0) + inverse(0, 0) * (block.target(0) - velocity(o)));
+    // Tangential rows after the normal change, then the friction cone |lambda_t| <= mu lambda_n
+    // by radial projection.
+    const Eigen::Vector2d vt = velocity.segment<2>(o + 1) + G.block<2, 1>(o + 1, o) * (next(0) - old(0));
+    Eigen::Vector2d lt = old.tail<2>() - inverse.block<2, 2>(1, 1) * vt;
+    const double limit = block.friction * next(0);
+    const double tangential = lt.norm();
+    if (tangential > limit)
+    {
+        // Sliding: the anisotropic 2x2 step would leave the friction off the slip direction at
+        // the fixed point; an isotropic step (k = 2 / trace) followed by the radial projection
+        // converges to friction opposing the slip.
+        const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
+        lt = old.tail<2>() - k * vt;
+        const double slide = lt.norm();
+        if (slide > limit)
+        {
+            lt *= slide > 0.0 ? limit / slide : 0.0;
+        }
+    }
+    next.tail<2>() = lt;
+    return next;
 }
 
 } // namespace
@@ -174,6 +215,18 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
                                Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
                                const RowCoupling* coupling)
 {
+    scratch.velocity.noalias() = freeVelocity;
+    if (lambda.size() > 0 && lambda.cwiseAbs().maxCoeff() > 0.0)
+    {
+        scratch.velocity.noalias() += G * lambda; // J u with the current impulses
+    }
+    return solveExtraRowsFrom(blocks, G, settings, lambda, scratch, coupling);
+}
+
+ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                                   const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
+                                   ExtraSolveScratch& scratch, const RowCoupling* coupling)
+{
     ExtraSolveStats stats;
     const Eigen::Index m = G.rows();
     if (m == 0)
@@ -220,8 +273,6 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
     }
 
     Eigen::VectorXd& velocity = scratch.velocity;
-    velocity.noalias() = freeVelocity;
-    velocity.noalias() += G * lambda; // J u with the current impulses
     double* v = velocity.data();
     for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
     {
@@ -232,75 +283,55 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
             const ExtraBlock& block = blocks[b];
             const int o = block.offset;
             const int n = block.count;
-            using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-            const SmallVec old = lambda.segment(o, n);
-            SmallVec next = old;
-            if (block.kind == ExtraBlock::Kind::Loop)
+            const std::pair<int, int>* firstRun = coupling->runs.data() + coupling->firstRun[b];
+            const std::pair<int, int>* lastRun = coupling->runs.data() + coupling->firstRun[b + 1];
+            double delta[6];
+            double step = 0.0; // largest impulse change of this block (N s)
+            if (block.kind == ExtraBlock::Kind::Contact && n == 3)
             {
-                const SmallVec target = block.target.head(n);
-                next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
+                const Eigen::Vector3d old = lambda.segment<3>(o);
+                const Eigen::Vector3d next =
+                    updateContact(block, inverse[b], G, o, regularization, velocity, old);
+                for (int q = 0; q < 3; ++q)
+                {
+                    delta[q] = next(q) - old(q);
+                    step = std::max(step, std::abs(delta[q]));
+                }
+                if (step > 0.0)
+                {
+                    lambda.segment<3>(o) = next;
+                    addColumns(G, o, 3, delta, firstRun, lastRun, velocity);
+                }
+                largest = std::max(largest, next.cwiseAbs().maxCoeff());
             }
             else
             {
-                bool stuck = false;
-                if (n == 3)
+                using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+                const SmallVec old = lambda.segment(o, n);
+                SmallVec next = old;
+                if (block.kind == ExtraBlock::Kind::Loop)
                 {
-                    // Sticking first (PAPER.md §2): the whole block's velocity to its target; kept
-                    // when the normal impulse pushes and the friction stays inside the cone.
-                    const Eigen::Vector3d target(block.target(0), 0.0, 0.0);
-                    const Eigen::Vector3d trial =
-                        old.head<3>() + inverse[b].block<3, 3>(3, 3) * (target - velocity.segment<3>(o));
-                    if (trial(0) >= 0.0 && trial.tail<2>().norm() <= block.friction * trial(0))
-                    {
-                        next.head<3>() = trial;
-                        stuck = true;
-                    }
+                    const SmallVec target = block.target.head(n);
+                    next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
                 }
-                // Normal (or limit) row: one-sided.
-                if (!stuck)
+                else
                 {
+                    // Normal (frictionless contact) or limit row: one-sided.
                     next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - v[o]));
-                    if (n == 3)
-                    {
-                        // Tangential rows after the normal change, then the friction cone
-                        // |lambda_t| <= mu lambda_n by radial projection.
-                        const Eigen::Vector2d vt =
-                            velocity.segment<2>(o + 1) + G.block<2, 1>(o + 1, o) * (next(0) - old(0));
-                        Eigen::Vector2d lt = old.segment<2>(1) - inverse[b].block<2, 2>(1, 1) * vt;
-                        const double limit = block.friction * next(0);
-                        const double tangential = lt.norm();
-                        if (tangential > limit)
-                        {
-                            // Sliding: the anisotropic 2x2 step would leave the friction off the
-                            // slip direction at the fixed point; an isotropic step (k = 2 / trace)
-                            // followed by the radial projection converges to friction opposing the slip.
-                            const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
-                            lt = old.segment<2>(1) - k * vt;
-                            const double slide = lt.norm();
-                            if (slide > limit)
-                            {
-                                lt *= slide > 0.0 ? limit / slide : 0.0;
-                            }
-                        }
-                        next.segment<2>(1) = lt;
-                    }
                 }
-            }
-            double delta[6];
-            double step = 0.0;
-            for (int q = 0; q < n; ++q)
-            {
-                delta[q] = next(q) - old(q);
-                step = std::max(step, std::abs(delta[q]));
-            }
-            if (step > 0.0)
-            {
-                lambda.segment(o, n) = next;
-                addColumns(G, o, n, delta, coupling->runs.data() + coupling->firstRun[b],
-                           coupling->runs.data() + coupling->firstRun[b + 1], velocity);
+                for (int q = 0; q < n; ++q)
+                {
+                    delta[q] = next(q) - old(q);
+                    step = std::max(step, std::abs(delta[q]));
+                }
+                if (step > 0.0)
+                {
+                    lambda.segment(o, n) = next;
+                    addColumns(G, o, n, delta, firstRun, lastRun, velocity);
+                }
+                largest = std::max(largest, next.cwiseAbs().maxCoeff());
             }
             change = std::max(change, step);
-            largest = std::max(largest, next.cwiseAbs().maxCoeff());
         }
         stats.sweeps = sweep + 1;
         stats.lastChange = largest > 0.0 ? change / largest : 0.0;

@@ -472,10 +472,17 @@ void Simulator::solveContactImpulses(State& state)
         {
             mStats.contactRoute = ContactRoute::Built;
             buildDelassus();
-            extraRowVelocities(mExtra, mSolution, mExtraVelocity);
-            mStats.contactSweeps += solveExtraRows(mExtra, mG, mExtraVelocity, mOptions.contactSolve,
-                                                   mExtraLambda, mExtraScratch, &mCoupling)
-                                        .sweeps;
+            if (warm)
+            {
+                mExtraScratch.velocity = mExtraVelocity; // exact at the impulses reached so far
+            }
+            else
+            {
+                extraRowVelocities(mExtra, mSolution, mExtraScratch.velocity); // lambda = 0
+            }
+            mStats.contactSweeps +=
+                solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda, mExtraScratch, &mCoupling)
+                    .sweeps;
             mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
         }
     }
@@ -604,9 +611,10 @@ bool Simulator::solveWithLastDelassus()
     settings.velocityTolerance *= 0.9; // margin for the difference between G~ and G
     for (int round = 0; round < cReuseRounds; ++round)
     {
-        mReuseFree.noalias() = mExtraVelocity - mG * mExtraLambda; // v(lambda) - G~ lambda
-        mStats.contactSweeps +=
-            solveExtraRows(mExtra, mG, mReuseFree, settings, mExtraLambda, mExtraScratch, &mCoupling).sweeps;
+        mExtraScratch.velocity = mExtraVelocity; // v(lambda), then v(lambda) + G~ (lambda' - lambda)
+        const ExtraSolveStats sweeps =
+            solveExtraRowsFrom(mExtra, mG, settings, mExtraLambda, mExtraScratch, &mCoupling);
+        mStats.contactSweeps += sweeps.sweeps;
         mTrial = mSolution;
         mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
         extraRowVelocities(mExtra, mTrial, mExtraVelocity);
@@ -615,6 +623,10 @@ bool Simulator::solveWithLastDelassus()
         {
             std::swap(mSolution, mTrial);
             return true;
+        }
+        if (sweeps.lastResidual > settings.velocityTolerance)
+        {
+            return false; // Gauss-Seidel did not converge even on G~: a hard step, G is built
         }
     }
     return false;

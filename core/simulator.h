@@ -208,7 +208,6 @@ class Simulator
     static constexpr int cMaxDelassusAge = 50; // steps a G~ may stand in for the current G
     std::vector<RowKey> mDelassusRows;         // the blocks mG was built for
     int mDelassusAge = -1;                     // steps since mG was built, -1 none
-    Eigen::VectorXd mReuseFree;
     void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;
