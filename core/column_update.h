@@ -13,11 +13,16 @@
 namespace frontier::core
 {
 
-// Three columns: v[i] += (c0[i] d0 + c1[i] d1) + c2[i] d2 for i in [0, n).
-void addThreeColumns(double* v, const double* c0, const double* c1, const double* c2, double d0, double d1,
-                     double d2, std::ptrdiff_t n);
-// One column: v[i] += c0[i] d0.
-void addOneColumn(double* v, const double* c0, double d0, std::ptrdiff_t n);
+// The kernels for this processor, chosen once:
+//   three(v, c0, c1, c2, d0, d1, d2, n): v[i] += (c0[i] d0 + c1[i] d1) + c2[i] d2 for i in [0, n)
+//   one(v, c0, d0, n):                   v[i] += c0[i] d0
+struct ColumnKernels
+{
+    void (*three)(double* v, const double* c0, const double* c1, const double* c2, double d0, double d1,
+                  double d2, std::ptrdiff_t n);
+    void (*one)(double* v, const double* c0, double d0, std::ptrdiff_t n);
+};
+const ColumnKernels& columnKernels();
 
 // True when the AVX2 copies run on this processor.
 bool columnUpdateUsesAvx2();

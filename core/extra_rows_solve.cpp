@@ -38,6 +38,7 @@ void appendRun(std::vector<std::pair<int, int>>& runs, int begin, int end)
 void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, const std::pair<int, int>* first,
                 const std::pair<int, int>* last, Eigen::VectorXd& velocity)
 {
+    static const ColumnKernels& kernels = columnKernels();
     const Eigen::Index ld = G.rows(); // column-major: column k starts at G.data() + k ld
     for (const std::pair<int, int>* run = first; run != last; ++run)
     {
@@ -47,12 +48,12 @@ void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, con
         const double* column = G.data() + o * ld + start;
         if (n == 3)
         {
-            addThreeColumns(v, column, column + ld, column + 2 * ld, delta[0], delta[1], delta[2], length);
+            kernels.three(v, column, column + ld, column + 2 * ld, delta[0], delta[1], delta[2], length);
             continue;
         }
         for (int q = 0; q < n; ++q)
         {
-            addOneColumn(v, column + q * ld, delta[q], length);
+            kernels.one(v, column + q * ld, delta[q], length);
         }
     }
 }
