@@ -48,5 +48,9 @@ struct ContactRows
 };
 ContactRows contactRows(const Model& model, const State& state, int bodyA, int bodyB, const Vec3& point_W,
                         const Vec3& normal_W);
+// The same rows, the first `count` of them, written into rows 0 .. count - 1 of J_A and J_B (the
+// 6 x 6 storage of an extra-row block; other rows untouched, J_B untouched for a world/static B).
+void writeContactRows(const Model& model, const State& state, int bodyA, int bodyB, const Vec3& point_W,
+                      const Vec3& normal_W, int count, Mat6& J_A, Mat6& J_B);
 
 } // namespace frontier::core

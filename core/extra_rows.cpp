@@ -57,18 +57,16 @@ LimitGeometry limitGeometry(const State& state, const Joint& joint)
 }
 } // namespace
 
-ExtraBlock makeContactBlock(const Model& model, const State& state, const Contact& contact, double friction,
-                            int source)
+ExtraBlock& appendContactBlock(const Model& model, const State& state, const Contact& contact,
+                               double friction, int source, std::vector<ExtraBlock>& out)
 {
-    const ContactRows rows =
-        contactRows(model, state, contact.bodyA, contact.bodyB, contact.point_W, contact.normal_W);
-    ExtraBlock block;
+    ExtraBlock& block = out.emplace_back(); // in place: a block is a few hundred bytes
     block.kind = ExtraBlock::Kind::Contact;
     block.count = friction > 0.0 ? 3 : 1; // no friction rows when friction is zero
     block.bodyA = contact.bodyA;
     block.bodyB = isMovingBody(model, contact.bodyB) ? contact.bodyB : -1;
-    block.J_A.topRows(block.count) = rows.J_A.topRows(block.count);
-    block.J_B.topRows(block.count) = rows.J_B.topRows(block.count);
+    writeContactRows(model, state, contact.bodyA, contact.bodyB, contact.point_W, contact.normal_W,
+                     block.count, block.J_A, block.J_B);
     block.error(0) = contact.depth;
     block.friction = friction;
     block.source = source;

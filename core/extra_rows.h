@@ -39,9 +39,10 @@ struct ExtraBlock
     int offset = 0;             // first row of the block in G
 };
 
-// Rows for one contact (normal, and two tangents when mu > 0), PAPER.md §2 collision conditions.
-ExtraBlock makeContactBlock(const Model& model, const State& state, const Contact& contact, double friction,
-                            int source);
+// Rows for one contact (normal, and two tangents when mu > 0), PAPER.md §2 collision conditions,
+// appended to `out` as a new block; returns it.
+ExtraBlock& appendContactBlock(const Model& model, const State& state, const Contact& contact,
+                               double friction, int source, std::vector<ExtraBlock>& out);
 
 // Joint-limit rows for a revolute (angle about its axis, rad) or prismatic joint (slide along its
 // axis, m) when the position is within `margin` of a limit; appends 0 or 1 block.

@@ -363,9 +363,8 @@ void Simulator::buildExtraRows(const State& state)
                 continue;
             }
         }
-        mExtra.push_back(
-            makeContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c)));
-        ExtraBlock& block = mExtra.back();
+        ExtraBlock& block =
+            appendContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c), mExtra);
         // Normal velocity before this step's gravity (m/s); < 0 approaching.
         double approach =
             block.J_A.row(0).dot((Vec6() << mStart[static_cast<std::size_t>(block.bodyA)].velocity_W,
