@@ -88,11 +88,25 @@ void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<i
 
 // Working storage of solveExtraRows, kept by the caller so that stepping does not allocate once
 // sizes have settled.
+// What the Gauss-Seidel update of one contact block with friction reads, side by side: a sweep
+// reads one of these per block instead of the block and its 6 x 6 pivot storage.
+struct ContactPivots
+{
+    double normal = 0.0;                                  // 1 / G_nn (inverse pivot of the normal row)
+    Eigen::Matrix2d tangential = Eigen::Matrix2d::Zero(); // G_tt^-1
+    Eigen::Matrix3d whole = Eigen::Matrix3d::Zero();      // G_bb^-1, the sticking trial
+    Eigen::Vector2d tangentialOfNormal = Eigen::Vector2d::Zero(); // G_tn
+    double isotropic = 0.0;                                       // 2 / trace G_tt, the sliding step
+    double target = 0.0;                                          // the normal row's target (m/s)
+    double friction = 0.0;                                        // mu
+};
+
 struct ExtraSolveScratch
 {
-    std::vector<Mat6> inverse; // inverse pivots per block
-    Eigen::VectorXd velocity;  // J u with the current impulses
-    RowCoupling dense;         // all rows for every block, when no coupling is given
+    std::vector<Mat6> inverse;           // inverse pivots per block
+    std::vector<ContactPivots> contacts; // per block, filled for contacts with friction
+    Eigen::VectorXd velocity;            // J u with the current impulses
+    RowCoupling dense;                   // all rows for every block, when no coupling is given
 };
 
 // How far velocities v = J u and impulses are from the conditions of their rows (m/s; rad/s for

@@ -58,35 +58,33 @@ void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, con
     }
 }
 
-// One contact block with friction (rows normal, t1, t2), the others held: the new impulses.
-Eigen::Vector3d updateContact(const ExtraBlock& block, const Mat6& inverse, const Eigen::MatrixXd& G, int o,
-                              double regularization, const Eigen::VectorXd& velocity,
-                              const Eigen::Vector3d& old)
+// One contact block with friction (rows normal, t1, t2), the others held: the new impulses. v
+// points at the block's row velocities.
+Eigen::Vector3d updateContact(const ContactPivots& p, const double* v, const Eigen::Vector3d& old)
 {
     // Sticking first (PAPER.md §2): the whole block's velocity to its target; kept when the
     // normal impulse pushes and the friction stays inside the cone.
-    const Eigen::Vector3d target(block.target(0), 0.0, 0.0);
-    const Eigen::Vector3d trial = old + inverse.block<3, 3>(3, 3) * (target - velocity.segment<3>(o));
-    if (trial(0) >= 0.0 && trial.tail<2>().norm() <= block.friction * trial(0))
+    const Eigen::Vector3d gap(p.target - v[0], -v[1], -v[2]);
+    const Eigen::Vector3d trial = old + p.whole * gap;
+    if (trial(0) >= 0.0 && trial.tail<2>().norm() <= p.friction * trial(0))
     {
         return trial;
     }
     // Normal row: one-sided.
     Eigen::Vector3d next;
-    next(0) = std::max(0.0, old(0) + inverse(0, 0) * (block.target(0) - velocity(o)));
+    next(0) = std::max(0.0, old(0) + p.normal * (p.target - v[0]));
     // Tangential rows after the normal change, then the friction cone |lambda_t| <= mu lambda_n
     // by radial projection.
-    const Eigen::Vector2d vt = velocity.segment<2>(o + 1) + G.block<2, 1>(o + 1, o) * (next(0) - old(0));
-    Eigen::Vector2d lt = old.tail<2>() - inverse.block<2, 2>(1, 1) * vt;
-    const double limit = block.friction * next(0);
+    const Eigen::Vector2d vt = Eigen::Vector2d(v[1], v[2]) + p.tangentialOfNormal * (next(0) - old(0));
+    Eigen::Vector2d lt = old.tail<2>() - p.tangential * vt;
+    const double limit = p.friction * next(0);
     const double tangential = lt.norm();
     if (tangential > limit)
     {
         // Sliding: the anisotropic 2x2 step would leave the friction off the slip direction at
         // the fixed point; an isotropic step (k = 2 / trace) followed by the radial projection
         // converges to friction opposing the slip.
-        const double k = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
-        lt = old.tail<2>() - k * vt;
+        lt = old.tail<2>() - p.isotropic * vt;
         const double slide = lt.norm();
         if (slide > limit)
         {
@@ -241,6 +239,7 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
     // tangential block, limits their one row. And the nonzero runs of each block's columns.
     std::vector<Mat6>& inverse = scratch.inverse;
     inverse.assign(blocks.size(), Mat6::Zero());
+    scratch.contacts.resize(blocks.size());
     if (coupling == nullptr)
     {
         scratch.dense.runs.assign(blocks.size(), {0, static_cast<int>(m)});
@@ -265,11 +264,17 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
         inverse[b](0, 0) = 1.0 / (G(o, o) + regularization);
         if (n == 3)
         {
+            ContactPivots& p = scratch.contacts[b];
+            p.normal = inverse[b](0, 0);
             const Eigen::Matrix2d tt =
                 G.block<2, 2>(o + 1, o + 1) + regularization * Eigen::Matrix2d::Identity();
-            inverse[b].block<2, 2>(1, 1) = tt.inverse();
+            p.tangential = tt.inverse();
             const Eigen::Matrix3d whole = G.block<3, 3>(o, o) + regularization * Eigen::Matrix3d::Identity();
-            inverse[b].block<3, 3>(3, 3) = whole.inverse(); // the sticking trial
+            p.whole = whole.inverse(); // the sticking trial
+            p.tangentialOfNormal = G.block<2, 1>(o + 1, o);
+            p.isotropic = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
+            p.target = blocks[b].target(0);
+            p.friction = blocks[b].friction;
         }
     }
 
@@ -291,8 +296,7 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
             if (block.kind == ExtraBlock::Kind::Contact && n == 3)
             {
                 const Eigen::Vector3d old = lambda.segment<3>(o);
-                const Eigen::Vector3d next =
-                    updateContact(block, inverse[b], G, o, regularization, velocity, old);
+                const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
                 for (int q = 0; q < 3; ++q)
                 {
                     delta[q] = next(q) - old(q);
