@@ -78,6 +78,19 @@ void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector
     out.setZero(rows);
     for (const ExtraBlock& block : blocks)
     {
+        if (block.count == 3) // a contact with friction: fixed-size products
+        {
+            auto v = out.segment<3>(block.offset);
+            if (block.bodyA >= 0)
+            {
+                v += block.J_A.topRows<3>() * solution.body[static_cast<std::size_t>(block.bodyA)];
+            }
+            if (block.bodyB >= 0)
+            {
+                v += block.J_B.topRows<3>() * solution.body[static_cast<std::size_t>(block.bodyB)];
+            }
+            continue;
+        }
         auto v = out.segment(block.offset, block.count);
         if (block.bodyA >= 0)
         {
@@ -117,6 +130,21 @@ void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, co
     mExtraRhs.setZero();
     for (const ExtraBlock& block : blocks)
     {
+        if (block.count == 3) // a contact with friction: fixed-size products
+        {
+            const Eigen::Vector3d l = lambda.segment<3>(block.offset);
+            if (block.bodyA >= 0)
+            {
+                mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] +=
+                    block.J_A.topRows<3>().transpose() * l;
+            }
+            if (block.bodyB >= 0)
+            {
+                mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] +=
+                    block.J_B.topRows<3>().transpose() * l;
+            }
+            continue;
+        }
         const auto l = lambda.segment(block.offset, block.count);
         if (block.bodyA >= 0)
         {
