@@ -12,6 +12,7 @@
 #include "core/joints/joint_rows.h"
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -105,8 +106,10 @@ struct ExtraSolveScratch
 {
     std::vector<Mat6> inverse;           // inverse pivots per block
     std::vector<ContactPivots> contacts; // per block, filled for contacts with friction
-    Eigen::VectorXd velocity;            // J u with the current impulses
-    RowCoupling dense;                   // all rows for every block, when no coupling is given
+    std::uint64_t pivotsVersion = 0;     // the matrixVersion the pivots were computed for (0 none)
+    Eigen::Index pivotsRows = 0;
+    Eigen::VectorXd velocity; // J u with the current impulses
+    RowCoupling dense;        // all rows for every block, when no coupling is given
 };
 
 // How far velocities v = J u and impulses are from the conditions of their rows (m/s; rad/s for
@@ -128,8 +131,12 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
 
 // The same sweeps from known row velocities: scratch.velocity holds J u at `lambda` on entry
 // (for instance computed exactly by an O(n) solve), so no product with G is formed first.
+// `matrixVersion` (optional) names G: when it is non-zero and the same as in the last call with
+// this scratch, for the same blocks, the inverse pivots of that call are used again (the reuse
+// route solves on one G for many steps).
 ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                    const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
-                                   ExtraSolveScratch& scratch, const RowCoupling* coupling = nullptr);
+                                   ExtraSolveScratch& scratch, const RowCoupling* coupling = nullptr,
+                                   std::uint64_t matrixVersion = 0);
 
 } // namespace frontier::core

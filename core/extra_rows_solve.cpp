@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 
 namespace frontier::core
@@ -224,7 +225,8 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
 
 ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                    const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
-                                   ExtraSolveScratch& scratch, const RowCoupling* coupling)
+                                   ExtraSolveScratch& scratch, const RowCoupling* coupling,
+                                   std::uint64_t matrixVersion)
 {
     ExtraSolveStats stats;
     const Eigen::Index m = G.rows();
@@ -238,7 +240,14 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
     // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
     // tangential block, limits their one row. And the nonzero runs of each block's columns.
     std::vector<Mat6>& inverse = scratch.inverse;
-    inverse.assign(blocks.size(), Mat6::Zero());
+    const bool pivotsKnown = matrixVersion != 0 && matrixVersion == scratch.pivotsVersion &&
+                             inverse.size() == blocks.size() && scratch.pivotsRows == m;
+    scratch.pivotsVersion = matrixVersion;
+    scratch.pivotsRows = m;
+    if (!pivotsKnown)
+    {
+        inverse.assign(blocks.size(), Mat6::Zero());
+    }
     scratch.contacts.resize(blocks.size());
     if (coupling == nullptr)
     {
@@ -254,6 +263,15 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
     {
         const int o = blocks[b].offset;
         const int n = blocks[b].count;
+        if (pivotsKnown)
+        {
+            if (n == 3 && blocks[b].kind == ExtraBlock::Kind::Contact)
+            {
+                scratch.contacts[b].target = blocks[b].target(0); // targets change from step to step
+                scratch.contacts[b].friction = blocks[b].friction;
+            }
+            continue;
+        }
         if (blocks[b].kind == ExtraBlock::Kind::Loop)
         {
             const Eigen::MatrixXd block =

@@ -479,9 +479,9 @@ void Simulator::solveContactImpulses(State& state)
             {
                 extraRowVelocities(mExtra, mSolution, mExtraScratch.velocity); // lambda = 0
             }
-            mStats.contactSweeps +=
-                solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda, mExtraScratch, &mCoupling)
-                    .sweeps;
+            mStats.contactSweeps += solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda,
+                                                       mExtraScratch, &mCoupling, mDelassusVersion)
+                                        .sweeps;
             mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
         }
     }
@@ -520,6 +520,7 @@ void Simulator::buildDelassus()
     if (!mDelassusValid)
     {
         mSolver->delassus(mExtra, mStats.extraRows, mG);
+        ++mDelassusVersion; // the Gauss-Seidel's pivots of the last G no longer hold
         coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
         mDelassusValid = true;
         mDelassusRows.clear();
@@ -611,8 +612,8 @@ bool Simulator::solveWithLastDelassus()
     for (int round = 0; round < cReuseRounds; ++round)
     {
         mExtraScratch.velocity = mExtraVelocity; // v(lambda), then v(lambda) + G~ (lambda' - lambda)
-        const ExtraSolveStats sweeps =
-            solveExtraRowsFrom(mExtra, mG, settings, mExtraLambda, mExtraScratch, &mCoupling);
+        const ExtraSolveStats sweeps = solveExtraRowsFrom(mExtra, mG, settings, mExtraLambda, mExtraScratch,
+                                                          &mCoupling, mDelassusVersion);
         mStats.contactSweeps += sweeps.sweeps;
         mTrial = mSolution;
         mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
@@ -660,17 +661,12 @@ bool Simulator::warmStart()
         double best = cWarmDistance * cWarmDistance;
         int match = -1;
         // The last step's contacts of the same body pair (mPreviousOrder: by pair, then index).
-        const auto samePair = std::equal_range(
-            mPreviousOrder.begin(), mPreviousOrder.end(), -1,
-            [&](int x, int y)
-            {
-                const Contact& a = x < 0 ? c : mPreviousContacts[static_cast<std::size_t>(x)];
-                const Contact& b = y < 0 ? c : mPreviousContacts[static_cast<std::size_t>(y)];
-                return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
-            });
-        for (auto it = samePair.first; it != samePair.second; ++it)
+        const std::uint64_t pair = bodyPairKey(c);
+        const auto first = std::lower_bound(mPreviousOrder.begin(), mPreviousOrder.end(),
+                                            std::pair<std::uint64_t, int>(pair, -1));
+        for (auto it = first; it != mPreviousOrder.end() && it->first == pair; ++it)
         {
-            const std::size_t p = static_cast<std::size_t>(*it);
+            const std::size_t p = static_cast<std::size_t>(it->second);
             const Contact& q = mPreviousContacts[p];
             const double d = (q.point_W - c.point_W).squaredNorm();
             if (d < best && q.normal_W.dot(c.normal_W) > 0.99)
@@ -689,21 +685,21 @@ bool Simulator::warmStart()
     return any;
 }
 
+std::uint64_t Simulator::bodyPairKey(const Contact& c)
+{
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.bodyA)) << 32) |
+           static_cast<std::uint32_t>(c.bodyB);
+}
+
 void Simulator::rememberImpulses()
 {
     mPreviousContacts = mContacts;
     mPreviousOrder.resize(mContacts.size());
     for (std::size_t k = 0; k < mContacts.size(); ++k)
     {
-        mPreviousOrder[k] = static_cast<int>(k);
+        mPreviousOrder[k] = {bodyPairKey(mContacts[k]), static_cast<int>(k)};
     }
-    std::stable_sort(mPreviousOrder.begin(), mPreviousOrder.end(),
-                     [&](int x, int y)
-                     {
-                         const Contact& a = mContacts[static_cast<std::size_t>(x)];
-                         const Contact& b = mContacts[static_cast<std::size_t>(y)];
-                         return std::pair(a.bodyA, a.bodyB) < std::pair(b.bodyA, b.bodyB);
-                     });
+    std::sort(mPreviousOrder.begin(), mPreviousOrder.end()); // by pair, then index
     mPreviousImpulses.assign(mContacts.size(), Vec3::Zero());
     mPreviousJointImpulses.clear();
     for (const ExtraBlock& block : mExtra)

@@ -37,6 +37,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -182,7 +183,9 @@ class Simulator
     // Warm start: last step's contacts and their impulses (normal, two tangents; N s).
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;
-    std::vector<int> mPreviousOrder; // mPreviousContacts by body pair (stable: index order within)
+    // mPreviousContacts by body pair, then index: (bodyPairKey, index)
+    std::vector<std::pair<std::uint64_t, int>> mPreviousOrder;
+    static std::uint64_t bodyPairKey(const Contact& c);
     bool warmStart();
     bool lastImpulsesStillHold();
     bool solveWithLastDelassus();
@@ -208,6 +211,7 @@ class Simulator
     static constexpr int cMaxDelassusAge = 50; // steps a G~ may stand in for the current G
     std::vector<RowKey> mDelassusRows;         // the blocks mG was built for
     int mDelassusAge = -1;                     // steps since mG was built, -1 none
+    std::uint64_t mDelassusVersion = 0;        // counts the builds of mG (names it for solveExtraRowsFrom)
     void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;

@@ -236,3 +236,50 @@ TEST(ExtraRowsSolve, ResultHoldsTheStatedVelocityTolerance)
 }
 
 } // namespace frontier::test
+
+namespace frontier::test
+{
+
+// Pivots kept for the same matrix (matrixVersion): a second solve on the same G with other
+// targets, from other impulses, gives bit for bit what a solve computing its pivots afresh gives
+// (the targets are read anew), and a solve on another matrix under version 0 is not misled.
+TEST(ExtraRowsSolve, PivotsKeptForTheSameMatrixGiveTheSameImpulses)
+{
+    ContactProblem p = makeContacts(75, 4, 40);
+    core::ExtraSolveSettings settings;
+    core::ExtraSolveScratch kept;
+    Eigen::VectorXd first = Eigen::VectorXd::Zero(p.rows);
+    kept.velocity = p.freeVelocity;
+    core::solveExtraRowsFrom(p.blocks, p.G, settings, first, kept, nullptr, 7);
+    ASSERT_GT(first.cwiseAbs().maxCoeff(), 0.0);
+    for (core::ExtraBlock& block : p.blocks)
+    {
+        block.target(0) = 1e-3; // a separating target: other impulses than before
+    }
+    Eigen::VectorXd again = 0.5 * first;
+    kept.velocity = p.freeVelocity + p.G * again;
+    core::solveExtraRowsFrom(p.blocks, p.G, settings, again, kept, nullptr, 7);
+    core::ExtraSolveScratch fresh;
+    Eigen::VectorXd reference = 0.5 * first;
+    fresh.velocity = p.freeVelocity + p.G * reference;
+    core::solveExtraRowsFrom(p.blocks, p.G, settings, reference, fresh, nullptr, 0);
+    ASSERT_EQ(again.size(), reference.size());
+    for (Eigen::Index i = 0; i < again.size(); ++i)
+    {
+        EXPECT_EQ(again(i), reference(i)) << "row " << i;
+    }
+    EXPECT_GT((again - first).cwiseAbs().maxCoeff(), 0.0); // the new targets changed the result
+    // Another matrix (scaled G) with version 0 after version 7: pivots recomputed, so the
+    // result is that of a fresh scratch.
+    const Eigen::MatrixXd other = 2.0 * p.G;
+    Eigen::VectorXd scaled = Eigen::VectorXd::Zero(p.rows);
+    kept.velocity = p.freeVelocity;
+    core::solveExtraRowsFrom(p.blocks, other, settings, scaled, kept, nullptr, 0);
+    core::ExtraSolveScratch fresh2;
+    Eigen::VectorXd scaledReference = Eigen::VectorXd::Zero(p.rows);
+    fresh2.velocity = p.freeVelocity;
+    core::solveExtraRowsFrom(p.blocks, other, settings, scaledReference, fresh2, nullptr, 0);
+    EXPECT_EQ((scaled - scaledReference).cwiseAbs().maxCoeff(), 0.0);
+}
+
+} // namespace frontier::test
