@@ -45,7 +45,7 @@ void addOneColumnPortable(double* v, const double* c0, double d0, std::ptrdiff_t
 }
 
 // AVX2 without FMA: the same multiplies and adds in the same order as the portable copies; the
-// last n mod 4 elements one by one.
+// last n mod 4 elements by the portable copy's element-by-element loop (fewer than cShortRun).
 __attribute__((target("avx2"))) void addThreeColumnsAvx2(double* v, const double* c0, const double* c1,
                                                          const double* c2, double d0, double d1, double d2,
                                                          std::ptrdiff_t n)
@@ -61,10 +61,7 @@ __attribute__((target("avx2"))) void addThreeColumnsAvx2(double* v, const double
         const __m256d sum = _mm256_add_pd(pair, _mm256_mul_pd(_mm256_loadu_pd(c2 + i), s2));
         _mm256_storeu_pd(v + i, _mm256_add_pd(_mm256_loadu_pd(v + i), sum));
     }
-    for (; i < n; ++i)
-    {
-        v[i] += (c0[i] * d0 + c1[i] * d1) + c2[i] * d2;
-    }
+    addThreeColumnsPortable(v + i, c0 + i, c1 + i, c2 + i, d0, d1, d2, n - i); // < 4 left: one by one
 }
 
 __attribute__((target("avx2"))) void addOneColumnAvx2(double* v, const double* c0, double d0,
@@ -77,10 +74,7 @@ __attribute__((target("avx2"))) void addOneColumnAvx2(double* v, const double* c
         _mm256_storeu_pd(v + i,
                          _mm256_add_pd(_mm256_loadu_pd(v + i), _mm256_mul_pd(_mm256_loadu_pd(c0 + i), s0)));
     }
-    for (; i < n; ++i)
-    {
-        v[i] += c0[i] * d0;
-    }
+    addOneColumnPortable(v + i, c0 + i, d0, n - i); // < 4 left: one by one
 }
 
 } // namespace detail

@@ -309,39 +309,11 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
             const int n = block.count;
             const std::pair<int, int>* firstRun = coupling->runs.data() + coupling->firstRun[b];
             const std::pair<int, int>* lastRun = coupling->runs.data() + coupling->firstRun[b + 1];
-            double delta[6];
-            double step = 0.0; // largest impulse change of this block (N s)
-            if (block.kind == ExtraBlock::Kind::Contact && n == 3)
+            // The block's new impulses replace the old ones; the rows it moves follow.
+            auto commit = [&](const auto& old, const auto& next)
             {
-                const Eigen::Vector3d old = lambda.segment<3>(o);
-                const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
-                for (int q = 0; q < 3; ++q)
-                {
-                    delta[q] = next(q) - old(q);
-                    step = std::max(step, std::abs(delta[q]));
-                }
-                if (step > 0.0)
-                {
-                    lambda.segment<3>(o) = next;
-                    addColumns(G, o, 3, delta, firstRun, lastRun, velocity);
-                }
-                largest = std::max(largest, next.cwiseAbs().maxCoeff());
-            }
-            else
-            {
-                using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-                const SmallVec old = lambda.segment(o, n);
-                SmallVec next = old;
-                if (block.kind == ExtraBlock::Kind::Loop)
-                {
-                    const SmallVec target = block.target.head(n);
-                    next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
-                }
-                else
-                {
-                    // Normal (frictionless contact) or limit row: one-sided.
-                    next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - v[o]));
-                }
+                double delta[6];
+                double step = 0.0; // largest impulse change of this block (N s)
                 for (int q = 0; q < n; ++q)
                 {
                     delta[q] = next(q) - old(q);
@@ -353,8 +325,28 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
                     addColumns(G, o, n, delta, firstRun, lastRun, velocity);
                 }
                 largest = std::max(largest, next.cwiseAbs().maxCoeff());
+                change = std::max(change, step);
+            };
+            if (block.kind == ExtraBlock::Kind::Contact && n == 3)
+            {
+                const Eigen::Vector3d old = lambda.segment<3>(o);
+                commit(old, updateContact(scratch.contacts[b], v + o, old));
+                continue;
             }
-            change = std::max(change, step);
+            using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+            const SmallVec old = lambda.segment(o, n);
+            SmallVec next = old;
+            if (block.kind == ExtraBlock::Kind::Loop)
+            {
+                const SmallVec target = block.target.head(n);
+                next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
+            }
+            else
+            {
+                // Normal (frictionless contact) or limit row: one-sided.
+                next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - v[o]));
+            }
+            commit(old, next);
         }
         stats.sweeps = sweep + 1;
         stats.lastChange = largest > 0.0 ? change / largest : 0.0;

@@ -78,27 +78,26 @@ void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector
     out.setZero(rows);
     for (const ExtraBlock& block : blocks)
     {
-        if (block.count == 3) // a contact with friction: fixed-size products
+        // v += J_A u_A + J_B u_B, with fixed-size products for 3-row blocks (contacts with friction)
+        auto add = [&](auto&& v, const auto& J_A, const auto& J_B)
         {
-            auto v = out.segment<3>(block.offset);
             if (block.bodyA >= 0)
             {
-                v += block.J_A.topRows<3>() * solution.body[static_cast<std::size_t>(block.bodyA)];
+                v += J_A * solution.body[static_cast<std::size_t>(block.bodyA)];
             }
             if (block.bodyB >= 0)
             {
-                v += block.J_B.topRows<3>() * solution.body[static_cast<std::size_t>(block.bodyB)];
+                v += J_B * solution.body[static_cast<std::size_t>(block.bodyB)];
             }
-            continue;
-        }
-        auto v = out.segment(block.offset, block.count);
-        if (block.bodyA >= 0)
+        };
+        if (block.count == 3)
         {
-            v += block.J_A.topRows(block.count) * solution.body[static_cast<std::size_t>(block.bodyA)];
+            add(out.segment<3>(block.offset), block.J_A.topRows<3>(), block.J_B.topRows<3>());
         }
-        if (block.bodyB >= 0)
+        else
         {
-            v += block.J_B.topRows(block.count) * solution.body[static_cast<std::size_t>(block.bodyB)];
+            add(out.segment(block.offset, block.count), block.J_A.topRows(block.count),
+                block.J_B.topRows(block.count));
         }
     }
 }
@@ -130,31 +129,27 @@ void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, co
     mExtraRhs.setZero();
     for (const ExtraBlock& block : blocks)
     {
-        if (block.count == 3) // a contact with friction: fixed-size products
+        // J_A^T l on A, J_B^T l on B, with fixed-size products for 3-row blocks (contacts with friction)
+        auto add = [&](const auto& l, const auto& J_A, const auto& J_B)
         {
-            const Eigen::Vector3d l = lambda.segment<3>(block.offset);
             if (block.bodyA >= 0)
             {
-                mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] +=
-                    block.J_A.topRows<3>().transpose() * l;
+                mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] += J_A.transpose() * l;
             }
             if (block.bodyB >= 0)
             {
-                mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] +=
-                    block.J_B.topRows<3>().transpose() * l;
+                mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] += J_B.transpose() * l;
             }
-            continue;
-        }
-        const auto l = lambda.segment(block.offset, block.count);
-        if (block.bodyA >= 0)
+        };
+        if (block.count == 3)
         {
-            mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] +=
-                block.J_A.topRows(block.count).transpose() * l;
+            const Eigen::Vector3d l = lambda.segment<3>(block.offset);
+            add(l, block.J_A.topRows<3>(), block.J_B.topRows<3>());
         }
-        if (block.bodyB >= 0)
+        else
         {
-            mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] +=
-                block.J_B.topRows(block.count).transpose() * l;
+            add(lambda.segment(block.offset, block.count), block.J_A.topRows(block.count),
+                block.J_B.topRows(block.count));
         }
     }
     solve(mExtraRhs, mExtraResponse);
