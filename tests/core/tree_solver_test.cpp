@@ -4,6 +4,7 @@
 #include "core/dense_solver.h"
 #include "core/tree_solver.h"
 #include "random_model.h"
+#include "tests/soak.h"
 
 #include <cmath>
 #include <cstdio>
@@ -76,6 +77,7 @@ double solveBoth(const Model& model, double& velocityError, double& impulseError
 
 TEST(TreeSolver, MatchesDenseOnRandomTrees)
 {
+    FRONTIER_SOAK_TEST();
     double worstV = 0.0, worstL = 0.0, worstB = 0.0;
     for (const Case& c : cCases)
     {

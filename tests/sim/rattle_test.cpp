@@ -2,6 +2,7 @@
 // convergence orders measured by halving the time step, energy over 1000 s of a conservative
 // chain, joint gaps, and momentum of a free articulated body.
 #include "sim_test_util.h"
+#include "tests/soak.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -119,6 +120,7 @@ TEST(Convergence, TenLinkChainIsFirstOrderWithEulerAndSecondOrderWithRattle)
 // first to the tenth 100 s). Joint gaps under 1e-9 m after every step.
 TEST(RattleEnergy, TenLinkChainKeepsEnergyWithoutDriftForAThousandSeconds)
 {
+    FRONTIER_SOAK_TEST();
     const core::Model model = withStep(io::loadSceneFromString(chainScene(10, 0.5), "chain10.yaml"),
                                        core::IntegratorKind::Rattle, 0.0025);
     core::State state = core::initialState(model);
