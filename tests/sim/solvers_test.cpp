@@ -2,6 +2,7 @@
 // solvers give the same trajectory of the 30-link chain; `pgs` (20 sweeps) stays finite, and its
 // joint error is recorded.
 #include "sim_test_util.h"
+#include "tests/soak.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -44,6 +45,7 @@ TEST(Solvers, LinearAndDenseChainTrajectoriesAgree)
 
 TEST(Solvers, PgsWithTwentySweepsStaysFinite)
 {
+    FRONTIER_SOAK_TEST();
     const core::Model model = chainWith(core::SolverKind::Pgs, 20);
     core::Simulator simulator(model);
     core::State state = core::initialState(model);

@@ -7,6 +7,7 @@
 // M |g| D); "rise" is the largest excess over the initial energy, "loss" the largest deficit.
 #include "app/stability.h"
 #include "io/scene.h"
+#include "tests/soak.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -219,6 +220,7 @@ TEST(StabilitySuite, Whip)
 // pgs:100 6.6e-4 m (both come apart, at 0.56 s and 0.64 s); whip, pgs:20 7.3e-4 m (at 0.11 s).
 TEST(StabilitySuite, PgsComesApartWhereLinearHolds)
 {
+    FRONTIER_SOAK_TEST();
     const StabilityCell linear = run("heavy_tip_1e3");
     EXPECT_TRUE(linear.survived());
     EXPECT_LT(linear.maxJointGapM, 1e-6);
