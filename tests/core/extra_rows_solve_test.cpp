@@ -235,11 +235,6 @@ TEST(ExtraRowsSolve, ResultHoldsTheStatedVelocityTolerance)
     }
 }
 
-} // namespace frontier::test
-
-namespace frontier::test
-{
-
 // Pivots kept for the same matrix (matrixVersion): a second solve on the same G with other
 // targets, from other impulses, gives bit for bit what a solve computing its pivots afresh gives
 // (the targets are read anew), and a solve on another matrix under version 0 is not misled.
