@@ -69,8 +69,8 @@ struct ExtraSolveSettings
 struct ExtraSolveStats
 {
     int sweeps = 0;
-    double lastChange = 0.0;   // relative impulse change of the last sweep
-    double lastResidual = 0.0; // conditionResidual after the last sweep (m/s)
+    double lastChange = 0.0; // relative impulse change of the last sweep
+    bool converged = false;  // every condition met to velocityTolerance after the last sweep
 };
 
 // Which rows an impulse on each block can move: G_rs = 0 unless rows r and s have moving bodies
@@ -118,6 +118,11 @@ struct ExtraSolveScratch
 // not opposite to the friction.
 double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
                          const Eigen::VectorXd& lambda);
+
+// conditionResidual(blocks, velocity, lambda) <= tolerance, stopping at the first block that is
+// not (NaN counts as not met): the Gauss-Seidel's test after each sweep.
+bool conditionsMet(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
+                   const Eigen::VectorXd& lambda, double tolerance);
 
 // Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
 // given the others; a contact's normal row clamped at zero, then its two tangential rows solved

@@ -505,7 +505,7 @@ bool Simulator::lastImpulsesStillHold()
     mTrial = mSolution;
     mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
     extraRowVelocities(mExtra, mTrial, mExtraVelocity);
-    if (conditionResidual(mExtra, mExtraVelocity, mExtraLambda) > mOptions.contactSolve.velocityTolerance)
+    if (!conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
     {
         return false;
     }
@@ -618,13 +618,12 @@ bool Simulator::solveWithLastDelassus()
         mTrial = mSolution;
         mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
         extraRowVelocities(mExtra, mTrial, mExtraVelocity);
-        if (conditionResidual(mExtra, mExtraVelocity, mExtraLambda) <=
-            mOptions.contactSolve.velocityTolerance)
+        if (conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
         {
             std::swap(mSolution, mTrial);
             return true;
         }
-        if (sweeps.lastResidual > settings.velocityTolerance)
+        if (!sweeps.converged)
         {
             return false; // Gauss-Seidel did not converge even on G~: a hard step, G is built
         }
