@@ -122,11 +122,9 @@ void ImpulseSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Ei
     }
 }
 
-void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
-                                       BlockVector& solution)
+void ImpulseSolver::addExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
+                                     BlockVector& rhs)
 {
-    mExtraRhs.resize(solution.body.size(), solution.joint.size());
-    mExtraRhs.setZero();
     for (const ExtraBlock& block : blocks)
     {
         // J_A^T l on A, J_B^T l on B, with fixed-size products for 3-row blocks (contacts with friction)
@@ -134,11 +132,11 @@ void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, co
         {
             if (block.bodyA >= 0)
             {
-                mExtraRhs.body[static_cast<std::size_t>(block.bodyA)] += J_A.transpose() * l;
+                rhs.body[static_cast<std::size_t>(block.bodyA)] += J_A.transpose() * l;
             }
             if (block.bodyB >= 0)
             {
-                mExtraRhs.body[static_cast<std::size_t>(block.bodyB)] += J_B.transpose() * l;
+                rhs.body[static_cast<std::size_t>(block.bodyB)] += J_B.transpose() * l;
             }
         };
         if (block.count == 3)
@@ -152,6 +150,14 @@ void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, co
                 block.J_B.topRows(block.count));
         }
     }
+}
+
+void ImpulseSolver::applyExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
+                                       BlockVector& solution)
+{
+    mExtraRhs.resize(solution.body.size(), solution.joint.size());
+    mExtraRhs.setZero();
+    addExtraImpulses(blocks, lambda, mExtraRhs);
     solve(mExtraRhs, mExtraResponse);
     for (std::size_t i = 0; i < solution.body.size(); ++i)
     {

@@ -80,6 +80,10 @@ class ImpulseSolver
     // it with forward sweeps that touch only each body's path to its root.
     virtual void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G);
 
+    // Adds the momentum of extra-row impulses to a right-hand side: rhs.body += J_x^T lambda.
+    static void addExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
+                                 BlockVector& rhs);
+
     // Adds the response to extra-row impulses: solution += H^-1 [J_x^T lambda; 0] (one solve).
     void applyExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
                             BlockVector& solution);

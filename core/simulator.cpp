@@ -119,12 +119,13 @@ void Simulator::stepEuler(State& state)
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
     rowsAtStart(state);
+    buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
     setMomentumRhs(state);
+    carryImpulses(); // the last step's impulses on those rows join the right-hand side
     // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
-    // impulses of the free velocities, fused into one pass.
+    // impulses of the free velocities and the carried extra impulses, fused into one pass.
     mSolver->factorAndSolve(mRows, mRhs, mSolution);
     clock.lap(StepStage::Factor);
-    buildExtraRows(state);
     solveContactImpulses(state); // the extra rows on top (§5)
     clock.lap(StepStage::Solve);
     integratePositions(state);
@@ -182,6 +183,7 @@ bool Simulator::stepRattle(State& state)
     clock.lap(StepStage::Factor);
     buildExtraRows(state);
     setMomentumRhs(state);
+    carryImpulses();
     mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
     solveContactImpulses(state);
     clock.lap(StepStage::Solve);
@@ -443,9 +445,31 @@ void Simulator::setMomentumRhs(const State& state)
     }
 }
 
-// With the tree's solution u_free (mSolution), the extra rows in constraint space:
-// v = J_x u_free + G lambda_x with the complementarity conditions, and
-// u' = u_free + H^-1 J_x^T lambda_x; then the state takes u'.
+// The last step's impulses on this step's rows (warmStart), and their momentum J_x^T lambda in
+// the right-hand side of the step's first solve: that solve then gives u(lambda_carried) =
+// H^-1 (M u* + J_x^T lambda_carried) exactly, so a step whose carried impulses still hold needs no
+// second O(n) solve, and the others apply only the change of the impulses.
+void Simulator::carryImpulses()
+{
+    mExtraLambda.setZero(mStats.extraRows);
+    mWarm = mStats.extraRows > 0 && warmStart();
+    mBaseLambda = mExtraLambda;
+    if (mWarm)
+    {
+        ImpulseSolver::addExtraImpulses(mExtra, mExtraLambda, mRhs);
+    }
+}
+
+// solution += H^-1 J_x^T (lambda - lambda_carried): from u(lambda_carried) to u(lambda).
+void Simulator::applyImpulseChange(BlockVector& solution)
+{
+    mImpulseChange = mExtraLambda - mBaseLambda;
+    mSolver->applyExtraImpulses(mExtra, mImpulseChange, solution);
+}
+
+// With the tree's solution u(lambda_carried) (mSolution, u_free when nothing was carried), the
+// extra rows in constraint space: v = J_x u_free + G lambda with the complementarity conditions,
+// and u' = u_free + H^-1 J_x^T lambda; then the state takes u'.
 void Simulator::solveContactImpulses(State& state)
 {
     mStats.contactSweeps = 0;
@@ -457,13 +481,11 @@ void Simulator::solveContactImpulses(State& state)
     }
     if (mStats.extraRows > 0)
     {
-        mExtraLambda.setZero(mStats.extraRows);
-        const bool warm = warmStart();
-        if (warm && lastImpulsesStillHold())
+        if (mWarm && lastImpulsesStillHold())
         {
             mStats.contactRoute = ContactRoute::Carried;
         }
-        else if (warm && mOptions.reuseDelassus && solveWithLastDelassus())
+        else if (mWarm && mOptions.reuseDelassus && solveWithLastDelassus())
         {
             mStats.contactRoute = ContactRoute::Reused;
         }
@@ -471,7 +493,7 @@ void Simulator::solveContactImpulses(State& state)
         {
             mStats.contactRoute = ContactRoute::Built;
             buildDelassus();
-            if (warm)
+            if (mWarm)
             {
                 mExtraScratch.velocity = mExtraVelocity; // exact at the impulses reached so far
             }
@@ -482,7 +504,7 @@ void Simulator::solveContactImpulses(State& state)
             mStats.contactSweeps += solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda,
                                                        mExtraScratch, &mCoupling, mDelassusVersion)
                                         .sweeps;
-            mSolver->applyExtraImpulses(mExtra, mExtraLambda, mSolution);
+            applyImpulseChange(mSolution);
         }
     }
     rememberImpulses();
@@ -497,20 +519,13 @@ void Simulator::solveContactImpulses(State& state)
 }
 
 // Resting contact: the impulses carried over from the last step often still meet every
-// condition of this step to the solve's tolerance (core::conditionResidual). That is checked with
-// one O(n) solve, u = u_free + H^-1 J_x^T lambda and v = J_x u, without building G; when they
-// hold, the step keeps them (0 sweeps, the same criterion the Gauss-Seidel stops on).
+// condition of this step to the solve's tolerance (core::conditionResidual). The step's first
+// solve included them (carryImpulses), so the check is v = J_x u(lambda_carried), without G; when
+// they hold, the step keeps them (0 sweeps, the same criterion the Gauss-Seidel stops on).
 bool Simulator::lastImpulsesStillHold()
 {
-    mTrial = mSolution;
-    mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
-    extraRowVelocities(mExtra, mTrial, mExtraVelocity);
-    if (!conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
-    {
-        return false;
-    }
-    std::swap(mSolution, mTrial);
-    return true;
+    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+    return conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance);
 }
 
 // The Delassus matrix of this step's extra rows and their coupling by tree, once per step and
@@ -616,7 +631,7 @@ bool Simulator::solveWithLastDelassus()
                                                           &mCoupling, mDelassusVersion);
         mStats.contactSweeps += sweeps.sweeps;
         mTrial = mSolution;
-        mSolver->applyExtraImpulses(mExtra, mExtraLambda, mTrial);
+        applyImpulseChange(mTrial);
         extraRowVelocities(mExtra, mTrial, mExtraVelocity);
         if (conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
         {

@@ -187,6 +187,8 @@ class Simulator
     std::vector<std::pair<std::uint64_t, int>> mPreviousOrder;
     static std::uint64_t bodyPairKey(const Contact& c);
     bool warmStart();
+    void carryImpulses();
+    void applyImpulseChange(BlockVector& solution);
     bool lastImpulsesStillHold();
     bool solveWithLastDelassus();
     void buildDelassus();
@@ -215,10 +217,14 @@ class Simulator
     void rememberImpulses();
     FrontierLayout mLayout;
     std::unique_ptr<ImpulseSolver> mSolver;
-    RowSystem mRows;             // rows at the start of the step (the factored ones)
-    RowSystem mRowsAfter;        // rows re-evaluated after the position update (errors only)
-    RowSystem mRowsRefactored;   // rows of a re-factorization when the quasi-Newton iteration is slow
-    BlockVector mTrial;          // velocities with the last step's contact impulses
+    RowSystem mRows;           // rows at the start of the step (the factored ones)
+    RowSystem mRowsAfter;      // rows re-evaluated after the position update (errors only)
+    RowSystem mRowsRefactored; // rows of a re-factorization when the quasi-Newton iteration is slow
+    BlockVector mTrial;        // velocities with trial impulses (reuse rounds)
+    // The warm-start impulses that the step's first solve included (mSolution = u(mBaseLambda));
+    // mWarm: some impulse was carried from the last step.
+    Eigen::VectorXd mBaseLambda, mImpulseChange;
+    bool mWarm = false;
     bool mDelassusValid = false; // mG and mCoupling belong to this step's extra rows
     BlockVector mRhs, mSolution, mCorrection;
     std::vector<BodyState> mStart; // poses at the start of the step
