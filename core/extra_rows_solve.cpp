@@ -359,6 +359,12 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
                 // The same commit written out for three rows, in registers: the generic one keeps
                 // its running maximum in memory, a store-to-load chain in the sweep's hot loop.
                 const Eigen::Vector3d old = lambda.segment<3>(o);
+                if (old(0) == 0.0 && old(1) == 0.0 && old(2) == 0.0 && v[o] >= scratch.contacts[b].target)
+                {
+                    // Apart and not pushing: no impulse solves the block (a quarter of the updates
+                    // in the pileup; the full update left them at zero every time).
+                    continue;
+                }
                 const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
                 double delta[3] = {next(0) - old(0), next(1) - old(1), next(2) - old(2)};
                 const double step = std::max({std::abs(delta[0]), std::abs(delta[1]), std::abs(delta[2])});
