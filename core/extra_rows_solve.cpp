@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 
 namespace frontier::core
 {
@@ -100,16 +101,15 @@ Eigen::Vector3d updateContact(const ContactPivots& p, const double* v, const Eig
     return next;
 }
 
-} // namespace
-
-namespace
-{
-
 // How far one block's velocities and impulses are from its conditions (m/s or rad/s): see
-// conditionResidual.
+// conditionResidual. NaN when one of them is not finite.
 double blockResidual(const ExtraBlock& block, const Eigen::VectorXd& velocity, const Eigen::VectorXd& lambda)
 {
     const int o = block.offset;
+    if (!velocity.segment(o, block.count).allFinite() || !lambda.segment(o, block.count).allFinite())
+    {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
     if (block.kind == ExtraBlock::Kind::Loop)
     {
         return (velocity.segment(o, block.count) - block.target.head(block.count)).cwiseAbs().maxCoeff();
@@ -148,7 +148,12 @@ double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::Vec
     double worst = 0.0;
     for (const ExtraBlock& block : blocks)
     {
-        worst = std::max(worst, blockResidual(block, velocity, lambda));
+        const double residual = blockResidual(block, velocity, lambda);
+        if (std::isnan(residual))
+        {
+            return residual; // std::max would pass over it
+        }
+        worst = std::max(worst, residual);
     }
     return worst;
 }

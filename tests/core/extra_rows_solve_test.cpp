@@ -277,4 +277,86 @@ TEST(ExtraRowsSolve, PivotsKeptForTheSameMatrixGiveTheSameImpulses)
     EXPECT_EQ((scaled - scaledReference).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// conditionsMet is conditionResidual <= tolerance, decided at the first unmet block: the two agree
+// on every sweep's iterate of a solve (and with the solve's own `converged`), the residual itself
+// is met and the next smaller number is not, and a NaN velocity is never met (the largest
+// residual passes over a NaN).
+TEST(ExtraRowsSolve, ConditionsMetAgreesWithTheLargestResidual)
+{
+    const ContactProblem p = makeContacts(74, 3, 40); // the problem of the tolerance test above
+    core::ExtraSolveSettings settings;
+    settings.maxSweeps = 1; // one sweep per call: every iterate is checked
+    settings.tolerance = 0.0;
+    settings.velocityTolerance = 1e-4;
+    core::ExtraSolveScratch scratch;
+    scratch.velocity = p.freeVelocity;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.rows);
+    int unmet = 0;
+    int met = 0;
+    for (int sweep = 0; sweep < 100000 && met == 0; ++sweep)
+    {
+        const core::ExtraSolveStats stats =
+            core::solveExtraRowsFrom(p.blocks, p.G, settings, lambda, scratch);
+        const double residual = core::conditionResidual(p.blocks, scratch.velocity, lambda);
+        EXPECT_EQ(stats.converged, residual <= settings.velocityTolerance) << "sweep " << sweep;
+        EXPECT_EQ(core::conditionsMet(p.blocks, scratch.velocity, lambda, settings.velocityTolerance),
+                  residual <= settings.velocityTolerance);
+        EXPECT_TRUE(core::conditionsMet(p.blocks, scratch.velocity, lambda, residual));
+        if (residual > 0.0)
+        {
+            EXPECT_FALSE(
+                core::conditionsMet(p.blocks, scratch.velocity, lambda, std::nextafter(residual, 0.0)));
+        }
+        (residual <= settings.velocityTolerance ? met : unmet) += 1;
+    }
+    EXPECT_GT(unmet, 0); // the loop saw both outcomes
+    EXPECT_EQ(met, 1);
+    Eigen::VectorXd broken = scratch.velocity;
+    broken(p.blocks.back().offset) = std::nan("");
+    EXPECT_FALSE(core::conditionsMet(p.blocks, broken, lambda, 1e300));
+    EXPECT_TRUE(std::isnan(core::conditionResidual(p.blocks, broken, lambda)));
+}
+
+// The carried impulses in the right-hand side of the step's first solve (Simulator::carryImpulses):
+// H^-1 (p + J_x^T lambda) in one solve equals H^-1 p plus applyExtraImpulses(lambda) to
+// round-off, and its row velocities are v_free + G lambda.
+TEST(ExtraRowsSolve, ImpulsesInTheRightHandSideEqualAppliedImpulses)
+{
+    const ContactProblem p = makeContacts(77, 3, 30);
+    core::TreeSolver solver;
+    solver.factor(p.problem->system);
+    Rng rng(77);
+    Eigen::VectorXd lambda(p.rows);
+    for (Eigen::Index i = 0; i < p.rows; ++i)
+    {
+        lambda(i) = rng.uniform(0.0, 1.0);
+    }
+    const core::BlockVector momentum =
+        momentumRhs(*p.problem->system.model, p.problem->state, p.problem->system);
+    core::BlockVector applied;
+    solver.solve(momentum, applied);
+    solver.applyExtraImpulses(p.blocks, lambda, applied);
+    core::BlockVector rhs = momentum;
+    core::ImpulseSolver::addExtraImpulses(p.blocks, lambda, rhs);
+    core::BlockVector once;
+    solver.solve(rhs, once);
+    double scale = 0.0;
+    double difference = 0.0;
+    for (std::size_t i = 0; i < once.body.size(); ++i)
+    {
+        scale = std::max(scale, applied.body[i].cwiseAbs().maxCoeff());
+        difference = std::max(difference, (once.body[i] - applied.body[i]).cwiseAbs().maxCoeff());
+    }
+    for (std::size_t j = 0; j < once.joint.size(); ++j)
+    {
+        difference = std::max(difference, (once.joint[j] - applied.joint[j]).cwiseAbs().maxCoeff());
+    }
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LE(difference, 1e-12 * scale);
+    Eigen::VectorXd velocity;
+    core::extraRowVelocities(p.blocks, once, velocity);
+    const Eigen::VectorXd expected = p.freeVelocity + p.G * lambda;
+    EXPECT_LE((velocity - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
+}
+
 } // namespace frontier::test
