@@ -41,7 +41,10 @@ double kineticEnergy(const Model& model, const State& state)
         }
         const BodyState& s = state.bodies[i];
         energy += 0.5 * body.mass * s.velocity_W.squaredNorm();
-        energy += 0.5 * s.angularVelocity_W.dot(worldInertia(body, s) * s.angularVelocity_W);
+        // w . I_W w = w_B . I_B w_B with w_B = R^T w: one rotation of a vector instead of
+        // forming R I_B R^T (the run loop evaluates this every step).
+        const Vec3 w_B = s.orientation_WB.toRotationMatrix().transpose() * s.angularVelocity_W;
+        energy += 0.5 * w_B.dot(body.inertia_B * w_B);
     }
     return energy;
 }

@@ -18,6 +18,7 @@ namespace
 
 struct ContactProblem
 {
+    std::unique_ptr<core::Model> model; // problem->system points into it: kept at one address
     std::unique_ptr<Problem> problem;
     std::vector<core::ExtraBlock> blocks;
     Eigen::MatrixXd G;
@@ -50,7 +51,8 @@ ContactProblem makeContacts(unsigned seed, int trees, int contacts)
 {
     ContactProblem out;
     Rng rng(seed);
-    core::Model model = randomForest(seed, trees, 12);
+    out.model = std::make_unique<core::Model>(randomForest(seed, trees, 12));
+    const core::Model& model = *out.model;
     out.problem = makeProblem(model);
     const int nb = static_cast<int>(out.problem->state.bodies.size());
     for (int c = 0; c < contacts; ++c)
@@ -331,8 +333,7 @@ TEST(ExtraRowsSolve, ImpulsesInTheRightHandSideEqualAppliedImpulses)
     {
         lambda(i) = rng.uniform(0.0, 1.0);
     }
-    const core::BlockVector momentum =
-        momentumRhs(*p.problem->system.model, p.problem->state, p.problem->system);
+    const core::BlockVector momentum = momentumRhs(*p.model, p.problem->state, p.problem->system);
     core::BlockVector applied;
     solver.solve(momentum, applied);
     solver.applyExtraImpulses(p.blocks, lambda, applied);
