@@ -252,7 +252,7 @@ bool drawSweepChart(const std::string& folder, const std::string& sceneName, con
         "set ylabel 'trajectory error (m): largest centre-of-mass distance to the reference' noenhanced\n"
         "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
         "set format xy '%g'\n"
-        "set key inside left bottom opaque box Left reverse noenhanced\n";
+        "set key below box Left reverse noenhanced\n"; // under the plot: never over a cell
     if (plots.empty())
     {
         script += "set label 1 'no cell survived: nothing to draw' at graph 0.5, graph 0.5 center\n"

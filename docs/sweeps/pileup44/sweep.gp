@@ -14,7 +14,7 @@ set xlabel 'cost: wall seconds per simulated second' noenhanced
 set ylabel 'trajectory error (m): largest centre-of-mass distance to the reference' noenhanced
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'
 set format xy '%g'
-set key inside left bottom opaque box Left reverse noenhanced
+set key below box Left reverse noenhanced
 plot data index 0 using 1:2 with steps lw 7 lc rgb '#a0d62728' title 'Pareto front (no other cell both cheaper and more accurate)', \
      data index 0 using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb '#d62728' notitle, \
      data index 1 using 1:2 with linespoints lt 1 lw 2 pt 7 ps 1.2 title 'euler linear', \
