@@ -69,8 +69,7 @@ struct ExtraSolveSettings
 struct ExtraSolveStats
 {
     int sweeps = 0;
-    double lastChange = 0.0; // relative impulse change of the last sweep
-    bool converged = false;  // every condition met to velocityTolerance after the last sweep
+    bool converged = false; // every condition met to velocityTolerance after the last sweep
 };
 
 // Which rows an impulse on each block can move: G_rs = 0 unless rows r and s have moving bodies

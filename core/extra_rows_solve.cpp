@@ -398,7 +398,6 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
             commit(old, next);
         }
         stats.sweeps = sweep + 1;
-        stats.lastChange = largest > 0.0 ? change / largest : 0.0;
         stats.converged = conditionsMet(blocks, velocity, lambda, settings.velocityTolerance);
         if (stats.converged || change <= settings.tolerance * largest || change < 1e-14)
         {
