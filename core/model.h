@@ -51,7 +51,8 @@ struct Body
     bool isStatic = false;         // static bodies do not move and are not nodes of the solver (PAPER.md §5)
     double mass = 0.0;             // kg (> 0 for moving bodies)
     Mat3 inertia_B = Mat3::Zero(); // kg m^2, about the centre of mass, in the body frame
-    std::vector<Shape> shapes;     // collision and render geometry (may be empty)
+    std::vector<Shape> shapes;     // collision geometry, also drawn when `visuals` is empty (may be empty)
+    std::vector<Shape> visuals;    // render-only geometry (URDF <visual>); no mass, no contacts
     std::optional<Vec3> color;     // RGB in [0, 1], for the renderer
     std::string group;             // bodies of one non-empty group never collide with each other
     // Initial state.
@@ -101,6 +102,10 @@ struct Joint
     Quat restRotation_AB = Quat::Identity();
     // Joint limits (rad for revolute, m for prismatic); the contacts issue makes them one-sided rows.
     std::optional<std::array<double, 2>> limits;
+    // Revolute and prismatic joints (URDF <dynamics>): viscous damping of the joint coordinate
+    // (N m s/rad or N s/m) and Coulomb friction (N m or N); 0 = none.
+    double damping = 0.0;
+    double friction = 0.0;
     bool collideConnected = false; // the two bodies may collide with each other
 };
 
