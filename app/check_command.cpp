@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/run_loop.h"
+#include "app/scene_loading.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
 
@@ -85,7 +86,10 @@ int checkCommand(const CheckOptions& options)
     try
     {
         reference = io::readTrajectory(options.reference);
-        model = io::loadScene(options.scene);
+        io::UrdfOptions urdf = urdfOptionsFrom(reference.metadata, options.reference);
+        urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
+                                 options.packagePaths.end());
+        model = loadSceneWithRobots(options.scene, urdf).model;
         const std::string& ref = options.reference;
         model.simulation.dt = parseNumber(requireKey(reference, ref, "dt"), ref, "dt");
         const std::string solver = requireKey(reference, ref, "solver");

@@ -1,6 +1,8 @@
 // app/commands.h: the subcommands of the `frontier` executable.
 #pragma once
 
+#include "io/scene.h"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +34,7 @@ struct RunOptions
     std::string video; // MP4 assembled from the frames with ffmpeg
     int jobs = 2;      // parallel jobs (batch) or render threads
     bool quiet = false;
+    io::UrdfOptions urdf; // --package-path, --fixed-base, --free-base, --drop-height, --self-collision
 };
 
 struct RenderCommandOptions
@@ -45,12 +48,14 @@ struct RenderCommandOptions
     std::string video;
     int jobs = 2;
     bool quiet = false;
+    std::vector<std::string> packagePaths; // searched before those the trajectory was recorded with
 };
 
 struct InfoOptions
 {
     std::string scene;
     bool json = false;
+    io::UrdfOptions urdf;
 };
 
 // Default tolerances of `frontier check`: loose enough for another build of the same code
@@ -64,6 +69,7 @@ struct CheckOptions
     double velocityTolerance = 1e-5;        // m/s
     double angularVelocityTolerance = 1e-4; // rad/s
     bool quiet = false;
+    std::vector<std::string> packagePaths; // searched before those the reference was recorded with
 };
 
 // `frontier stability`: each scene with each method, a markdown table of what survived.
@@ -87,6 +93,7 @@ struct SweepOptions
     std::vector<std::string> integrators; // euler, rattle; default: both
     std::optional<double> duration;       // s; default: the scene's, at most 2 s
     std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
+    io::UrdfOptions urdf;
 };
 
 int runCommand(const RunOptions& options);

@@ -1,5 +1,6 @@
 // app/info_command.cpp: `frontier info`: what the solver will see for a scene.
 #include "app/commands.h"
+#include "app/scene_loading.h"
 #include "collision/contacts.h"
 #include "core/frontier_order.h"
 #include "io/scene.h"
@@ -17,7 +18,34 @@ std::string bodyName(const core::Model& model, int body)
     return body == core::cWorld ? "world" : model.bodies[static_cast<std::size_t>(body)].name;
 }
 
-nlohmann::json describe(const core::Model& model, const std::string& scene)
+// What loading did to each robot: welded links, repaired inertias, placement, excluded pairs.
+nlohmann::json describeRobots(const io::LoadReport& report)
+{
+    nlohmann::json robots = nlohmann::json::array();
+    for (const io::RobotReport& robot : report.robots)
+    {
+        nlohmann::json welded = nlohmann::json::array();
+        for (const auto& [link, body] : robot.welded)
+        {
+            welded.push_back({{"link", link}, {"body", body}});
+        }
+        nlohmann::json excluded = nlohmann::json::array();
+        for (const auto& [a, b] : robot.excluded)
+        {
+            excluded.push_back({a, b});
+        }
+        robots.push_back({{"name", robot.name},
+                          {"file", robot.file},
+                          {"links", robot.links},
+                          {"welded", welded},
+                          {"repaired", robot.repaired},
+                          {"placement", robot.placement},
+                          {"excluded_pairs", excluded}});
+    }
+    return robots;
+}
+
+nlohmann::json describe(const core::Model& model, const io::LoadReport& report, const std::string& scene)
 {
     const core::FrontierLayout layout = core::buildFrontierLayout(model);
     nlohmann::json out;
@@ -70,6 +98,7 @@ nlohmann::json describe(const core::Model& model, const std::string& scene)
         pairs.push_back({bodyName(model, a), bodyName(model, b)});
     }
     out["collision_pairs"] = pairs;
+    out["robots"] = describeRobots(report);
     return out;
 }
 
@@ -111,6 +140,28 @@ void printText(const nlohmann::json& info)
     {
         std::cout << loop.get<std::string>() << " ";
     }
+    for (const auto& robot : info["robots"])
+    {
+        std::cout << "\nrobot " << robot["name"].get<std::string>() << " ("
+                  << robot["file"].get<std::string>() << "): " << robot["links"].get<int>()
+                  << " links\n  placement: " << robot["placement"].get<std::string>()
+                  << "\n  welded by fixed joints: " << (robot["welded"].empty() ? "none" : "");
+        for (const auto& w : robot["welded"])
+        {
+            std::cout << "\n    " << w["link"].get<std::string>() << " -> " << w["body"].get<std::string>();
+        }
+        std::cout << "\n  repaired: " << (robot["repaired"].empty() ? "none" : "");
+        for (const auto& r : robot["repaired"])
+        {
+            std::cout << "\n    " << r.get<std::string>();
+        }
+        std::cout << "\n  excluded from collision (overlapping at the start): "
+                  << (robot["excluded_pairs"].empty() ? "none" : "");
+        for (const auto& pair : robot["excluded_pairs"])
+        {
+            std::cout << "\n    " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>();
+        }
+    }
     std::cout << "\ncollision pairs: " << info["collision_pairs"].size() << "\n";
     for (const auto& pair : info["collision_pairs"])
     {
@@ -123,8 +174,9 @@ int infoCommand(const InfoOptions& options)
 {
     try
     {
-        const core::Model model = io::loadScene(options.scene);
-        const nlohmann::json info = describe(model, options.scene);
+        const LoadedScene loaded = loadSceneWithRobots(options.scene, options.urdf);
+        printLoadWarnings(loaded.report);
+        const nlohmann::json info = describe(loaded.model, loaded.report, options.scene);
         if (options.json)
         {
             std::cout << info.dump(2) << "\n";

@@ -8,6 +8,51 @@ namespace
 {
 using namespace frontier::app;
 
+// --height is the frame height; a robot's start height is --drop-height (the names of both are kept
+// from the command-line contract), so a height in metres gets pointed there.
+const CLI::Validator cFrameHeight(
+    [](std::string& value)
+    {
+        int pixels = 0;
+        const bool whole = CLI::detail::lexical_cast(value, pixels);
+        if (whole && pixels >= 16 && pixels <= 16384)
+        {
+            return std::string();
+        }
+        return "--height is the frame height in pixels (16 to 16384), got " + value +
+               "; to start a robot higher above the floor, use --drop-height METRES";
+    },
+    "PIXELS");
+
+// Robot flags (README "Robots"): how a .urdf is read and placed.
+void addPackagePathOption(CLI::App& command, std::vector<std::string>& packagePaths)
+{
+    command
+        .add_option("--package-path", packagePaths,
+                    "where package://NAME/ meshes are: a package, a folder of packages, or NAME=DIR "
+                    "(repeatable; searched before ROS_PACKAGE_PATH)")
+        ->allow_extra_args(false);
+}
+
+void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
+{
+    addPackagePathOption(command, o.packagePaths);
+    auto* fixed = command.add_flag("--fixed-base", o.fixedBase, "weld a bare URDF's root link to the world");
+    command
+        .add_flag("--free-base", o.freeBase, "let a bare URDF's root float even if it is welded to 'world'")
+        ->excludes(fixed);
+    command
+        .add_option(
+            "--drop-height", o.dropHeight,
+            "a free-floating bare URDF starts with its lowest collision point this high above the floor (m)")
+        ->check(CLI::NonNegativeNumber);
+    command
+        .add_option_function<std::string>(
+            "--self-collision", [&o](const std::string& value) { o.selfCollision = value == "on"; },
+            "on: links collide unless joined or overlapping at the start (default); off: never")
+        ->check(CLI::IsMember({"on", "off"}));
+}
+
 void addRunOptions(CLI::App& run, RunOptions& o)
 {
     run.add_option("scenes", o.scenes, "scene .yaml or model .urdf; several make a batch run in parallel")
@@ -29,10 +74,11 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_option("--frames", o.frames, "write PNG frames into this folder");
     run.add_option("--fps", o.fps, "frames per simulated second")->check(CLI::PositiveNumber);
     run.add_option("--width", o.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
-    run.add_option("--height", o.height, "frame height (pixels)")->check(CLI::Range(16, 16384));
+    run.add_option("--height", o.height, "frame height (pixels)")->check(cFrameHeight);
     run.add_option("--video", o.video, "assemble the frames into this MP4 with ffmpeg");
     run.add_option("--jobs", o.jobs, "parallel jobs (a batch) or render threads")->check(CLI::Range(1, 256));
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
+    addRobotOptions(run, o.urdf);
 }
 void addSweepOptions(CLI::App& sweep, SweepOptions& o)
 {
@@ -64,6 +110,7 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
             "folder for sweep.csv, the chart sweep.png (drawn by gnuplot; without it, sweep.gp to draw it "
             "later) and its data sweep.dat")
         ->required();
+    addRobotOptions(sweep, o.urdf);
     sweep.footer(
         "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
         "rattle (euler when rattle fails) with the linear solver at the finest dt / 4. Trajectory "
@@ -88,6 +135,7 @@ int main(int argc, char** argv)
         app.add_subcommand("info", "bodies, joints, degrees of freedom, frontier order, loops, pairs");
     info->add_option("scene", infoOptions.scene, "scene .yaml or model .urdf")->required();
     info->add_flag("--json", infoOptions.json, "machine-readable output");
+    addRobotOptions(*info, infoOptions.urdf);
 
     RenderCommandOptions renderOptions;
     auto* render =
@@ -100,12 +148,12 @@ int main(int argc, char** argv)
     render->add_option("--frames", renderOptions.frames, "folder for the PNG frames")->required();
     render->add_option("--fps", renderOptions.fps, "frames per simulated second")->check(CLI::PositiveNumber);
     render->add_option("--width", renderOptions.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
-    render->add_option("--height", renderOptions.height, "frame height (pixels)")
-        ->check(CLI::Range(16, 16384));
+    render->add_option("--height", renderOptions.height, "frame height (pixels)")->check(cFrameHeight);
     render->add_option("--video", renderOptions.video, "assemble the frames into this MP4 with ffmpeg");
     render->add_option("--jobs", renderOptions.jobs, "parallel jobs (a batch) or render threads")
         ->check(CLI::Range(1, 256));
     render->add_flag("--quiet", renderOptions.quiet, "no summary, no progress");
+    addPackagePathOption(*render, renderOptions.packagePaths);
 
     CheckOptions checkOptions;
     auto* check =
@@ -123,6 +171,7 @@ int main(int argc, char** argv)
                      "angular velocity tolerance (rad/s)")
         ->check(CLI::PositiveNumber);
     check->add_flag("--quiet", checkOptions.quiet, "no progress line");
+    addPackagePathOption(*check, checkOptions.packagePaths);
 
     StabilityOptions stabilityOptions;
     auto* stability = app.add_subcommand(

@@ -4,6 +4,7 @@
 #include "app/job_board.h"
 #include "app/outputs.h"
 #include "app/progress.h"
+#include "app/scene_loading.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
@@ -94,7 +95,10 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
             }
             scenePath = found->second;
         }
-        const core::Model model = io::loadScene(scenePath);
+        io::UrdfOptions urdf = urdfOptionsFrom(trajectory.metadata, path);
+        urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
+                                 options.packagePaths.end());
+        const core::Model model = loadSceneWithRobots(scenePath, urdf).model;
         const std::vector<core::State> states = statesOf(model, trajectory, path);
         std::vector<core::State> frames;
         FrameSampler sampler(options.fps);

@@ -6,6 +6,7 @@
 #include "app/outputs.h"
 #include "app/progress.h"
 #include "app/run_loop.h"
+#include "app/scene_loading.h"
 #include "core/impulse_solver.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
@@ -122,16 +123,22 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     try
     {
-        model = io::loadScene(scene);
+        LoadedScene loaded = loadSceneWithRobots(scene, options.urdf);
+        if (!options.quiet)
+        {
+            printLoadWarnings(loaded.report);
+        }
+        model = std::move(loaded.model);
         steps = applyOverrides(options, model);
         if (!out.trajectory.empty())
         {
             std::filesystem::create_directories(std::filesystem::path(out.trajectory).parent_path().empty()
                                                     ? std::filesystem::path(".")
                                                     : std::filesystem::path(out.trajectory).parent_path());
-            trajectory = std::make_unique<io::TrajectoryWriter>(
-                out.trajectory,
-                io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery));
+            io::TrajectoryMetadata metadata =
+                io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
+            addUrdfOptions(metadata, options.urdf);
+            trajectory = std::make_unique<io::TrajectoryWriter>(out.trajectory, metadata);
         }
         if (!out.frames.empty())
         {

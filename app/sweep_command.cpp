@@ -2,6 +2,7 @@
 // DIR/sweep.csv, print the table, draw DIR/sweep.png (app/sweep_chart.h).
 #include "app/commands.h"
 #include "app/progress.h"
+#include "app/scene_loading.h"
 #include "app/sweep.h"
 #include "app/sweep_chart.h"
 #include "app/sweep_report.h"
@@ -37,7 +38,9 @@ int sweepCommand(const SweepOptions& options)
     const fs::path folder(options.out);
     try
     {
-        model = io::loadScene(options.scene);
+        LoadedScene loaded = loadSceneWithRobots(options.scene, options.urdf);
+        printLoadWarnings(loaded.report);
+        model = std::move(loaded.model);
         grid.dts = options.dts.empty() ? defaultTimeSteps(model.simulation.dt) : parseTimeSteps(options.dts);
         grid.solvers = options.solvers.empty()
                            ? parseSolvers({"linear"}, model.simulation.pgsIterations)

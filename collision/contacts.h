@@ -59,4 +59,9 @@ class ContactDetector final : public core::ContactSource
     std::unique_ptr<Impl> mImpl;
 };
 
+// Pairs of bodies of one robot (core::Model::robots with self-collision on) whose collision shapes
+// overlap in the model's initial pose, as (i, j) with i < j, sorted. Loaders add them to
+// contact.ignore: such a pair never collides (collision/starting_overlaps.cpp says why).
+std::vector<std::pair<int, int>> startingOverlaps(const core::Model& model);
+
 } // namespace frontier::collision

@@ -1,7 +1,9 @@
 // core/model.cpp: names of the model's enums, joint frames, and mass properties of shapes.
 #include "core/model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace frontier::core
@@ -278,6 +280,46 @@ MassProperties shapeMassProperties(const Shape& shape, double density)
         break;
     }
     return out;
+}
+
+double shapeSupport(const Shape& shape, const Vec3& u_S)
+{
+    switch (shape.type)
+    {
+    case ShapeType::Box:
+        return 0.5 * shape.size.cwiseAbs().dot(u_S.cwiseAbs());
+    case ShapeType::Sphere:
+        return shape.radius;
+    case ShapeType::Capsule:
+        return 0.5 * shape.length * std::abs(u_S.z()) + shape.radius;
+    case ShapeType::Cylinder:
+        // The rim point furthest along u: half the height along the axis, the radius across it.
+        return 0.5 * shape.length * std::abs(u_S.z()) + shape.radius * u_S.head<2>().norm();
+    case ShapeType::Mesh:
+    {
+        double best = -std::numeric_limits<double>::infinity();
+        for (const Vec3& v : shape.vertices)
+        {
+            best = std::max(best, u_S.dot(v));
+        }
+        return best;
+    }
+    case ShapeType::Plane:
+        return u_S.dot(shape.normal) > 1.0 - 1e-12 ? shape.offset : std::numeric_limits<double>::infinity();
+    }
+    return 0.0;
+}
+
+double shapeSupportWorld(const Shape& shape, const Vec3& bodyPosition_W, const Quat& bodyOrientation_WB,
+                         const Vec3& u_W)
+{
+    if (shape.type == ShapeType::Plane) // planes are posed in the world already
+    {
+        return shapeSupport(shape, u_W);
+    }
+    const Quat q_WS = bodyOrientation_WB * shape.rotation_BS;
+    const Vec3 origin_W = bodyPosition_W + bodyOrientation_WB * shape.position_BS;
+    return u_W.dot(origin_W) + shapeSupport(shape, q_WS.conjugate() * u_W);
 }
 
 } // namespace frontier::core

@@ -147,6 +147,16 @@ struct SimulationSettings
     IntegratorKind integrator = IntegratorKind::Euler;
 };
 
+// A robot model (URDF) placed in the scene: its links became bodies [firstBody, firstBody + bodyCount).
+struct Robot
+{
+    std::string name;
+    std::string sourceFile;
+    int firstBody = 0;
+    int bodyCount = 0;
+    bool selfCollision = true; // false: its bodies share one collision group
+};
+
 struct Model
 {
     std::string name;
@@ -156,6 +166,7 @@ struct Model
     Camera camera;
     std::vector<Body> bodies;
     std::vector<Joint> joints;
+    std::vector<Robot> robots;
 
     int findBody(const std::string& bodyName) const;
 };
@@ -184,5 +195,13 @@ struct MassProperties
 };
 MassProperties shapeMassProperties(const Shape& shape, double density);
 double shapeVolume(const Shape& shape);
+
+// Support function: the largest u . x over the points x of the shape (shape frame, m), for a unit
+// direction u in the shape frame. Planes (solid n . x <= offset) are unbounded: +infinity unless u is along
+// +n.
+double shapeSupport(const Shape& shape, const Vec3& u_S);
+// The same for a shape posed in a body at a world pose: the largest u . x over world points x.
+double shapeSupportWorld(const Shape& shape, const Vec3& bodyPosition_W, const Quat& bodyOrientation_WB,
+                         const Vec3& u_W);
 
 } // namespace frontier::core

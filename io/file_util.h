@@ -26,4 +26,9 @@ struct TextPosition
 };
 TextPosition positionOf(const std::string& text, std::size_t pos);
 
+// "FILE:LINE:COL: SEVERITY: TEXT" (line and column left out when 0): the one format of every
+// error and warning about an input file.
+std::string diagnostic(const std::string& file, TextPosition at, const char* severity,
+                       const std::string& message);
+
 } // namespace frontier::io::detail

@@ -8,16 +8,23 @@
 namespace frontier::io
 {
 
-core::Model loadScene(const std::string& path)
+core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     const std::string ext = detail::lowerExtension(path);
     if (ext == ".urdf")
     {
-        return detail::loadUrdfScene(path);
+        return detail::loadUrdfScene(path, options, report);
     }
     if (ext == ".yaml" || ext == ".yml")
     {
-        return detail::loadYamlScene(detail::readTextFile(path), path);
+        if (options.fixedBase || options.freeBase || options.dropHeight)
+        {
+            throw InputError(
+                path, 0, 0,
+                "--fixed-base, --free-base and --drop-height place a bare .urdf; a scene places its "
+                "models itself (keys 'fixed', 'free_base' and 'position' of each entry of 'models')");
+        }
+        return detail::loadYamlScene(detail::readTextFile(path), path, options, report);
     }
     throw InputError(
         path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");

@@ -3,8 +3,11 @@
 
 #include "core/model.h"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace frontier::io
 {
@@ -28,9 +31,42 @@ class InputError : public std::runtime_error
     int mColumn;
 };
 
+// How URDF models are read and placed: the robot flags of `frontier run` (README "Robots").
+struct UrdfOptions
+{
+    // --package-path entries (a package, a folder of packages, or NAME=DIR), searched before
+    // ROS_PACKAGE_PATH for package:// and model:// URIs.
+    std::vector<std::string> packagePaths;
+    // A bare .urdf only (a scene places its models itself):
+    bool fixedBase = false;           // weld the root link to the world where it is
+    bool freeBase = false;            // let the root float even if the URDF welds it to a 'world' link
+    std::optional<double> dropHeight; // m: lowest collision point this high above the floor (default 0)
+    // Every URDF: overrides the scene's self_collision (default on).
+    std::optional<bool> selfCollision;
+};
+
+// What loading did to a scene's robots beyond reading them (`frontier info` shows it).
+struct RobotReport
+{
+    std::string name;   // the robot's bodies carry this prefix (bare URDF: none)
+    std::string prefix; // prepended to its link and joint names
+    std::string file;
+    int links = 0;
+    std::vector<std::pair<std::string, std::string>> welded;   // link -> the body it was welded into
+    std::vector<std::string> repaired;                         // inertias replaced, and why
+    std::string placement;                                     // where it was put and how it is held
+    std::vector<std::pair<std::string, std::string>> excluded; // body pairs that overlap at the start
+};
+struct LoadReport
+{
+    std::vector<std::string> warnings; // "FILE:LINE:COL: warning: TEXT"
+    std::vector<RobotReport> robots;
+};
+
 // Loads a .yaml/.yml scene or a .urdf model (a URDF alone is dropped onto a floor with defaults).
-// Throws InputError on any bad input (scenes/README.md lists the rules).
-core::Model loadScene(const std::string& path);
+// Throws InputError on any bad input (scenes/README.md lists the rules). `report`, when given,
+// receives the warnings and what was welded, repaired and placed.
+core::Model loadScene(const std::string& path, const UrdfOptions& options = {}, LoadReport* report = nullptr);
 // Parses scene YAML text; sourceName is used in messages and to resolve relative files.
 core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName);
 

@@ -1,22 +1,36 @@
 // io/urdf_model.cpp: URDF (urdfdom) links and joints to bodies and joints.
 //
-// Mapping (scenes/README.md has the full rules): a moving link becomes a body whose frame is the
-// link frame composed with its <inertial> origin (origin at the centre of mass, axes of the
-// inertia tensor); collision elements become shapes posed in that frame; joints are anchored at
-// the child link's frame origin with the axis rotated into the world, in the initial pose.
+// Mapping (scenes/README.md "Robots from URDF" has the user's view):
+// * Links joined by fixed joints are one rigid body (welded): their masses, inertias (parallel-axis
+//   theorem), collision and visual elements are combined at load, and the fixed joints make no rows.
+//   The body is named after its top link; its frame has its origin at the combined centre of mass
+//   and the axes of the top link's <inertial> frame (the link frame when it has none).
+// * Links welded to a root link named 'world', and the root itself under `fixedRoot`, are static.
+// * A moving body needs mass: a link group with none is an error when a joint moves it or when it
+//   floats. A link whose inertia no rigid body can have (inertiaDefect) but whose mass is positive
+//   gets the inertia of its collision shapes (else its visual shapes, else a ball of water) at that
+//   mass, with a warning.
+// * Moving joints are anchored at the child link's frame origin with the axis rotated into the
+//   world, in the initial pose; <dynamics damping friction> become the joint's damping and friction.
+// * Mesh URIs resolve through PackagePaths. A collision mesh that cannot be read is an error, a
+//   visual one a warning (the body is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
 #include "io/file_util.h"
 #include "io/mass_properties.h"
 #include "io/mesh_file.h"
-#include "io/scene.h"
+#include "io/package_paths.h"
 #include "io/suggest.h"
 #include "io/urdf_xml_index.h"
 
+#include <algorithm>
 #include <cmath>
 #include <console_bridge/console.h>
 #include <map>
 #include <mutex>
+#include <numbers>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <urdf_parser/urdf_parser.h>
 
@@ -87,39 +101,71 @@ urdf::ModelInterfaceSharedPtr parseCapturingErrors(const std::string& text, Capt
     return model;
 }
 
-std::string formatNumber(double value)
+const char* jointTypeWord(int type)
 {
-    std::ostringstream out;
-    out << value;
-    return out.str();
+    switch (type)
+    {
+    case urdf::Joint::REVOLUTE:
+        return "revolute";
+    case urdf::Joint::CONTINUOUS:
+        return "continuous";
+    case urdf::Joint::PRISMATIC:
+        return "prismatic";
+    case urdf::Joint::FLOATING:
+        return "floating";
+    case urdf::Joint::PLANAR:
+        return "planar";
+    case urdf::Joint::FIXED:
+        return "fixed";
+    default:
+        return "unknown";
+    }
 }
+
+// Links welded together by fixed joints: one body (or the world, or a static body).
+struct LinkGroup
+{
+    std::string top;                    // the link nearest the root
+    std::vector<std::string> links;     // the top first, then welded links in document order
+    bool isStatic = false;              // welded to the world
+    bool isWorld = false;               // the 'world' link itself: no body
+    const urdf::Joint* joint = nullptr; // the moving joint whose child is the top, if any
+    int body = core::cWorld;            // body index (cWorld for the world)
+    Pose bodyInTop;                     // body frame in the top link frame
+};
+
+struct LinkPlace
+{
+    int group = -1;
+    Pose world;                // link frame in the world, initial pose
+    std::optional<Pose> inTop; // link frame in its group's top link frame (none for the top)
+};
 
 class UrdfConverter
 {
   public:
     UrdfConverter(const std::string& file, const UrdfXmlIndex& index, const urdf::ModelInterface& robot,
-                  const UrdfPlacement& placement)
-        : mFile(file), mBaseDir(directoryOf(file)), mIndex(index), mRobot(robot), mPlacement(placement)
+                  const UrdfPlacement& placement, const PackagePaths& packages)
+        : mFile(file), mIndex(index), mRobot(robot), mPlacement(placement), mPackages(packages)
     {
     }
 
-    core::Model convert()
+    UrdfFragment convert()
     {
-        core::Model out;
-        out.name = mRobot.getName();
+        mOut.model.name = mRobot.getName();
+        mOut.report.file = mFile;
         const urdf::LinkConstSharedPtr root = mRobot.getRoot();
         if (!root)
         {
             fail({}, "the URDF has no root link");
         }
-        mRootIsWorld = root->name == "world";
-        computeLinkPoses(*root, Pose{mPlacement.position, mPlacement.orientation.normalized()});
+        placeLinks(*root);
         for (const std::string& linkName : mIndex.linkNames())
         {
-            const urdf::LinkConstSharedPtr link = mRobot.getLink(linkName);
-            if (link)
+            if (mPlaces.contains(linkName) &&
+                mGroups[static_cast<std::size_t>(mPlaces[linkName].group)].top == linkName)
             {
-                addLink(*link, link == root, out);
+                addBody(mGroups[static_cast<std::size_t>(mPlaces[linkName].group)]);
             }
         }
         for (const std::string& jointName : mIndex.jointNames())
@@ -127,10 +173,11 @@ class UrdfConverter
             const urdf::JointConstSharedPtr joint = mRobot.getJoint(jointName);
             if (joint)
             {
-                addJoint(*joint, out);
+                addJoint(*joint);
             }
         }
-        return out;
+        mOut.report.links = static_cast<int>(mPlaces.size());
+        return std::move(mOut);
     }
 
   private:
@@ -139,109 +186,242 @@ class UrdfConverter
         throw InputError(mFile, at.line, at.column, message);
     }
 
-    void computeLinkPoses(const urdf::Link& link, const Pose& pose)
+    void warn(TextPosition at, const std::string& message)
     {
-        mLinkPose[link.name] = pose;
-        for (const urdf::JointSharedPtr& joint : link.child_joints)
+        mOut.warnings.push_back(diagnostic(mFile, at, "warning", message));
+    }
+
+    const urdf::Link& link(const std::string& name) const
+    {
+        const urdf::LinkConstSharedPtr l = mRobot.getLink(name);
+        if (!l)
         {
-            const urdf::LinkConstSharedPtr child = mRobot.getLink(joint->child_link_name);
-            if (child)
+            fail({}, "link '" + name + "' is named by a joint but not defined");
+        }
+        return *l;
+    }
+
+    LinkGroup& groupOf(const std::string& linkName)
+    {
+        return mGroups[static_cast<std::size_t>(mPlaces[linkName].group)];
+    }
+
+    int newGroup(const std::string& top, bool isStatic, const urdf::Joint* joint)
+    {
+        LinkGroup g;
+        g.top = top;
+        g.links.push_back(top);
+        g.isStatic = isStatic;
+        g.joint = joint;
+        mGroups.push_back(std::move(g));
+        return static_cast<int>(mGroups.size()) - 1;
+    }
+
+    // World poses and link groups, walking the tree from the root (no recursion: a URDF may be
+    // deep, and a joint from a link to itself must not loop).
+    void placeLinks(const urdf::Link& root)
+    {
+        const bool worldRoot = root.name == "world";
+        const bool dropWorld = worldRoot && mPlacement.freeRoot;
+        LinkPlace& rootPlace = mPlaces[root.name];
+        rootPlace.world = Pose{mPlacement.position, mPlacement.orientation.normalized()};
+        rootPlace.group = newGroup(root.name, worldRoot || mPlacement.fixedRoot, nullptr);
+        mGroups.back().isWorld = worldRoot;
+        if (worldRoot && (root.inertial || !root.collision_array.empty()))
+        {
+            fail(mIndex.element("link", root.name),
+                 "link 'world' is the fixed world frame; it cannot have <inertial> or <collision> (attach a "
+                 "link to it with a fixed joint)");
+        }
+        std::vector<const urdf::Link*> stack{&root};
+        while (!stack.empty())
+        {
+            const urdf::Link& parent = *stack.back();
+            stack.pop_back();
+            const LinkPlace parentPlace = mPlaces[parent.name];
+            const bool parentIsWorld = mGroups[static_cast<std::size_t>(parentPlace.group)].isWorld;
+            for (const urdf::JointSharedPtr& joint : parent.child_joints)
             {
-                computeLinkPoses(*child, pose * fromUrdf(joint->parent_to_joint_origin_transform));
+                const std::string& childName = joint->child_link_name;
+                if (mPlaces.contains(childName))
+                {
+                    fail(mIndex.element("joint", joint->name),
+                         "joint '" + joint->name + "' makes link '" + childName +
+                             "' its own ancestor; the links must form a tree");
+                }
+                const urdf::Link& child = link(childName);
+                LinkPlace place;
+                place.world = parentPlace.world * fromUrdf(joint->parent_to_joint_origin_transform);
+                switch (joint->type)
+                {
+                case urdf::Joint::FIXED:
+                    if (parentIsWorld)
+                    {
+                        place.group = newGroup(childName, !dropWorld, nullptr);
+                        break;
+                    }
+                    place.group = parentPlace.group;
+                    place.inTop = parentPlace.inTop.value_or(Pose{}) *
+                                  fromUrdf(joint->parent_to_joint_origin_transform);
+                    mGroups[static_cast<std::size_t>(place.group)].links.push_back(childName);
+                    break;
+                case urdf::Joint::FLOATING:
+                    place.group = newGroup(childName, false, nullptr);
+                    break;
+                case urdf::Joint::REVOLUTE:
+                case urdf::Joint::CONTINUOUS:
+                case urdf::Joint::PRISMATIC:
+                    place.group = newGroup(childName, false, joint.get());
+                    break;
+                case urdf::Joint::PLANAR:
+                    fail(mIndex.element("joint", joint->name),
+                         "joint '" + joint->name +
+                             "' has type planar, which is unsupported (supported: revolute, continuous, "
+                             "prismatic, fixed, floating)");
+                default:
+                    fail(mIndex.element("joint", joint->name),
+                         "joint '" + joint->name + "' has an unknown type");
+                }
+                mPlaces[childName] = place;
+                stack.push_back(&child);
             }
+        }
+        // Welded links in document order after their top (the walk above visits them depth first).
+        for (LinkGroup& g : mGroups)
+        {
+            std::vector<std::string> ordered{g.top};
+            for (const std::string& name : mIndex.linkNames())
+            {
+                if (name != g.top && std::find(g.links.begin(), g.links.end(), name) != g.links.end())
+                {
+                    ordered.push_back(name);
+                }
+            }
+            g.links = std::move(ordered);
         }
     }
 
-    void addLink(const urdf::Link& link, bool isRoot, core::Model& out)
+    // The link's <inertial> as a part of its group, in the top link frame, axes of the body
+    // (bodyAxes: the body's axes in the top link frame, none when they are this link's inertial
+    // frame); repaired when its inertia is impossible.
+    MassPart massPart(const urdf::Link& l, const std::optional<core::Quat>& bodyAxes)
     {
-        const TextPosition at = mIndex.element("link", link.name);
-        if (isRoot && mRootIsWorld)
+        MassPart part;
+        if (!l.inertial)
         {
-            if (link.inertial || !link.collision_array.empty())
-            {
-                fail(at, "link 'world' is the fixed world frame; it cannot have <inertial> or <collision> "
-                         "(attach a link to it with a fixed joint)");
-            }
-            mLinkBody[link.name] = core::cWorld;
-            return;
+            return part;
         }
-        const std::string reason = invalidNameReason(link.name);
-        if (!reason.empty())
+        const urdf::Inertial& inertial = *l.inertial;
+        const TextPosition at = mIndex.element("link", l.name, "inertial/mass");
+        if (!std::isfinite(inertial.mass) || inertial.mass < 0.0)
         {
-            fail(at, "invalid link name '" + link.name + "': " + reason);
+            fail(at, "link '" + l.name + "' has mass " + formatNumber(inertial.mass) +
+                         "; expected a non-negative <mass value> (kg)");
         }
-        core::Body body;
-        body.name = mPlacement.prefix + link.name;
-        body.isStatic = isRoot && mPlacement.fixedRoot;
-        const Pose linkPose = mLinkPose.at(link.name);
-        Pose inertialPose; // body (centre of mass) frame in the link frame
-        if (!body.isStatic)
+        part.mass = inertial.mass;
+        if (part.mass == 0.0)
         {
-            inertialPose = readInertial(link, body);
+            return part;
         }
-        const Pose bodyPose = linkPose * inertialPose;
-        body.position_W = bodyPose.p;
-        body.orientation_WB = bodyPose.q;
-        const Pose linkToBody = inverse(inertialPose);
-        for (const urdf::CollisionSharedPtr& collision : link.collision_array)
-        {
-            if (collision && collision->geometry)
-            {
-                core::Shape shape = readGeometry(link, *collision->geometry);
-                const Pose shapePose = linkToBody * fromUrdf(collision->origin);
-                shape.position_BS = shapePose.p;
-                shape.rotation_BS = shapePose.q;
-                body.shapes.push_back(std::move(shape));
-            }
-        }
-        for (const urdf::VisualSharedPtr& visual : link.visual_array)
-        {
-            if (visual && visual->material && !body.color)
-            {
-                const urdf::Color& c = visual->material->color;
-                body.color = core::Vec3(c.r, c.g, c.b);
-            }
-        }
-        if (!mPlacement.selfCollision)
-        {
-            body.group = mPlacement.prefix.empty() ? out.name : mPlacement.prefix;
-        }
-        mLinkBody[link.name] = static_cast<int>(out.bodies.size());
-        out.bodies.push_back(std::move(body));
-    }
-
-    Pose readInertial(const urdf::Link& link, core::Body& body) const
-    {
-        if (!link.inertial)
-        {
-            fail(mIndex.element("link", link.name),
-                 "link '" + link.name + "' has no <inertial>; every moving link needs a mass and an inertia");
-        }
-        const urdf::Inertial& inertial = *link.inertial;
-        if (!std::isfinite(inertial.mass) || !(inertial.mass > 0.0))
-        {
-            fail(mIndex.element("link", link.name, "inertial/mass"),
-                 "link '" + link.name + "' has mass " + formatNumber(inertial.mass) +
-                     "; expected a positive <mass value> (kg)");
-        }
-        body.mass = inertial.mass;
-        body.inertia_B << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy, inertial.iyz,
+        const Pose inertialPose = fromUrdf(inertial.origin);
+        const std::optional<Pose>& inTop = mPlaces[l.name].inTop;
+        const Pose inertialInTop = inTop ? *inTop * inertialPose : inertialPose;
+        part.centre = inertialInTop.p;
+        core::Mat3 inertia;
+        inertia << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy, inertial.iyz,
             inertial.ixz, inertial.iyz, inertial.izz;
-        if (!isPositiveDefinite(body.inertia_B))
+        const std::string defect = inertiaDefect(inertia, part.mass);
+        if (!defect.empty())
         {
-            fail(mIndex.element("link", link.name, "inertial/inertia"),
-                 "link '" + link.name + "' has an inertia that is not positive-definite (ixx=" +
-                     formatNumber(inertial.ixx) + " ixy=" + formatNumber(inertial.ixy) +
-                     " ixz=" + formatNumber(inertial.ixz) + " iyy=" + formatNumber(inertial.iyy) +
-                     " iyz=" + formatNumber(inertial.iyz) + " izz=" + formatNumber(inertial.izz) + ")");
+            inertia = repairedInertia(l, part.mass, inertialPose.q);
+            mOut.report.repaired.push_back(
+                "link '" + l.name + "': its inertia " + defect +
+                "; used that of its shapes at its mass: " + describeInertia(inertia));
+            warn(mIndex.element("link", l.name, "inertial/inertia"),
+                 "link '" + l.name + "': the inertia " + defect +
+                     "; using the inertia of its shapes at its mass " + formatNumber(part.mass) +
+                     " kg instead (" + describeInertia(inertia) + ")");
         }
-        return fromUrdf(inertial.origin);
+        if (!bodyAxes)
+        {
+            part.inertia = inertia; // the top link's own inertial frame is the body frame
+            return part;
+        }
+        const core::Mat3 R =
+            (bodyAxes->conjugate() * inertialInTop.q).toRotationMatrix(); // inertial to body axes
+        part.inertia = R * inertia * R.transpose();
+        return part;
     }
 
-    core::Shape readGeometry(const urdf::Link& link, const urdf::Geometry& geometry) const
+    static std::string describeInertia(const core::Mat3& inertia)
     {
-        const TextPosition at = mIndex.element("link", link.name, "collision/geometry");
-        const std::string where = "a collision of link '" + link.name + "'";
+        return "ixx=" + formatNumber(inertia(0, 0)) + " iyy=" + formatNumber(inertia(1, 1)) +
+               " izz=" + formatNumber(inertia(2, 2)) + " ixy=" + formatNumber(inertia(0, 1)) +
+               " ixz=" + formatNumber(inertia(0, 2)) + " iyz=" + formatNumber(inertia(1, 2)) + " kg m^2";
+    }
+
+    // The inertia (axes of the link's inertial frame, rotation inertialAxes in the link frame) of the
+    // link's collision shapes at `mass`, else of its visual shapes, else of a ball of water.
+    core::Mat3 repairedInertia(const urdf::Link& l, double mass, const core::Quat& inertialAxes)
+    {
+        for (const bool collision : {true, false})
+        {
+            std::vector<core::Shape> shapes = linkShapes(l, collision, /*quiet=*/true);
+            for (core::Shape& s : shapes) // into the inertial frame's axes
+            {
+                s.position_BS = inertialAxes.conjugate() * s.position_BS;
+                s.rotation_BS = inertialAxes.conjugate() * s.rotation_BS;
+            }
+            const CompositeMass c = compositeMassProperties(shapes, 1.0);
+            if (c.mass > 0.0)
+            {
+                const core::Mat3 inertia = c.inertia * (mass / c.mass);
+                if (inertiaDefect(inertia, mass).empty())
+                {
+                    return inertia;
+                }
+            }
+        }
+        const double radius = std::cbrt(3.0 * mass / (4.0 * std::numbers::pi * 1000.0)); // water, 1000 kg/m^3
+        return core::Mat3::Identity() * (0.4 * mass * radius * radius);
+    }
+
+    // The link's collision (or visual) elements as shapes posed in the link frame. Collision
+    // meshes that cannot be read are errors; visual ones warnings (quiet: skipped silently).
+    std::vector<core::Shape> linkShapes(const urdf::Link& l, bool collision, bool quiet)
+    {
+        std::vector<core::Shape> out;
+        const std::size_t count = collision ? l.collision_array.size() : l.visual_array.size();
+        for (std::size_t k = 0; k < count; ++k)
+        {
+            const urdf::GeometrySharedPtr& geometry =
+                collision ? l.collision_array[k]->geometry : l.visual_array[k]->geometry;
+            const urdf::Pose& origin = collision ? l.collision_array[k]->origin : l.visual_array[k]->origin;
+            if (!geometry)
+            {
+                continue;
+            }
+            const std::string element =
+                std::string(collision ? "collision" : "visual") + "#" + std::to_string(k);
+            std::optional<core::Shape> shape = readGeometry(l, *geometry, element, collision, quiet);
+            if (!shape)
+            {
+                continue;
+            }
+            const Pose pose = fromUrdf(origin);
+            shape->position_BS = pose.p;
+            shape->rotation_BS = pose.q;
+            out.push_back(std::move(*shape));
+        }
+        return out;
+    }
+
+    std::optional<core::Shape> readGeometry(const urdf::Link& l, const urdf::Geometry& geometry,
+                                            const std::string& element, bool collision, bool quiet)
+    {
+        const TextPosition at = mIndex.element("link", l.name, element + "/geometry");
+        const std::string where =
+            std::string(collision ? "a collision" : "a visual") + " of link '" + l.name + "'";
         core::Shape shape;
         switch (geometry.type)
         {
@@ -277,128 +457,260 @@ class UrdfConverter
             break;
         }
         case urdf::Geometry::MESH:
-            shape = readMesh(link, static_cast<const urdf::Mesh&>(geometry));
-            break;
+            return readMesh(l, static_cast<const urdf::Mesh&>(geometry), element, collision, quiet);
         }
         return shape;
     }
 
-    core::Shape readMesh(const urdf::Link& link, const urdf::Mesh& mesh) const
+    std::optional<core::Shape> readMesh(const urdf::Link& l, const urdf::Mesh& mesh,
+                                        const std::string& element, bool collision, bool quiet)
     {
-        const TextPosition at = mIndex.find("\"" + mesh.filename + "\"").line > 0
-                                    ? mIndex.find("\"" + mesh.filename + "\"")
-                                    : mIndex.element("link", link.name, "collision/geometry/mesh");
-        std::string filename = mesh.filename;
-        if (filename.starts_with("package://"))
-        {
-            fail(at, "mesh '" + filename +
-                         "': package:// URIs are not supported; give a path relative to the URDF file");
-        }
-        if (filename.starts_with("file://"))
-        {
-            filename = filename.substr(7);
-        }
+        const TextPosition at = mIndex.element("link", l.name, element + "/geometry/mesh");
+        const std::string what = std::string(collision ? "collision" : "visual") + " mesh '" + mesh.filename +
+                                 "' of link '" + l.name + "'";
         const core::Vec3 scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
         if (!(scale.minCoeff() > 0.0) || !scale.allFinite())
         {
-            fail(at, "mesh '" + filename + "' of link '" + link.name + "' needs a positive scale");
+            fail(at, what + " needs a positive scale");
         }
-        const std::string path = resolvePath(mBaseDir, filename);
-        try
+        const ResolvedUri resolved = mPackages.resolve(mesh.filename, mFile);
+        std::string problem = resolved.notFound;
+        if (problem.empty())
         {
-            return loadMeshFile(path, scale);
-        }
-        catch (const InputError& e)
-        {
-            if (e.line() > 0)
+            if (!resolved.note.empty() && mNotedPackages.insert(resolved.note).second && !quiet)
             {
-                throw; // the error is inside the mesh file: keep its location
+                warn(at, resolved.note);
             }
-            fail(at, "mesh '" + path + "' of link '" + link.name + "': " + e.message());
+            try
+            {
+                return loadMeshFile(resolved.path, scale);
+            }
+            catch (const InputError& e)
+            {
+                if (collision && e.line() > 0)
+                {
+                    throw; // the error is inside the mesh file: keep its location
+                }
+                problem = e.what();
+            }
         }
+        if (collision)
+        {
+            fail(at, what + ": " + problem);
+        }
+        if (!quiet)
+        {
+            warn(at, what + " cannot be read (" + problem + "); the link is drawn from its collision shapes");
+        }
+        return std::nullopt;
     }
 
-    void addJoint(const urdf::Joint& joint, core::Model& out) const
+    void addBody(LinkGroup& g)
     {
+        if (g.isWorld)
+        {
+            g.body = core::cWorld;
+            return;
+        }
+        const urdf::Link& top = link(g.top);
+        const std::string reason = invalidNameReason(g.top);
+        if (!reason.empty())
+        {
+            fail(mIndex.element("link", g.top), "invalid link name '" + g.top + "': " + reason);
+        }
+        core::Body body;
+        body.name = mPlacement.prefix + g.top;
+        body.isStatic = g.isStatic;
+        if (!g.isStatic)
+        {
+            const bool topHasMass = top.inertial && top.inertial->mass > 0.0;
+            const core::Quat axes = topHasMass ? fromUrdf(top.inertial->origin).q : core::Quat::Identity();
+            std::vector<MassPart> parts;
+            for (const std::string& name : g.links)
+            {
+                const bool ownFrame = topHasMass && name == g.top;
+                parts.push_back(
+                    massPart(link(name), ownFrame ? std::nullopt : std::optional<core::Quat>(axes)));
+            }
+            const CompositeMass mass = combineMassParts(parts);
+            if (!(mass.mass > 0.0))
+            {
+                failMassless(g);
+            }
+            body.mass = mass.mass;
+            body.inertia_B = mass.inertia;
+            g.bodyInTop = Pose{mass.centre, axes};
+            if (!isPositiveDefinite(body.inertia_B))
+            {
+                fail(mIndex.element("link", g.top), "the links welded into body '" + g.top +
+                                                        "' have an inertia that is not positive-definite");
+            }
+        }
+        const LinkPlace& topPlace = mPlaces[g.top];
+        const Pose bodyPose = topPlace.world * g.bodyInTop;
+        body.position_W = bodyPose.p;
+        body.orientation_WB = bodyPose.q;
+        const Pose topInBody = inverse(g.bodyInTop);
+        for (const std::string& name : g.links)
+        {
+            const urdf::Link& l = link(name);
+            const std::optional<Pose>& inTop = mPlaces[name].inTop;
+            const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
+            for (const bool collision : {true, false})
+            {
+                for (core::Shape& shape : linkShapes(l, collision, false))
+                {
+                    const Pose shapePose = linkInBody * Pose{shape.position_BS, shape.rotation_BS};
+                    shape.position_BS = shapePose.p;
+                    shape.rotation_BS = shapePose.q;
+                    (collision ? body.shapes : body.visuals).push_back(std::move(shape));
+                }
+            }
+            for (const urdf::VisualSharedPtr& visual : l.visual_array)
+            {
+                if (visual && visual->material && !body.color)
+                {
+                    const urdf::Color& c = visual->material->color;
+                    body.color = core::Vec3(c.r, c.g, c.b);
+                }
+            }
+            if (name != g.top)
+            {
+                mOut.report.welded.emplace_back(name, body.name);
+            }
+        }
+        if (!mPlacement.selfCollision)
+        {
+            body.group = mPlacement.prefix.empty() ? mOut.model.name : mPlacement.prefix;
+        }
+        g.body = static_cast<int>(mOut.model.bodies.size());
+        mOut.model.bodies.push_back(std::move(body));
+    }
+
+    [[noreturn]] void failMassless(const LinkGroup& g) const
+    {
+        const std::string what =
+            "link '" + g.top + "' has no mass (no <inertial> with a positive mass" +
+            (g.links.size() > 1 ? " in it or in the links welded to it by fixed joints" : "") + ")";
+        if (g.joint != nullptr)
+        {
+            fail(mIndex.element("joint", g.joint->name),
+                 what + " but " + jointTypeWord(g.joint->type) + " joint '" + g.joint->name +
+                     "' moves it; give it an <inertial>, or make the joint fixed");
+        }
+        fail(mIndex.element("link", g.top),
+             what + " but floats freely (the robot's root, or the child of a floating joint); give it an "
+                    "<inertial>, or weld the robot to the world (--fixed-base; in a scene, 'fixed: true')");
+    }
+
+    void addJoint(const urdf::Joint& joint)
+    {
+        if (joint.type == urdf::Joint::FIXED || joint.type == urdf::Joint::FLOATING)
+        {
+            return; // welded, or a free child: no joint
+        }
         const TextPosition at = mIndex.element("joint", joint.name);
-        core::Joint j;
-        j.name = mPlacement.prefix + joint.name;
         const std::string reason = invalidNameReason(joint.name);
         if (!reason.empty())
         {
             fail(at, "invalid joint name '" + joint.name + "': " + reason);
         }
-        bool hasAxis = true;
-        switch (joint.type)
+        core::Joint j;
+        j.name = mPlacement.prefix + joint.name;
+        j.type =
+            joint.type == urdf::Joint::PRISMATIC ? core::JointType::Prismatic : core::JointType::Revolute;
+        j.parent = groupOf(joint.parent_link_name).body;
+        j.child = groupOf(joint.child_link_name).body;
+        const Pose childPose = mPlaces[joint.child_link_name].world;
+        const core::Vec3 axis(joint.axis.x, joint.axis.y, joint.axis.z);
+        if (!(axis.norm() > 1e-12) || !axis.allFinite())
         {
-        case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS:
-            j.type = core::JointType::Revolute;
-            break;
-        case urdf::Joint::PRISMATIC:
-            j.type = core::JointType::Prismatic;
-            break;
-        case urdf::Joint::FIXED:
-            j.type = core::JointType::Fixed;
-            hasAxis = false;
-            break;
-        case urdf::Joint::FLOATING:
-            return; // a free child: no joint
-        case urdf::Joint::PLANAR:
-            fail(at,
+            fail(mIndex.element("joint", joint.name, "axis"),
+                 "joint '" + joint.name + "' has a zero <axis>; expected a non-zero direction");
+        }
+        const core::Vec3 axis_W = childPose.q * axis.normalized();
+        if (joint.type != urdf::Joint::CONTINUOUS)
+        {
+            readLimits(joint, j);
+        }
+        readDynamics(joint, j);
+        if (joint.mimic)
+        {
+            warn(mIndex.element("joint", joint.name, "mimic"),
                  "joint '" + joint.name +
-                     "' has type planar, which is unsupported (supported: revolute, continuous, prismatic, "
-                     "fixed, floating)");
-        default:
-            fail(at, "joint '" + joint.name + "' has an unknown type");
+                     "': <mimic> is not supported and is ignored (the joint moves freely)");
         }
-        j.parent = mLinkBody.at(joint.parent_link_name);
-        j.child = mLinkBody.at(joint.child_link_name);
-        const Pose childPose = mLinkPose.at(joint.child_link_name);
-        core::Vec3 axis_W = core::Vec3::UnitZ();
-        if (hasAxis)
+        core::setJointFrames(mOut.model, j, childPose.p, axis_W);
+        mOut.model.joints.push_back(std::move(j));
+    }
+
+    void readLimits(const urdf::Joint& joint, core::Joint& j)
+    {
+        if (!joint.limits)
         {
-            const core::Vec3 axis(joint.axis.x, joint.axis.y, joint.axis.z);
-            if (!(axis.norm() > 1e-12) || !axis.allFinite())
-            {
-                fail(mIndex.element("joint", joint.name, "axis"),
-                     "joint '" + joint.name + "' has a zero <axis>; expected a non-zero direction");
-            }
-            axis_W = childPose.q * axis.normalized();
+            fail(mIndex.element("joint", joint.name), "joint '" + joint.name + "' needs a <limit>");
         }
-        if (joint.type == urdf::Joint::REVOLUTE || joint.type == urdf::Joint::PRISMATIC)
+        const double lower = joint.limits->lower;
+        const double upper = joint.limits->upper;
+        const TextPosition at = mIndex.element("joint", joint.name, "limit");
+        if (!std::isfinite(lower) || !std::isfinite(upper) || lower > upper)
         {
-            if (!joint.limits)
-            {
-                fail(at, "joint '" + joint.name + "' needs a <limit>");
-            }
-            const double lower = joint.limits->lower;
-            const double upper = joint.limits->upper;
-            if (!std::isfinite(lower) || !std::isfinite(upper) || lower > upper)
-            {
-                fail(mIndex.element("joint", joint.name, "limit"),
-                     "joint '" + joint.name + "' has limits lower=" + formatNumber(lower) +
+            fail(at, "joint '" + joint.name + "' has limits lower=" + formatNumber(lower) +
                          " > upper=" + formatNumber(upper) + "; expected lower <= upper");
-            }
-            j.limits = std::array<double, 2>{lower, upper};
         }
-        core::setJointFrames(out, j, childPose.p, axis_W);
-        out.joints.push_back(std::move(j));
+        if (lower == upper)
+        {
+            warn(at, "joint '" + joint.name + "' has lower = upper = " + formatNumber(lower) +
+                         " (a <limit> without lower and upper means 0 and 0): it is locked");
+        }
+        j.limits = std::array<double, 2>{lower, upper};
+    }
+
+    void readDynamics(const urdf::Joint& joint, core::Joint& j) const
+    {
+        if (!joint.dynamics)
+        {
+            return;
+        }
+        const TextPosition at = mIndex.element("joint", joint.name, "dynamics");
+        const double damping = joint.dynamics->damping;
+        const double friction = joint.dynamics->friction;
+        if (!std::isfinite(damping) || damping < 0.0 || !std::isfinite(friction) || friction < 0.0)
+        {
+            fail(at, "joint '" + joint.name + "' has <dynamics damping=\"" + formatNumber(damping) +
+                         "\" friction=\"" + formatNumber(friction) + "\">; expected non-negative numbers");
+        }
+        j.damping = damping;
+        j.friction = friction;
     }
 
     const std::string& mFile;
-    std::string mBaseDir;
     const UrdfXmlIndex& mIndex;
     const urdf::ModelInterface& mRobot;
     const UrdfPlacement& mPlacement;
-    bool mRootIsWorld = false;
-    std::map<std::string, Pose> mLinkPose; // link frame in the world (initial pose)
-    std::map<std::string, int> mLinkBody;  // body index, or cWorld
+    const PackagePaths& mPackages;
+    std::map<std::string, LinkPlace> mPlaces; // by link name
+    std::vector<LinkGroup> mGroups;
+    std::set<std::string> mNotedPackages; // last-resort package matches already warned about
+    UrdfFragment mOut;
 };
 
 } // namespace
 
-core::Model loadUrdfFragment(const std::string& path, const UrdfPlacement& placement)
+std::string formatNumber(double value)
+{
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+std::string formatVector(const core::Vec3& v)
+{
+    return formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z());
+}
+
+UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
+                              const PackagePaths& packages)
 {
     const std::string text = readTextFile(path);
     const UrdfXmlIndex index(path, text); // XML syntax errors with row and column
@@ -422,24 +734,11 @@ core::Model loadUrdfFragment(const std::string& path, const UrdfPlacement& place
         }
         throw InputError(path, at.line, at.column, message);
     }
-    UrdfConverter converter(path, index, *robot, placement);
-    return converter.convert();
-}
-
-core::Model loadUrdfScene(const std::string& path)
-{
-    core::Model model = loadUrdfFragment(path, UrdfPlacement{});
-    model.sourceFile = path;
-    core::Body floor;
-    floor.name = model.findBody("floor") < 0 ? "floor" : "floor_";
-    floor.isStatic = true;
-    core::Shape plane;
-    plane.type = core::ShapeType::Plane;
-    plane.normal = core::Vec3::UnitZ();
-    plane.offset = 0.0;
-    floor.shapes.push_back(plane);
-    model.bodies.push_back(std::move(floor));
-    return model;
+    UrdfConverter converter(path, index, *robot, placement, packages);
+    UrdfFragment fragment = converter.convert();
+    fragment.report.name = placement.prefix.empty() ? fragment.model.name : placement.prefix;
+    fragment.report.prefix = placement.prefix;
+    return fragment;
 }
 
 } // namespace frontier::io::detail

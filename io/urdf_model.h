@@ -2,11 +2,14 @@
 #pragma once
 
 #include "core/model.h"
+#include "io/scene.h"
 
 #include <string>
 
 namespace frontier::io::detail
 {
+
+class PackagePaths;
 
 // How a URDF is placed in a scene.
 struct UrdfPlacement
@@ -15,16 +18,31 @@ struct UrdfPlacement
     core::Quat orientation = core::Quat::Identity(); // of the root link frame
     std::string prefix;                              // prepended to every body and joint name
     bool selfCollision = true;                       // false: every link goes into one collision group
-    bool fixedRoot = false; // true: the root link is a static body (its <inertial> is ignored)
+    bool fixedRoot = false; // true: the root link is welded to the world (a static body) where it is
+    bool freeRoot = false;  // true: a root link named 'world' is dropped; what it welded floats
 };
 
-// The URDF's links as bodies and its joints, body indices local to the returned model (joints to
-// the world use core::cWorld). model.name is the robot name. Throws InputError naming the URDF
-// file and, where it can be found, the line.
-core::Model loadUrdfFragment(const std::string& path, const UrdfPlacement& placement);
+// A URDF's links as bodies (links joined by fixed joints welded into one) and its moving joints,
+// body indices local to `model` (joints to the world use core::cWorld); model.name is the robot name.
+struct UrdfFragment
+{
+    core::Model model;
+    RobotReport report;
+    std::vector<std::string> warnings; // diagnostics, "FILE:LINE:COL: warning: ..."
+};
 
-// A URDF alone: the model at its own pose, plus a static floor (plane z = 0) and the default
-// simulation settings.
-core::Model loadUrdfScene(const std::string& path);
+// Numbers with 6 significant digits ("x, y, z" for a vector), for messages and reports.
+std::string formatNumber(double value);
+std::string formatVector(const core::Vec3& v);
+
+// Throws InputError naming the URDF file and, where it can be found, the line.
+UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
+                              const PackagePaths& packages);
+
+// A URDF alone: the robot on a static floor with the default simulation settings. A free-floating
+// robot is moved so that its lowest collision point is options.dropHeight (default 0) above the
+// floor z = 0; a fixed one stays where the URDF puts it, the floor at z = 0 or under its lowest
+// collision point if that is lower.
+core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report);
 
 } // namespace frontier::io::detail

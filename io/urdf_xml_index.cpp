@@ -3,6 +3,7 @@
 
 #include "io/scene.h"
 
+#include <algorithm>
 #include <tinyxml.h>
 
 namespace frontier::io::detail
@@ -10,15 +11,29 @@ namespace frontier::io::detail
 
 namespace
 {
-void indexChildren(const TiXmlElement& parent, const std::string& prefix,
+// Child elements under each of `prefixes`: "prefix/name" for the first of each name, and for the
+// direct children of a <link> or <joint> (numbered) also "prefix/name#k" for the k-th (0-based).
+void indexChildren(const TiXmlElement& parent, const std::vector<std::string>& prefixes, bool numbered,
                    std::map<std::string, TextPosition>& out)
 {
+    std::map<std::string, int> seen; // element name -> how many came before
     for (const TiXmlElement* child = parent.FirstChildElement(); child != nullptr;
          child = child->NextSiblingElement())
     {
-        const std::string key = prefix + "/" + child->Value();
-        out.try_emplace(key, TextPosition{child->Row(), child->Column()}); // the first one of a kind
-        indexChildren(*child, key, out);
+        const TextPosition at{child->Row(), child->Column()};
+        std::vector<std::string> keys;
+        for (const std::string& prefix : prefixes)
+        {
+            keys.push_back(prefix + "/" + child->Value());
+            out.try_emplace(keys.back(), at); // the first one of a kind
+        }
+        if (numbered)
+        {
+            keys.push_back(prefixes.front() + "/" + child->Value() + "#" +
+                           std::to_string(seen[child->Value()]++));
+            out.try_emplace(keys.back(), at);
+        }
+        indexChildren(*child, keys, false, out);
     }
 }
 } // namespace
@@ -29,7 +44,8 @@ UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : m
     document.Parse(text.c_str());
     if (document.Error())
     {
-        throw InputError(file, document.ErrorRow(), document.ErrorCol(),
+        // An empty document has no row: the problem is at its start.
+        throw InputError(file, std::max(1, document.ErrorRow()), std::max(1, document.ErrorCol()),
                          std::string("invalid XML: ") + document.ErrorDesc());
     }
     const TiXmlElement* robot = document.RootElement();
@@ -57,7 +73,7 @@ UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : m
             continue;
         }
         (kind == "link" ? mLinkNames : mJointNames).push_back(name);
-        indexChildren(*e, key, mElements);
+        indexChildren(*e, {key}, true, mElements);
     }
 }
 

@@ -21,8 +21,9 @@ class UrdfXmlIndex
     UrdfXmlIndex(const std::string& file, const std::string& text);
 
     // Position of <link name="name"> (kind "link") or <joint> (kind "joint"), or of a child
-    // element path below it ("inertial/mass"); falls back to the closest existing ancestor, and to
-    // {0, 0} when the element is unknown.
+    // element path below it ("inertial/mass": the first of each name; "collision#2/geometry": the
+    // third <collision>); falls back to the closest existing ancestor, and to {0, 0} when the
+    // element is unknown.
     TextPosition element(const std::string& kind, const std::string& name,
                          const std::string& childPath = "") const;
 

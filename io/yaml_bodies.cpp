@@ -216,9 +216,11 @@ core::Mat3 readInertia(const MapNode& body)
                "expected [ixx, iyy, izz], [ixx, iyy, izz, ixy, ixz, iyz] or a 3x3 matrix for " + what +
                    ", got " + describeNode(node));
     }
-    if (!isPositiveDefinite(inertia))
+    const std::string defect = inertiaDefect(inertia, 0.0); // the size check is for URDF repairs only
+    if (!defect.empty())
     {
-        failAt(body.source(), node, "expected a positive-definite inertia for " + what + " (kg m^2)");
+        failAt(body.source(), node,
+               "expected a positive-definite inertia for " + what + " (kg m^2); this one " + defect);
     }
     return inertia;
 }
@@ -428,7 +430,11 @@ int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const s
         }
         return core::cWorld;
     }
-    const int index = builder.model.findBody(name);
+    int index = builder.model.findBody(name);
+    if (const auto welded = builder.weldedLinks.find(name); index < 0 && welded != builder.weldedLinks.end())
+    {
+        index = welded->second;
+    }
     if (index < 0)
     {
         std::vector<std::string> names;

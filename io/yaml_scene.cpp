@@ -21,7 +21,8 @@ const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "g
 const std::vector<std::string> cContactKeys = {"friction", "restitution", "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
-    "urdf", "position", "orientation", "velocity", "angular_velocity", "prefix", "self_collision", "fixed"};
+    "urdf",   "position",       "orientation", "velocity", "angular_velocity",
+    "prefix", "self_collision", "fixed",       "free_base"};
 
 void readSimulation(const YamlSource& source, const YAML::Node& node, core::SimulationSettings& sim)
 {
@@ -179,17 +180,27 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
         placement.position = map.optVec3("position").value_or(core::Vec3::Zero());
         placement.orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
         placement.prefix = map.optString("prefix").value_or("");
-        placement.selfCollision = map.optBool("self_collision").value_or(true);
+        placement.selfCollision =
+            builder.urdf.selfCollision.value_or(map.optBool("self_collision").value_or(true));
         placement.fixedRoot = map.optBool("fixed").value_or(false);
+        placement.freeRoot = map.optBool("free_base").value_or(false);
+        if (placement.fixedRoot && placement.freeRoot)
+        {
+            map.failAtKey("free_base", "'fixed' and 'free_base' of " + map.context() + " exclude each other");
+        }
         if (map.has("prefix") && placement.prefix.find_first_of(",\"") != std::string::npos)
         {
             map.failAtValue("prefix", "a prefix cannot contain commas or double quotes");
         }
         const std::string path = resolvePath(source.baseDir, file);
-        core::Model fragment;
+        if (!builder.packages)
+        {
+            builder.packages.emplace(builder.urdf.packagePaths);
+        }
+        UrdfFragment loaded;
         try
         {
-            fragment = loadUrdfFragment(path, placement);
+            loaded = loadUrdfFragment(path, placement, *builder.packages);
         }
         catch (const InputError& e)
         {
@@ -199,6 +210,7 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
             }
             throw;
         }
+        core::Model& fragment = loaded.model;
         // A rigid motion of the whole model: v at the root link origin, w about it.
         const core::Vec3 velocity = map.optVec3("velocity").value_or(core::Vec3::Zero());
         const core::Vec3 angularVelocity = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
@@ -210,7 +222,23 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
                 body.angularVelocity_W = angularVelocity;
             }
         }
+        const int firstBody = static_cast<int>(builder.model.bodies.size());
+        for (const auto& [linkName, bodyName] : loaded.report.welded)
+        {
+            builder.weldedLinks[placement.prefix + linkName] = firstBody + fragment.findBody(bodyName);
+        }
+        builder.model.robots.push_back({loaded.report.name, path, firstBody,
+                                        static_cast<int>(fragment.bodies.size()), placement.selfCollision});
         appendFragment(builder, map, std::move(fragment), path);
+        if (builder.report)
+        {
+            loaded.report.placement = std::string(placement.fixedRoot ? "fixed to the world" : "placed") +
+                                      " by the scene, root link frame at (" +
+                                      formatVector(placement.position) + ") m";
+            builder.report->robots.push_back(std::move(loaded.report));
+            builder.report->warnings.insert(builder.report->warnings.end(), loaded.warnings.begin(),
+                                            loaded.warnings.end());
+        }
     }
 }
 
@@ -245,9 +273,12 @@ std::string defaultName(const std::string& sourceName)
 
 } // namespace
 
-core::Model loadYamlScene(const std::string& text, const std::string& sourceName)
+core::Model loadYamlScene(const std::string& text, const std::string& sourceName, const UrdfOptions& urdf,
+                          LoadReport* report)
 {
     SceneBuilder builder;
+    builder.urdf = urdf;
+    builder.report = report;
     builder.source = YamlSource{sourceName, directoryOf(sourceName)};
     const YamlSource& source = builder.source;
     core::Model& model = builder.model;

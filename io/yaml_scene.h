@@ -2,9 +2,12 @@
 #pragma once
 
 #include "core/model.h"
+#include "io/package_paths.h"
+#include "io/scene.h"
 #include "io/yaml_util.h"
 
 #include <map>
+#include <optional>
 #include <string>
 
 namespace frontier::io::detail
@@ -17,17 +20,23 @@ struct SceneBuilder
     core::Model model;
     std::map<std::string, YAML::Mark> bodyMarks;  // where each YAML body's name was given
     std::map<std::string, YAML::Mark> jointMarks; // where each YAML joint's name was given
+    std::map<std::string, int> weldedLinks;       // a URDF link welded into a body (prefixed name -> body)
+    UrdfOptions urdf;                             // how `models:` are read
+    std::optional<PackagePaths> packages;         // their mesh URIs, made on first use
+    LoadReport* report = nullptr;                 // receives warnings and what loading did
 };
 
 // Scene text to model (sourceName for messages and relative paths).
-core::Model loadYamlScene(const std::string& text, const std::string& sourceName);
+core::Model loadYamlScene(const std::string& text, const std::string& sourceName,
+                          const UrdfOptions& urdf = {}, LoadReport* report = nullptr);
 
 // `bodies:` list (each body appended to builder.model.bodies).
 void readBodies(SceneBuilder& builder, const YAML::Node& bodies);
 // `joints:` list, after all bodies (YAML and URDF) exist.
 void readJoints(SceneBuilder& builder, const YAML::Node& joints);
 
-// A body named by `node` (a string): its index, or core::cWorld for "world" when allowWorld.
+// A body named by `node` (a string): its index, or core::cWorld for "world" when allowWorld. A
+// URDF link welded into a body names that body.
 // Errors name `what` and suggest the closest body name.
 int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
                     bool allowWorld);

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Frontier needs, only those that are missing.
-# Usage: scripts/install-deps.sh [--with-extras]
+# Usage: scripts/install-deps.sh [--with-extras] [--for-tests]
 #   --with-extras also installs ffmpeg (--video). gnuplot-nox (the charts of `frontier sweep`)
 #   is in the main list: the sweep test draws one in CI.
+#   --for-tests also installs dart-doc: real robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas)
+#   that the robot corpus test (tests/robots) runs.
 # Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
 set -euo pipefail
 
@@ -13,9 +15,13 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
   gnuplot-nox
 )
-if [[ "${1:-}" == "--with-extras" ]]; then
-  packages+=(ffmpeg)
-fi
+for option in "$@"; do
+  case "$option" in
+    --with-extras) packages+=(ffmpeg) ;;
+    --for-tests) packages+=(dart-doc) ;;
+    *) echo "install-deps: unknown option '$option' (expected --with-extras or --for-tests)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

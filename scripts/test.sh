@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: a Release build (warnings are errors) and an
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2.
-# Installs missing Debian packages first (scripts/install-deps.sh).
+# Installs missing Debian packages first (scripts/install-deps.sh --for-tests).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-2}
 
-scripts/install-deps.sh
+scripts/install-deps.sh --for-tests
 
 echo "== Release build and tests"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFRONTIER_WERROR=ON >/dev/null

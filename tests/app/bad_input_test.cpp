@@ -71,18 +71,20 @@ INSTANTIATE_TEST_SUITE_P(
                  "bodies:\n  - name: ball\n    mass: 1\n    position: [0, .nan, 1]\n"
                  "    shape: {type: sphere, radius: 0.1}\n",
                  4, "position"},
-        BadScene{"UrdfLinkWithoutInertial", "robot.urdf",
-                 "<robot name=\"r\">\n"
-                 "  <link name=\"a\">\n"
-                 "    <inertial><mass value=\"1\"/>"
-                 "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\n"
-                 "  </link>\n"
-                 "  <link name=\"b\"/>\n"
-                 "  <joint name=\"j\" type=\"continuous\">\n"
-                 "    <parent link=\"a\"/><child link=\"b\"/>\n"
-                 "  </joint>\n"
-                 "</robot>\n",
-                 5, "link 'b' has no <inertial>"}),
+        BadScene{
+            "UrdfMasslessLinkOnAJoint", "robot.urdf",
+            "<robot name=\"r\">\n"
+            "  <link name=\"a\">\n"
+            "    <inertial><mass value=\"1\"/>"
+            "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\n"
+            "  </link>\n"
+            "  <link name=\"b\"/>\n"
+            "  <joint name=\"j\" type=\"continuous\">\n"
+            "    <parent link=\"a\"/><child link=\"b\"/>\n"
+            "  </joint>\n"
+            "</robot>\n",
+            6,
+            "link 'b' has no mass (no <inertial> with a positive mass) but continuous joint 'j' moves it"}),
     [](const ::testing::TestParamInfo<BadScene>& p) { return std::string(p.param.name); });
 
 TEST(BadInput, MissingSceneFileIsNamed)

@@ -1,6 +1,7 @@
 // tests/app/info_test.cpp: `frontier info` on the falling doll: counts, rows, degrees of freedom,
 // the frontier order, loops and collision pairs, in JSON; the text form runs.
 #include "app_test_util.h"
+#include "info_test_util.h"
 
 #include <algorithm>
 #include <gtest/gtest.h>
@@ -18,20 +19,6 @@ namespace
 const std::map<std::string, int> cRowsByType = {{"ball", 3},  {"nail", 3},        {"revolute", 5},
                                                 {"angle", 4}, {"cylindrical", 4}, {"prismatic", 5},
                                                 {"fixed", 6}};
-
-bool hasPair(const nlohmann::json& pairs, const std::string& a, const std::string& b)
-{
-    for (const auto& pair : pairs)
-    {
-        const std::string x = pair.at(0).get<std::string>();
-        const std::string y = pair.at(1).get<std::string>();
-        if ((x == a && y == b) || (x == b && y == a))
-        {
-            return true;
-        }
-    }
-    return false;
-}
 
 TEST(Info, FallingDollJson)
 {

@@ -32,7 +32,7 @@ const char* const cArmUrdf = R"(
     <inertial>
       <origin xyz="0 0 0.2" rpy="0 0 1.5707963267948966"/>
       <mass value="1"/>
-      <inertia ixx="0.01" ixy="0.001" ixz="0" iyy="0.012" iyz="0" izz="0.002"/>
+      <inertia ixx="0.01" ixy="0.001" ixz="0" iyy="0.012" iyz="0" izz="0.003"/>
     </inertial>
     <collision><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.03" length="0.4"/></geometry></collision>
   </link>
@@ -73,7 +73,7 @@ bodies:
     shape: {type: box, size: [0.2, 0.2, 0.1]}
   - name: a_upper
     mass: 1
-    inertia: [0.01, 0.012, 0.002, 0.001, 0, 0]
+    inertia: [0.01, 0.012, 0.003, 0.001, 0, 0]
     position: [0, 0, 1.3]
     orientation: [0.7071067811865476, 0, 0, 0.7071067811865476]
     shape: {type: cylinder, radius: 0.03, length: 0.4, orientation: [0.7071067811865476, 0, 0, -0.7071067811865476]}
@@ -115,14 +115,17 @@ std::string robot(const std::string& inner)
 const std::string cGoodInertial = "<inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" "
                                   "iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>";
 
-TEST(Urdf, MissingInertialNamesTheLinkLine)
+TEST(Urdf, MasslessLinkMovedByAJointNamesTheJointLine)
 {
     TempDir dir;
     const InputError e = urdfError(dir, robot("  <link name=\"a\">\n    " + cGoodInertial + "\n  </link>\n" +
                                               "  <link name=\"b\"/>\n" +
                                               "  <joint name=\"j\" type=\"continuous\">\n"
                                               "    <parent link=\"a\"/><child link=\"b\"/>\n  </joint>\n"));
-    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 5, 3, "link 'b' has no <inertial>");
+    EXPECT_INPUT_ERROR_AT(
+        e, dir.file("robot.urdf"), 6, 3,
+        "link 'b' has no mass (no <inertial> with a positive mass) but continuous joint 'j' "
+        "moves it");
 }
 
 TEST(Urdf, MassThatIsNotANumberIsFatal)
@@ -138,26 +141,76 @@ TEST(Urdf, MassThatIsNotANumberIsFatal)
     EXPECT_NE(std::string(e.what()).find("mass [heavy] is not a float"), std::string::npos) << e.what();
 }
 
-TEST(Urdf, ZeroMassIsAnError)
+TEST(Urdf, MasslessFreeRootIsAnErrorThatSuggestsFixedBase)
 {
     TempDir dir;
     const InputError e =
         urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"0\"/>\n"
                              "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
                              "izz=\"1\"/>\n    </inertial>\n  </link>\n"));
-    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 4, 7,
-                          "link 'a' has mass 0; expected a positive <mass value>");
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 2, 3, "link 'a' has no mass");
+    EXPECT_NE(std::string(e.what()).find("floats freely"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--fixed-base"), std::string::npos) << e.what();
 }
 
-TEST(Urdf, InertiaNotPositiveDefinite)
+TEST(Urdf, NegativeMassIsAnError)
 {
     TempDir dir;
     const InputError e =
-        urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"1\"/>\n"
+        urdfError(dir, robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"-2\"/>\n"
                              "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" "
-                             "izz=\"0\"/>\n    </inertial>\n  </link>\n"));
-    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 5, 7,
-                          "link 'a' has an inertia that is not positive-definite");
+                             "izz=\"1\"/>\n    </inertial>\n  </link>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 4, 7,
+                          "link 'a' has mass -2; expected a non-negative <mass value> (kg)");
+}
+
+TEST(Urdf, ImpossibleInertiaIsReplacedByThatOfTheShapesWithAWarning)
+{
+    TempDir dir;
+    // izz = 0: not positive-definite. The link's collision box (0.2 x 0.4 x 0.6 m) at its mass 3 kg
+    // gives m/12 (b^2 + c^2), ... about the box centre.
+    const std::string path = dir.write(
+        "robot.urdf", robot("  <link name=\"a\">\n    <inertial>\n      <mass value=\"3\"/>\n"
+                            "      <inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"0\"/>\n"
+                            "    </inertial>\n    <collision><geometry><box size=\"0.2 0.4 0.6\"/></geometry>"
+                            "</collision>\n  </link>\n"));
+    LoadReport report;
+    const core::Model model = loadScene(path, {}, &report);
+    const core::Body& body = model.bodies.at(0);
+    EXPECT_DOUBLE_EQ(body.mass, 3.0);
+    const core::Vec3 expected = 3.0 / 12.0 * core::Vec3(0.16 + 0.36, 0.04 + 0.36, 0.04 + 0.16);
+    EXPECT_LT((body.inertia_B.diagonal() - expected).norm(), 1e-12) << body.inertia_B;
+    EXPECT_LT((body.inertia_B - core::Mat3(body.inertia_B.diagonal().asDiagonal())).norm(), 1e-15);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(dir.file("robot.urdf") +
+                                      ":5:7: warning: link 'a': the inertia is not positive-definite"),
+              std::string::npos)
+        << report.warnings[0];
+    ASSERT_EQ(report.robots.size(), 1u);
+    ASSERT_EQ(report.robots[0].repaired.size(), 1u);
+    EXPECT_NE(report.robots[0].repaired[0].find("link 'a'"), std::string::npos);
+}
+
+TEST(Urdf, TinyOrTriangleBreakingInertiaIsRepairedEvenWithoutShapes)
+{
+    TempDir dir;
+    // No shapes at all: a ball of water (1000 kg/m^3) of the link's mass, I = 2/5 m r^2.
+    for (const char* inertia : {"ixx=\"1e-12\" ixy=\"0\" ixz=\"0\" iyy=\"1e-12\" iyz=\"0\" izz=\"1e-12\"",
+                                "ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"3\""})
+    {
+        SCOPED_TRACE(inertia);
+        const std::string path = dir.write(
+            "robot.urdf", robot(std::string("  <link name=\"a\"><inertial><mass value=\"0.5\"/><inertia ") +
+                                inertia + "/></inertial></link>\n"));
+        LoadReport report;
+        const core::Model model = loadScene(path, {}, &report);
+        const double r = std::cbrt(3.0 * 0.5 / (4.0 * std::numbers::pi * 1000.0));
+        EXPECT_LT((model.bodies.at(0).inertia_B - 0.4 * 0.5 * r * r * core::Mat3::Identity()).norm(), 1e-15);
+        // One warning for the inertia, one that nothing holds the robot up (it has no shapes).
+        ASSERT_EQ(report.warnings.size(), 2u);
+        EXPECT_NE(report.warnings[0].find("link 'a': the inertia "), std::string::npos) << report.warnings[0];
+        EXPECT_NE(report.warnings[1].find("no collision shapes"), std::string::npos) << report.warnings[1];
+    }
 }
 
 TEST(Urdf, MissingParentLink)
@@ -236,7 +289,7 @@ TEST(Urdf, InertialOffsetPutsTheBodyAtTheCentreOfMass)
         robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
               "  <link name=\"b\"><inertial><origin xyz=\"0.2 0 0\" rpy=\"0 0 0\"/><mass value=\"3\"/>"
               "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"2\" iyz=\"0\" izz=\"3\"/></inertial></link>\n"
-              "  <joint name=\"j\" type=\"fixed\"><parent link=\"a\"/><child link=\"b\"/>"
+              "  <joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/>"
               "<origin xyz=\"1 0 0\" rpy=\"0 0 1.5707963267948966\"/></joint>\n"));
     const core::Model model = loadScene(path);
     const int b = model.findBody("b");
@@ -247,7 +300,7 @@ TEST(Urdf, InertialOffsetPutsTheBodyAtTheCentreOfMass)
     EXPECT_EQ(body.mass, 3.0);
     EXPECT_EQ(body.inertia_B.diagonal(), core::Vec3(1, 2, 3));
     ASSERT_EQ(model.joints.size(), 1u);
-    EXPECT_EQ(model.joints[0].type, core::JointType::Fixed);
+    EXPECT_EQ(model.joints[0].type, core::JointType::Revolute);
     // A URDF alone gets a static floor plane.
     ASSERT_EQ(model.bodies.size(), 3u);
     EXPECT_TRUE(model.bodies[2].isStatic);
@@ -377,7 +430,7 @@ TEST(Urdf, ErrorInAModelNamesTheUrdfFile)
     const std::string urdf = dir.write("bad.urdf", robot("  <link name=\"a\"/>\n"));
     const std::string scene = dir.write("scene.yaml", "models: [{urdf: bad.urdf}]\n");
     const InputError e = captureInputError([&] { loadScene(scene); });
-    EXPECT_INPUT_ERROR_AT(e, urdf, 2, 3, "link 'a' has no <inertial>");
+    EXPECT_INPUT_ERROR_AT(e, urdf, 2, 3, "link 'a' has no mass");
 }
 
 } // namespace

@@ -1,0 +1,145 @@
+// io/urdf_scene.cpp: a URDF alone as a scene: the robot, placed on a floor (README "Robots").
+#include "io/file_util.h"
+#include "io/package_paths.h"
+#include "io/scene.h"
+#include "io/urdf_model.h"
+
+#include <cmath>
+#include <limits>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+
+// Lowest point of the robot's collision shapes along z (m); +infinity when it has none.
+double lowestPoint(const core::Model& model)
+{
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const core::Body& body : model.bodies)
+    {
+        for (const core::Shape& shape : body.shapes)
+        {
+            const double top =
+                core::shapeSupportWorld(shape, body.position_W, body.orientation_WB, -core::Vec3::UnitZ());
+            lowest = std::min(lowest, -top);
+        }
+    }
+    return lowest;
+}
+
+// Every body (and every joint anchor held by the world) moved by `offset` (m).
+void translate(core::Model& model, const core::Vec3& offset)
+{
+    for (core::Body& body : model.bodies)
+    {
+        body.position_W += offset;
+    }
+    for (core::Joint& joint : model.joints)
+    {
+        if (joint.parent == core::cWorld)
+        {
+            joint.anchorParent += offset;
+        }
+    }
+}
+
+bool heldByWorld(const core::Model& model)
+{
+    for (const core::Body& body : model.bodies)
+    {
+        if (body.isStatic)
+        {
+            return true;
+        }
+    }
+    for (const core::Joint& joint : model.joints)
+    {
+        if (joint.parent == core::cWorld)
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace
+
+core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
+{
+    if (options.fixedBase && options.freeBase)
+    {
+        throw InputError(path, 0, 0, "--fixed-base and --free-base exclude each other");
+    }
+    if (options.dropHeight && !(std::isfinite(*options.dropHeight) && *options.dropHeight >= 0.0))
+    {
+        throw InputError(path, 0, 0, "--drop-height must be a non-negative number of metres");
+    }
+    const PackagePaths packages(options.packagePaths);
+    UrdfPlacement placement;
+    placement.fixedRoot = options.fixedBase;
+    placement.freeRoot = options.freeBase;
+    placement.selfCollision = options.selfCollision.value_or(true);
+    UrdfFragment fragment = loadUrdfFragment(path, placement, packages);
+    core::Model model = std::move(fragment.model);
+    model.sourceFile = path;
+    RobotReport& robot = fragment.report;
+    const double lowest = lowestPoint(model);
+    double floorHeight = 0.0; // m
+    if (heldByWorld(model))
+    {
+        // The robot stays where the URDF puts it; the floor goes under it when a link reaches below
+        // z = 0 (an arm mounted on its side), so that no link starts inside the floor.
+        floorHeight = std::isfinite(lowest) ? std::min(0.0, lowest) : 0.0;
+        robot.placement =
+            std::string(options.fixedBase ? "fixed to the world where the URDF puts it (--fixed-base)"
+                                          : "fixed to the world by the URDF (a joint to its 'world' link)") +
+            "; floor at z = " + formatNumber(floorHeight) + " m";
+        if (options.dropHeight)
+        {
+            fragment.warnings.push_back(
+                diagnostic(path, {}, "warning",
+                           "--drop-height is for a free-floating robot; this one is " + robot.placement +
+                               ", so it stays where it is"));
+        }
+    }
+    else
+    {
+        if (std::isfinite(lowest))
+        {
+            const double height = options.dropHeight.value_or(0.0);
+            translate(model, core::Vec3(0.0, 0.0, height - lowest));
+            const double shift = height - lowest;
+            robot.placement = "free-floating, moved " + std::string(shift < 0.0 ? "down " : "up ") +
+                              formatNumber(std::abs(shift)) + " m so that its lowest collision point is " +
+                              formatNumber(height) + " m above the floor";
+        }
+        else
+        {
+            robot.placement = "free-floating, where the URDF puts it (it has no collision shapes)";
+            fragment.warnings.push_back(
+                diagnostic(path, {}, "warning",
+                           "the robot has no collision shapes: nothing stops it falling through the floor"));
+        }
+    }
+    model.robots.push_back(
+        {robot.name, path, 0, static_cast<int>(model.bodies.size()), placement.selfCollision});
+    core::Body floor;
+    floor.name = model.findBody("floor") < 0 ? "floor" : "floor_";
+    floor.isStatic = true;
+    core::Shape plane;
+    plane.type = core::ShapeType::Plane;
+    plane.normal = core::Vec3::UnitZ();
+    plane.offset = floorHeight;
+    floor.shapes.push_back(plane);
+    model.bodies.push_back(std::move(floor));
+    if (report)
+    {
+        report->robots.push_back(std::move(robot));
+        report->warnings.insert(report->warnings.end(), fragment.warnings.begin(), fragment.warnings.end());
+    }
+    return model;
+}
+
+} // namespace frontier::io::detail

@@ -1,0 +1,456 @@
+// tests/io/urdf_robot_test.cpp: what real robot files need: package:// and other mesh URIs,
+// links welded by fixed joints, frame-only links, a robot placed on the floor or fixed to the world,
+// joint dynamics. Expectations are worked out here by hand (parallel-axis theorem, support points).
+#include "io/scene.h"
+#include "io_test_util.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <numbers>
+
+namespace frontier::io::test
+{
+namespace
+{
+
+namespace fs = std::filesystem;
+
+// A closed unit-ish box mesh (0.1 m cube centred at its origin) as Wavefront OBJ.
+const char* const cCubeObj = R"(v -0.05 -0.05 -0.05
+v 0.05 -0.05 -0.05
+v 0.05 0.05 -0.05
+v -0.05 0.05 -0.05
+v -0.05 -0.05 0.05
+v 0.05 -0.05 0.05
+v 0.05 0.05 0.05
+v -0.05 0.05 0.05
+f 1 3 2
+f 1 4 3
+f 5 6 7
+f 5 7 8
+f 1 2 6
+f 1 6 5
+f 2 3 7
+f 2 7 6
+f 3 4 8
+f 3 8 7
+f 4 1 5
+f 4 5 8
+)";
+
+std::string packageXml(const std::string& name)
+{
+    return "<?xml version=\"1.0\"?>\n<package format=\"2\">\n  <name>" + name +
+           "</name>\n  <version>1.0.0</version>\n</package>\n";
+}
+
+// A one-link robot whose collision (and visual) is the mesh at `uri`.
+std::string meshRobot(const std::string& collisionUri, const std::string& visualUri = "")
+{
+    std::string visual;
+    if (!visualUri.empty())
+    {
+        visual = "    <visual><geometry><mesh filename=\"" + visualUri + "\"/></geometry></visual>\n";
+    }
+    return "<robot name=\"r\">\n  <link name=\"a\">\n    <inertial><mass value=\"1\"/><inertia ixx=\"0.01\" "
+           "ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial>\n" +
+           visual + "    <collision><geometry><mesh filename=\"" + collisionUri +
+           "\"/></geometry></collision>\n  </link>\n</robot>\n";
+}
+
+void mkdirs(const TempDir& dir, const std::string& sub)
+{
+    fs::create_directories(dir.path() / sub);
+}
+
+// Restores an environment variable at the end of a test.
+class ScopedEnv
+{
+  public:
+    ScopedEnv(const char* name, const std::string& value) : mName(name)
+    {
+        if (const char* old = std::getenv(name))
+        {
+            mOld = old;
+        }
+        ::setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnv()
+    {
+        if (mOld)
+        {
+            ::setenv(mName, mOld->c_str(), 1);
+        }
+        else
+        {
+            ::unsetenv(mName);
+        }
+    }
+
+  private:
+    const char* mName;
+    std::optional<std::string> mOld;
+};
+
+std::size_t meshVertexCount(const core::Model& model)
+{
+    return model.bodies.at(0).shapes.at(0).vertices.size();
+}
+
+TEST(UrdfPackages, PackagePathThatIsAPackage)
+{
+    TempDir dir;
+    mkdirs(dir, "pkgs/my_robot/meshes");
+    mkdirs(dir, "robot");
+    dir.write("pkgs/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("pkgs/my_robot/meshes/cube.obj", cCubeObj);
+    const std::string urdf = dir.write("robot/r.urdf", meshRobot("package://my_robot/meshes/cube.obj"));
+    UrdfOptions options;
+    options.packagePaths = {dir.file("pkgs/my_robot")};
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
+    // A folder that holds packages, searched a few levels down.
+    options.packagePaths = {dir.file("pkgs")};
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
+    options.packagePaths = {dir.path().string()};
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
+}
+
+TEST(UrdfPackages, NameEqualsDirMapsAPackageWithoutManifest)
+{
+    TempDir dir;
+    mkdirs(dir, "anything/meshes");
+    mkdirs(dir, "robot");
+    dir.write("anything/meshes/cube.obj", cCubeObj);
+    const std::string urdf =
+        dir.write("robot/r.urdf", meshRobot("package://herb_description/meshes/cube.obj"));
+    UrdfOptions options;
+    options.packagePaths = {"herb_description=" + dir.file("anything")};
+    LoadReport report;
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, options, &report)), 8u);
+    EXPECT_TRUE(report.warnings.empty());
+}
+
+TEST(UrdfPackages, RosPackagePathEnvironment)
+{
+    TempDir dir;
+    mkdirs(dir, "ws/src/deep/my_robot/meshes");
+    mkdirs(dir, "robot");
+    dir.write("ws/src/deep/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("ws/src/deep/my_robot/meshes/cube.obj", cCubeObj);
+    const std::string urdf = dir.write("robot/r.urdf", meshRobot("package://my_robot/meshes/cube.obj"));
+    const ScopedEnv env("ROS_PACKAGE_PATH", "/nonexistent:" + dir.file("ws"));
+    EXPECT_EQ(meshVertexCount(loadScene(urdf)), 8u);
+}
+
+TEST(UrdfPackages, TheUrdfsOwnPackage)
+{
+    TempDir dir;
+    mkdirs(dir, "my_robot/urdf");
+    mkdirs(dir, "my_robot/meshes");
+    dir.write("my_robot/package.xml", packageXml("my_robot"));
+    dir.write("my_robot/meshes/cube.obj", cCubeObj);
+    const std::string urdf =
+        dir.write("my_robot/urdf/r.urdf", meshRobot("package://my_robot/meshes/cube.obj"));
+    LoadReport report;
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, {}, &report)), 8u);
+    EXPECT_TRUE(report.warnings.empty());
+}
+
+TEST(UrdfPackages, FilesBesideTheUrdfAreALastResortWithAWarning)
+{
+    TempDir dir;
+    mkdirs(dir, "robot/meshes");
+    dir.write("robot/meshes/cube.obj", cCubeObj);
+    const std::string urdf = dir.write("robot/r.urdf", meshRobot("package://unknown_pkg/meshes/cube.obj"));
+    LoadReport report;
+    EXPECT_EQ(meshVertexCount(loadScene(urdf, {}, &report)), 8u);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(urdf + ":4:26: warning"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("package 'unknown_pkg' was not found"), std::string::npos);
+    EXPECT_NE(report.warnings[0].find("beside the URDF"), std::string::npos);
+}
+
+TEST(UrdfPackages, FileAndModelUris)
+{
+    TempDir dir;
+    mkdirs(dir, "models/crate/meshes");
+    dir.write("models/crate/meshes/cube.obj", cCubeObj);
+    const std::string cube = dir.write("cube.obj", cCubeObj);
+    EXPECT_EQ(meshVertexCount(loadScene(dir.write("a.urdf", meshRobot("file://" + cube)))), 8u);
+    // Percent-encoded, as some exporters write paths with spaces.
+    const std::string spaced = dir.write("my cube.obj", cCubeObj);
+    (void)spaced;
+    EXPECT_EQ(
+        meshVertexCount(loadScene(dir.write("b.urdf", meshRobot("file://" + dir.file("my%20cube.obj"))))),
+        8u);
+    const ScopedEnv env("GAZEBO_MODEL_PATH", dir.file("models"));
+    EXPECT_EQ(meshVertexCount(loadScene(dir.write("c.urdf", meshRobot("model://crate/meshes/cube.obj")))),
+              8u);
+}
+
+TEST(UrdfPackages, UnresolvedPackageNamesFileLinePackageAndWhereItLooked)
+{
+    TempDir dir;
+    mkdirs(dir, "elsewhere");
+    const std::string urdf = dir.write("r.urdf", meshRobot("package://missing_package/foo.stl"));
+    UrdfOptions options;
+    options.packagePaths = {dir.file("elsewhere")};
+    const InputError e = captureInputError([&] { loadScene(urdf, options); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 4, 26, "package 'missing_package' not found");
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--package-path " + dir.file("elsewhere")), std::string::npos) << what;
+    EXPECT_NE(what.find("collision mesh 'package://missing_package/foo.stl' of link 'a'"), std::string::npos)
+        << what;
+}
+
+TEST(UrdfPackages, PackageFoundButFileMissing)
+{
+    TempDir dir;
+    mkdirs(dir, "my_robot");
+    dir.write("my_robot/package.xml", packageXml("my_robot"));
+    const std::string urdf = dir.write("my_robot/r.urdf", meshRobot("package://my_robot/meshes/nope.stl"));
+    const InputError e = captureInputError([&] { loadScene(urdf); });
+    EXPECT_INPUT_ERROR_AT(
+        e, urdf, 4, 26, "package 'my_robot' is " + dir.file("my_robot") + ", which has no 'meshes/nope.stl'");
+}
+
+TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
+{
+    TempDir dir;
+    dir.write("cube.obj", cCubeObj);
+    const std::string urdf = dir.write("r.urdf", meshRobot("cube.obj", "no_such_visual.dae"));
+    LoadReport report;
+    const core::Model model = loadScene(urdf, {}, &report);
+    EXPECT_TRUE(model.bodies.at(0).visuals.empty()); // drawn from its collision shapes
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(urdf + ":4:"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("visual mesh 'no_such_visual.dae' of link 'a' cannot be read"),
+              std::string::npos)
+        << report.warnings[0];
+
+    const std::string bad = dir.write("bad.urdf", meshRobot("no_such_collision.stl", "cube.obj"));
+    const InputError e = captureInputError([&] { loadScene(bad); });
+    EXPECT_INPUT_ERROR_AT(e, bad, 5, 26, "collision mesh 'no_such_collision.stl' of link 'a'");
+}
+
+// base (2 kg box) --fixed--> plate (1 kg, 0.3 m up, turned 90 degrees about z, its own inertial offset)
+// --fixed--> frame (no inertial) --revolute--> arm (1 kg). Expected body: base + plate; arm's joint
+// hangs from it.
+const char* const cWelded = R"(<robot name="w">
+  <link name="base">
+    <inertial><origin xyz="0 0 0.1"/><mass value="2"/>
+      <inertia ixx="0.02" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.04"/></inertial>
+    <collision><origin xyz="0 0 0.1"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <joint name="plate_fixed" type="fixed">
+    <parent link="base"/><child link="plate"/>
+    <origin xyz="0 0 0.3" rpy="0 0 1.5707963267948966"/>
+  </joint>
+  <link name="plate">
+    <inertial><origin xyz="0.1 0 0"/><mass value="1"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.002" iyz="0" izz="0.0025"/></inertial>
+    <collision><origin xyz="0.1 0 0"/><geometry><sphere radius="0.05"/></geometry></collision>
+  </link>
+  <joint name="frame_fixed" type="fixed">
+    <parent link="plate"/><child link="tool_frame"/>
+    <origin xyz="0 0 0.1"/>
+  </joint>
+  <link name="tool_frame"/>
+  <joint name="hinge" type="revolute">
+    <parent link="tool_frame"/><child link="arm"/>
+    <origin xyz="0 0 0.05"/>
+    <axis xyz="1 0 0"/>
+    <limit lower="-4.5" upper="4.5" effort="1" velocity="1"/>
+    <dynamics damping="0.7" friction="0.2"/>
+  </joint>
+  <link name="arm">
+    <inertial><origin xyz="0 0 0.2"/><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
+  </link>
+</robot>
+)";
+
+TEST(UrdfWelding, FixedJointsWeldLinksIntoOneBody)
+{
+    TempDir dir;
+    // In a scene at the origin (a bare URDF would be moved onto the floor).
+    dir.write("w.urdf", cWelded);
+    const std::string scene = dir.write("scene.yaml", "models: [{urdf: w.urdf}]\n");
+    LoadReport report;
+    const core::Model model = loadScene(scene, {}, &report);
+    ASSERT_EQ(model.bodies.size(), 2u);
+    ASSERT_EQ(model.joints.size(), 1u); // no rows for the fixed joints
+    const core::Body& body = model.bodies[0];
+    EXPECT_EQ(body.name, "base");
+    // Parts in the world (the initial pose): base COM (0, 0, 0.1), 2 kg; plate frame at (0, 0, 0.3)
+    // turned 90 degrees about z, so its COM (0.1, 0, 0) in it is (0, 0.1, 0.3) in the world.
+    const core::Vec3 c1(0, 0, 0.1), c2(0, 0.1, 0.3);
+    const core::Vec3 com = (2.0 * c1 + 1.0 * c2) / 3.0;
+    EXPECT_DOUBLE_EQ(body.mass, 3.0);
+    EXPECT_LT((body.position_W - com).norm(), 1e-15) << body.position_W.transpose();
+    // Inertia about the combined COM, body axes = base's inertial axes = world axes here:
+    // I = sum (I_k + m_k (|d|^2 1 - d d^T)); the plate's inertia turned by Rz(90): ixx <-> iyy.
+    auto shifted = [](double m, const core::Vec3& d)
+    { return m * (d.squaredNorm() * core::Mat3::Identity() - d * d.transpose()); };
+    const core::Mat3 expected =
+        core::Vec3(0.02, 0.03, 0.04).asDiagonal().toDenseMatrix() + shifted(2.0, c1 - com) +
+        core::Vec3(0.002, 0.001, 0.0025).asDiagonal().toDenseMatrix() + shifted(1.0, c2 - com);
+    EXPECT_LT((body.inertia_B - expected).norm(), 1e-15) << body.inertia_B;
+    // Both links' shapes, posed in the body frame.
+    ASSERT_EQ(body.shapes.size(), 2u);
+    EXPECT_LT((body.shapes[0].position_BS - (c1 - com)).norm(), 1e-15);
+    EXPECT_LT((body.shapes[1].position_BS - (c2 - com)).norm(), 1e-15);
+    // The revolute joint hangs from the welded body at tool_frame + 0.05 = (0, 0, 0.45); its axis
+    // x in the turned frame is y in the world.
+    const core::Joint& hinge = model.joints[0];
+    EXPECT_EQ(hinge.parent, 0);
+    EXPECT_EQ(hinge.child, 1);
+    EXPECT_LT((body.position_W + body.orientation_WB * hinge.anchorParent - core::Vec3(0, 0, 0.45)).norm(),
+              1e-15);
+    EXPECT_LT((body.orientation_WB * hinge.axisParent - core::Vec3::UnitY()).norm(), 1e-15);
+    EXPECT_EQ(*hinge.limits, (std::array<double, 2>{-4.5, 4.5}));
+    EXPECT_EQ(hinge.damping, 0.7);
+    EXPECT_EQ(hinge.friction, 0.2);
+    ASSERT_EQ(report.robots.size(), 1u);
+    const std::vector<std::pair<std::string, std::string>> welded{{"plate", "base"}, {"tool_frame", "base"}};
+    EXPECT_EQ(report.robots[0].welded, welded);
+}
+
+TEST(UrdfWelding, AWeldedLinkNamesItsBodyInTheScene)
+{
+    TempDir dir;
+    dir.write("w.urdf", cWelded);
+    const std::string scene = dir.write("scene.yaml", text(R"(
+models: [{urdf: w.urdf, prefix: r_}]
+bodies:
+  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.05}, position: [0, 0, 2]}
+joints:
+  - {name: tether, type: ball, parent: r_tool_frame, child: ball, anchor: [0, 0, 1]}
+)"));
+    const core::Model model = loadScene(scene);
+    EXPECT_EQ(model.joints.back().parent, model.findBody("r_base"));
+}
+
+TEST(UrdfWelding, WorldLinkFixesTheRobotAndFreeBaseLetsItFloat)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("arm.urdf", text(R"(
+<robot name="arm">
+  <link name="world"/>
+  <joint name="bolt" type="fixed"><parent link="world"/><child link="base"/><origin xyz="0 0 0.5"/></joint>
+  <link name="base">
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="arm"/><axis xyz="0 1 0"/></joint>
+  <link name="arm">
+    <inertial><origin xyz="0 0 0.2"/><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
+    <collision><origin xyz="0 0 0.2"/><geometry><box size="0.05 0.05 0.4"/></geometry></collision>
+  </link>
+</robot>
+)"));
+    LoadReport report;
+    const core::Model fixed = loadScene(urdf, {}, &report);
+    ASSERT_EQ(fixed.bodies.size(), 3u); // base (static, no mass needed), arm, floor
+    EXPECT_TRUE(fixed.bodies[0].isStatic);
+    EXPECT_LT((fixed.bodies[0].position_W - core::Vec3(0, 0, 0.5)).norm(), 1e-15); // where the URDF puts it
+    EXPECT_EQ(fixed.bodies[2].shapes.at(0).offset, 0.0); // nothing below z = 0: the floor stays
+    EXPECT_NE(report.robots.at(0).placement.find("fixed to the world by the URDF"), std::string::npos);
+    // --free-base: the massless base would float, which is an error naming it.
+    UrdfOptions free;
+    free.freeBase = true;
+    const InputError e = captureInputError([&] { loadScene(urdf, free); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 4, 3, "link 'base' has no mass");
+}
+
+TEST(UrdfPlacement, FreeRobotRestsItsLowestCollisionPointOnTheFloor)
+{
+    TempDir dir;
+    // A box turned 45 degrees about x, its link frame at z = -1: lowest point at
+    // -1 - (0.1 cos 45 + 0.3 sin 45) (half-extents 0.1 along y, 0.3 along z).
+    const std::string urdf = dir.write("box.urdf", text(R"(
+<robot name="box">
+  <link name="b">
+    <inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+    <collision><origin xyz="0 0 -1" rpy="0.7853981633974483 0 0"/><geometry><box size="0.4 0.2 0.6"/></geometry></collision>
+  </link>
+</robot>
+)"));
+    const double lowest = -1.0 - (0.1 + 0.3) * std::sqrt(0.5);
+    for (const double height : {0.0, 0.25})
+    {
+        UrdfOptions options;
+        if (height > 0.0)
+        {
+            options.dropHeight = height;
+        }
+        LoadReport report;
+        const core::Model model = loadScene(urdf, options, &report);
+        EXPECT_NEAR(model.bodies[0].position_W.z(), height - lowest, 1e-14);
+        EXPECT_NE(report.robots.at(0).placement.find("free-floating"), std::string::npos);
+    }
+    // --fixed-base: the robot stays; the floor goes under its lowest point (below z = 0 here).
+    UrdfOptions fixed;
+    fixed.fixedBase = true;
+    const core::Model model = loadScene(urdf, fixed);
+    EXPECT_TRUE(model.bodies[0].isStatic);
+    EXPECT_EQ(model.bodies[0].position_W, core::Vec3::Zero());
+    EXPECT_NEAR(model.bodies[1].shapes.at(0).offset, lowest, 1e-14);
+}
+
+TEST(UrdfPlacement, PlacementFlagsAreForABareUrdf)
+{
+    TempDir dir;
+    const std::string scene =
+        dir.write("s.yaml", "bodies: [{name: a, mass: 1, shape: {type: sphere, radius: 1}}]\n");
+    UrdfOptions options;
+    options.fixedBase = true;
+    const InputError e = captureInputError([&] { loadScene(scene, options); });
+    EXPECT_NE(std::string(e.what()).find("a scene places its models itself"), std::string::npos) << e.what();
+}
+
+TEST(UrdfJoints, LockedLimitAndMimicAreWarnings)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("r.urdf", text(R"(
+<robot name="r">
+  <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="c"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j1" type="revolute"><parent link="a"/><child link="b"/>
+    <limit effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="b"/><child link="c"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="j1" multiplier="2"/></joint>
+</robot>
+)"));
+    LoadReport report;
+    loadScene(urdf, {}, &report);
+    std::string all;
+    for (const std::string& w : report.warnings)
+    {
+        all += w + "\n";
+    }
+    EXPECT_NE(all.find(urdf + ":6:5: warning: joint 'j1' has lower = upper = 0"), std::string::npos) << all;
+    EXPECT_NE(all.find(urdf + ":8:58: warning: joint 'j2': <mimic> is not supported"), std::string::npos)
+        << all;
+}
+
+TEST(UrdfJoints, NegativeDampingIsAnError)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("r.urdf", text(R"(
+<robot name="r">
+  <link name="a"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <link name="b"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  <joint name="j" type="continuous"><parent link="a"/><child link="b"/>
+    <dynamics damping="-1" friction="0"/></joint>
+</robot>
+)"));
+    const InputError e = captureInputError([&] { loadScene(urdf); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 5, 5, "joint 'j' has <dynamics damping=\"-1\" friction=\"0\">");
+}
+
+} // namespace
+} // namespace frontier::io::test
