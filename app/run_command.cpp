@@ -51,17 +51,27 @@ std::string formatSummary(const core::Model& model, const RunSummary& s)
     const double simulated = static_cast<double>(s.steps) * model.simulation.dt;
     const double perStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
     const double change = s.energyFinalJ - s.energyInitialJ;
-    const double scale = std::max(std::abs(s.energyInitialJ), 1e-300);
+    // A relative change needs a start to be relative to: near zero (a robot at the height where its
+    // potential energy is zero) the change is given in joules.
+    char changeText[64];
+    if (std::abs(s.energyInitialJ) > 1e-9 * std::max(1.0, std::abs(s.energyFinalJ)))
+    {
+        std::snprintf(changeText, sizeof changeText, "%+.3g%%", 100.0 * change / std::abs(s.energyInitialJ));
+    }
+    else
+    {
+        std::snprintf(changeText, sizeof changeText, "%+.3g J", change);
+    }
     char text[1024];
     std::snprintf(
         text, sizeof text,
         "%s: %ld steps of %g s (%.3f s simulated) in %.3f s wall, %.2f us per step (%.1fx real time); "
         "%d bodies, %zu joints, %d constraint rows; largest joint error %.3g m, %.3g rad; "
-        "energy %.6g J -> %.6g J (%+.3g%%); max contacts %d, max penetration %.3g m%s",
+        "energy %.6g J -> %.6g J (%s); max contacts %d, max penetration %.3g m%s",
         model.name.c_str(), s.steps, model.simulation.dt, simulated, s.wallSeconds, perStep * 1e6,
         s.wallSeconds > 0 ? simulated / s.wallSeconds : 0.0, movingBodies(model), model.joints.size(),
         constraintRows(model), s.maxJointErrorM, s.maxJointErrorRad, s.energyInitialJ, s.energyFinalJ,
-        100.0 * change / scale, s.maxContacts, s.maxPenetrationM, s.finite ? "." : "; the run FAILED.");
+        changeText, s.maxContacts, s.maxPenetrationM, s.finite ? "." : "; the run FAILED.");
     return text;
 }
 
