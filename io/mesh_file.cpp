@@ -1,15 +1,16 @@
-// io/mesh_file.cpp: Wavefront .obj (v and f lines) and STL (ASCII or binary) readers.
+// io/mesh_file.cpp: mesh files through assimp, flattened into one triangle list in the shape frame.
 #include "io/mesh_file.h"
 
-#include "io/file_util.h"
 #include "io/scene.h"
 
-#include <charconv>
-#include <cmath>
+#include <assimp/Importer.hpp>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <cstdint>
-#include <cstring>
-#include <map>
-#include <string_view>
+#include <filesystem>
+#include <unordered_map>
+#include <utility>
 
 namespace frontier::io::detail
 {
@@ -17,301 +18,202 @@ namespace frontier::io::detail
 namespace
 {
 
-struct Token
-{
-    std::string_view text;
-    int column = 0; // 1-based
-};
+// Far above any robot part (a 1e6-triangle binary STL is 50 MB), low enough that a wrong path
+// (a disk image, a video) fails at once instead of filling memory.
+constexpr std::uintmax_t cMaxMeshBytes = std::uintmax_t{512} << 20;
 
-std::vector<Token> splitLine(std::string_view line)
+// Assimp is handed only a regular file of bounded size: it would wait forever on a FIFO and read
+// /dev/zero until memory runs out.
+void checkMeshPath(const std::string& path)
 {
-    std::vector<Token> out;
-    std::size_t i = 0;
-    while (i < line.size())
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (status.type() == fs::file_type::not_found)
     {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-        {
-            ++i;
-        }
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-        {
-            ++i;
-        }
-        if (i > start)
-        {
-            out.push_back({line.substr(start, i - start), static_cast<int>(start) + 1});
-        }
+        throw InputError(path, 0, 0, "no such mesh file");
     }
-    return out;
+    if (ec)
+    {
+        throw InputError(path, 0, 0, "cannot read mesh file: " + ec.message());
+    }
+    if (fs::is_directory(status))
+    {
+        throw InputError(path, 0, 0, "is a directory, expected a mesh file");
+    }
+    if (!fs::is_regular_file(status))
+    {
+        throw InputError(path, 0, 0,
+                         "is not a regular file (a device, FIFO or socket), expected a mesh file");
+    }
+    const std::uintmax_t bytes = fs::file_size(path, ec);
+    if (ec)
+    {
+        throw InputError(path, 0, 0, "cannot read mesh file: " + ec.message());
+    }
+    if (bytes > cMaxMeshBytes)
+    {
+        throw InputError(path, 0, 0,
+                         "mesh file has " + std::to_string(bytes) + " bytes, above the limit of " +
+                             std::to_string(cMaxMeshBytes >> 20) + " MiB");
+    }
 }
 
-class LineReader
+// Exact coordinates, so that merging never moves a vertex.
+struct VertexKey
+{
+    double x, y, z;
+    bool operator==(const VertexKey&) const = default;
+};
+
+struct VertexKeyHash
+{
+    std::size_t operator()(const VertexKey& k) const
+    {
+        const std::hash<double> h;
+        std::size_t seed = h(k.x);
+        seed ^= h(k.y) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+        seed ^= h(k.z) + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+        return seed;
+    }
+};
+
+// Collects the triangles of every mesh instance in the node tree into one shape, vertices
+// merged across meshes and instances (a part split over several meshes stays one closed surface).
+class MeshCollector
 {
   public:
-    explicit LineReader(const std::string& text) : mText(text) {}
-    bool next(std::string_view& line)
+    MeshCollector(const std::string& path, const core::Vec3& scale) : mPath(path), mScale(scale)
     {
-        if (mPos >= mText.size())
-        {
-            return false;
-        }
-        const std::size_t end = mText.find('\n', mPos);
-        const std::size_t stop = end == std::string::npos ? mText.size() : end;
-        line = std::string_view(mText).substr(mPos, stop - mPos);
-        mPos = stop + 1;
-        ++mLine;
-        return true;
+        mShape.type = core::ShapeType::Mesh;
+        mShape.meshFile = path;
     }
-    int line() const { return mLine; }
+
+    void addScene(const aiScene& scene)
+    {
+        std::size_t corners = 0; // distinct vertices at most, when each mesh is used once
+        for (unsigned i = 0; i < scene.mNumMeshes; ++i)
+        {
+            corners += scene.mMeshes[i]->mNumVertices;
+        }
+        mIndex.reserve(corners);
+        // Depth-first with an explicit stack: a file's node tree may be deeper than the call stack.
+        // Assimp 5.2 puts a COLLADA file's <unit meter> into the root node's transform (the
+        // scene metadata has no unit for it), so the walk from the root applies the unit too.
+        std::vector<std::pair<const aiNode*, Eigen::Affine3d>> pending;
+        pending.emplace_back(scene.mRootNode, Eigen::Affine3d::Identity());
+        while (!pending.empty())
+        {
+            const auto [node, parent_FP] = pending.back();
+            pending.pop_back();
+            const Eigen::Affine3d node_FN = parent_FP * toAffine(node->mTransformation);
+            for (unsigned i = 0; i < node->mNumMeshes; ++i)
+            {
+                addMesh(*scene.mMeshes[node->mMeshes[i]], node_FN);
+            }
+            for (unsigned i = node->mNumChildren; i-- > 0;)
+            {
+                pending.emplace_back(node->mChildren[i], node_FN);
+            }
+        }
+    }
+
+    core::Shape take() { return std::move(mShape); }
 
   private:
-    const std::string& mText;
-    std::size_t mPos = 0;
-    int mLine = 0;
-};
-
-double parseNumber(const std::string& path, int line, const Token& token, const char* what)
-{
-    double value = 0.0;
-    const char* begin = token.text.data();
-    const char* end = begin + token.text.size();
-    if (*begin == '+')
+    // aiMatrix4x4 is row-major: a1..a4 is the first row.
+    static Eigen::Affine3d toAffine(const aiMatrix4x4& m)
     {
-        ++begin;
+        Eigen::Matrix4d out;
+        out << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4;
+        return Eigen::Affine3d(out);
     }
-    const auto result = std::from_chars(begin, end, value);
-    if (result.ec != std::errc() || result.ptr != end || !std::isfinite(value))
-    {
-        throw InputError(path, line, token.column,
-                         std::string("expected a finite number for ") + what + ", got '" +
-                             std::string(token.text) + "'");
-    }
-    return value;
-}
 
-core::Shape loadObj(const std::string& path, const std::string& text)
-{
-    core::Shape shape;
-    shape.type = core::ShapeType::Mesh;
-    LineReader reader(text);
-    std::string_view line;
-    while (reader.next(line))
+    void addMesh(const aiMesh& mesh, const Eigen::Affine3d& mesh_FM)
     {
-        const std::size_t hash = line.find('#');
-        const std::vector<Token> tokens = splitLine(line.substr(0, hash));
-        if (tokens.empty())
+        std::vector<int> index(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v)
         {
-            continue;
-        }
-        if (tokens[0].text == "v")
-        {
-            if (tokens.size() < 4)
+            const aiVector3D& p = mesh.mVertices[v];
+            const core::Vec3 p_S = (mesh_FM * core::Vec3(p.x, p.y, p.z)).cwiseProduct(mScale);
+            if (!p_S.allFinite())
             {
-                throw InputError(path, reader.line(), tokens[0].column,
-                                 "expected 'v x y z' (3 coordinates), got " +
-                                     std::to_string(tokens.size() - 1));
+                throw InputError(mPath, 0, 0, "mesh has a non-finite vertex");
             }
-            shape.vertices.emplace_back(parseNumber(path, reader.line(), tokens[1], "vertex x"),
-                                        parseNumber(path, reader.line(), tokens[2], "vertex y"),
-                                        parseNumber(path, reader.line(), tokens[3], "vertex z"));
+            index[v] = addVertex(p_S);
         }
-        else if (tokens[0].text == "f")
+        // A mirroring node transform turns the surface inside out; swap two corners to undo it.
+        const bool mirrored = mesh_FM.linear().determinant() < 0.0;
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f)
         {
-            if (tokens.size() < 4)
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices != 3)
             {
-                throw InputError(path, reader.line(), tokens[0].column,
-                                 "expected a face with at least 3 vertices, got " +
-                                     std::to_string(tokens.size() - 1));
+                continue; // points and lines: no surface
             }
-            std::vector<int> face;
-            for (std::size_t i = 1; i < tokens.size(); ++i)
+            std::array<int, 3> tri{};
+            for (unsigned k = 0; k < 3; ++k)
             {
-                // "i", "i/t", "i//n" or "i/t/n": the vertex index is before the first slash.
-                const std::string_view field = tokens[i].text.substr(0, tokens[i].text.find('/'));
-                long index = 0;
-                const auto result = std::from_chars(field.data(), field.data() + field.size(), index);
-                if (result.ec != std::errc() || result.ptr != field.data() + field.size() || index == 0)
+                if (face.mIndices[k] >= mesh.mNumVertices)
                 {
-                    throw InputError(path, reader.line(), tokens[i].column,
-                                     "expected a vertex index (1-based, or negative from the end), got '" +
-                                         std::string(tokens[i].text) + "'");
+                    throw InputError(mPath, 0, 0, "mesh has a face with a vertex index out of range");
                 }
-                const long count = static_cast<long>(shape.vertices.size());
-                const long resolved = index > 0 ? index - 1 : count + index;
-                if (resolved < 0 || resolved >= count)
-                {
-                    throw InputError(path, reader.line(), tokens[i].column,
-                                     "vertex index " + std::to_string(index) + " is out of range (" +
-                                         std::to_string(count) + " vertices defined so far)");
-                }
-                face.push_back(static_cast<int>(resolved));
+                tri[k] = index[face.mIndices[k]];
             }
-            for (std::size_t i = 1; i + 1 < face.size(); ++i)
+            if (mirrored)
             {
-                shape.triangles.push_back({face[0], face[i], face[i + 1]});
+                std::swap(tri[1], tri[2]);
             }
+            mShape.triangles.push_back(tri);
         }
-        // Other statements (vn, vt, o, g, s, usemtl, mtllib, l, ...) do not affect the geometry.
     }
-    return shape;
-}
 
-// Identical vertices (exact coordinates) become one, so the mesh is connected.
-class VertexMerger
-{
-  public:
-    explicit VertexMerger(core::Shape& shape) : mShape(shape) {}
-    int add(const core::Vec3& v)
+    int addVertex(const core::Vec3& p)
     {
         const auto [it, inserted] =
-            mIndex.try_emplace({v.x(), v.y(), v.z()}, static_cast<int>(mShape.vertices.size()));
+            mIndex.try_emplace(VertexKey{p.x(), p.y(), p.z()}, static_cast<int>(mShape.vertices.size()));
         if (inserted)
         {
-            mShape.vertices.push_back(v);
+            mShape.vertices.push_back(p);
         }
         return it->second;
     }
 
-  private:
-    core::Shape& mShape;
-    std::map<std::array<double, 3>, int> mIndex;
+    const std::string& mPath;
+    core::Vec3 mScale;
+    core::Shape mShape;
+    std::unordered_map<VertexKey, int, VertexKeyHash> mIndex;
 };
-
-core::Shape loadAsciiStl(const std::string& path, const std::string& text)
-{
-    core::Shape shape;
-    shape.type = core::ShapeType::Mesh;
-    VertexMerger merger(shape);
-    LineReader reader(text);
-    std::string_view line;
-    std::vector<int> facet;
-    bool inFacet = false;
-    int facetLine = 0;
-    while (reader.next(line))
-    {
-        const std::vector<Token> tokens = splitLine(line);
-        if (tokens.empty())
-        {
-            continue;
-        }
-        const std::string_view word = tokens[0].text;
-        if (word == "facet")
-        {
-            inFacet = true;
-            facetLine = reader.line();
-            facet.clear();
-        }
-        else if (word == "vertex")
-        {
-            if (!inFacet || tokens.size() != 4)
-            {
-                throw InputError(path, reader.line(), tokens[0].column,
-                                 inFacet ? "expected 'vertex x y z'" : "'vertex' outside a 'facet'");
-            }
-            facet.push_back(merger.add({parseNumber(path, reader.line(), tokens[1], "vertex x"),
-                                        parseNumber(path, reader.line(), tokens[2], "vertex y"),
-                                        parseNumber(path, reader.line(), tokens[3], "vertex z")}));
-        }
-        else if (word == "endfacet")
-        {
-            if (!inFacet || facet.size() != 3)
-            {
-                throw InputError(path, facetLine, 1,
-                                 "expected a facet with 3 vertices, got " + std::to_string(facet.size()));
-            }
-            shape.triangles.push_back({facet[0], facet[1], facet[2]});
-            inFacet = false;
-        }
-        else if (word != "solid" && word != "endsolid" && word != "outer" && word != "endloop")
-        {
-            throw InputError(path, reader.line(), tokens[0].column,
-                             "expected an ASCII STL keyword (solid, facet, outer loop, vertex, endloop, "
-                             "endfacet, endsolid), got '" +
-                                 std::string(word) + "'");
-        }
-    }
-    if (inFacet)
-    {
-        throw InputError(path, facetLine, 1, "facet without 'endfacet'");
-    }
-    return shape;
-}
-
-core::Shape loadBinaryStl(const std::string& path, const std::string& data)
-{
-    constexpr std::size_t cHeader = 84;
-    constexpr std::size_t cRecord = 50; // normal, 3 vertices (12 floats), 2 attribute bytes
-    if (data.size() < cHeader)
-    {
-        throw InputError(path, 0, 0,
-                         "expected a binary STL (84-byte header), got " + std::to_string(data.size()) +
-                             " bytes");
-    }
-    std::uint32_t count = 0;
-    std::memcpy(&count, data.data() + 80, sizeof(count)); // little-endian on the supported platforms
-    if (data.size() != cHeader + cRecord * count)
-    {
-        throw InputError(path, 0, 0,
-                         "binary STL declares " + std::to_string(count) + " triangles, expected " +
-                             std::to_string(cHeader + cRecord * count) + " bytes, got " +
-                             std::to_string(data.size()));
-    }
-    core::Shape shape;
-    shape.type = core::ShapeType::Mesh;
-    VertexMerger merger(shape);
-    for (std::uint32_t t = 0; t < count; ++t)
-    {
-        float values[12];
-        std::memcpy(values, data.data() + cHeader + cRecord * t, sizeof(values));
-        std::array<int, 3> tri{};
-        for (int k = 0; k < 3; ++k)
-        {
-            const core::Vec3 v(values[3 + 3 * k], values[4 + 3 * k], values[5 + 3 * k]);
-            if (!v.allFinite())
-            {
-                throw InputError(path, 0, 0,
-                                 "triangle " + std::to_string(t + 1) + " has a non-finite vertex");
-            }
-            tri[static_cast<std::size_t>(k)] = merger.add(v);
-        }
-        shape.triangles.push_back(tri);
-    }
-    return shape;
-}
 
 } // namespace
 
 core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
 {
-    const std::string ext = lowerExtension(path);
-    if (ext != ".obj" && ext != ".stl")
+    checkMeshPath(path);
+    Assimp::Importer importer;
+    // Robot files give a link's COLLADA and STL meshes in the same frame: a COLLADA file's
+    // coordinates are used as written, whatever its <up_axis>, not rotated into y-up.
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // No aiProcess_JoinIdenticalVertices: it keeps apart corners whose normals differ (every STL
+    // corner) and took 2 s per million triangles; MeshCollector merges positions exactly instead.
+    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
+                                                       aiProcess_ValidateDataStructure);
+    if (scene == nullptr)
     {
-        throw InputError(path, 0, 0, "unsupported mesh format '" + ext + "'; expected .obj or .stl");
+        throw InputError(path, 0, 0,
+                         std::string("the mesh importer (assimp) failed: ") + importer.GetErrorString());
     }
-    const std::string text = readTextFile(path);
-    core::Shape shape;
-    if (ext == ".obj")
+    MeshCollector collector(path, scale);
+    if (scene->mRootNode != nullptr && (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) == 0)
     {
-        shape = loadObj(path, text);
+        collector.addScene(*scene);
     }
-    else if (text.starts_with("solid") && text.find('\0') == std::string::npos)
-    {
-        shape = loadAsciiStl(path, text);
-    }
-    else
-    {
-        shape = loadBinaryStl(path, text);
-    }
+    core::Shape shape = collector.take();
     if (shape.triangles.empty())
     {
-        throw InputError(path, 0, 0, "mesh has no triangles");
+        throw InputError(path, 0, 0, "mesh file has no triangles");
     }
-    for (core::Vec3& v : shape.vertices)
-    {
-        v = v.cwiseProduct(scale);
-    }
-    shape.meshFile = path;
     return shape;
 }
 

@@ -187,7 +187,7 @@ struct Renderer::Impl
             {
                 srgb = *body.color;
             }
-            for (const core::Shape& shape : body.shapes)
+            for (const core::Shape& shape : drawnShapes(body))
             {
                 if (shape.type == core::ShapeType::Plane)
                 {

@@ -12,6 +12,11 @@ core::Vec3 worldUp(const core::Model& model)
     return g.norm() > 1e-9 ? core::Vec3(-g.normalized()) : core::Vec3::UnitZ();
 }
 
+const std::vector<core::Shape>& drawnShapes(const core::Body& body)
+{
+    return body.visuals.empty() ? body.shapes : body.visuals;
+}
+
 Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose)
 {
     core::Vec3 lo = core::Vec3::Zero();
@@ -72,7 +77,7 @@ Bounds bodyBounds(const core::Model& model, const core::State& state, bool movin
         {
             continue;
         }
-        for (const core::Shape& shape : body.shapes)
+        for (const core::Shape& shape : drawnShapes(body))
         {
             b.add(shapeBounds(shape, state.bodies[i]));
         }
@@ -90,7 +95,7 @@ Bounds withGround(const Bounds& box, const core::Model& model)
     Bounds out = box;
     for (const core::Body& body : model.bodies)
     {
-        for (const core::Shape& shape : body.shapes)
+        for (const core::Shape& shape : drawnShapes(body))
         {
             if (shape.type != core::ShapeType::Plane)
             {

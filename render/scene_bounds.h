@@ -34,13 +34,18 @@ struct Bounds
 // Unit "up" of the world: against gravity, or +z without gravity.
 core::Vec3 worldUp(const core::Model& model);
 
+// What the renderer draws for a body: its render-only visuals, or its collision shapes when it
+// has none. Everything in render/ (meshes, floors, bounds) goes through this.
+const std::vector<core::Shape>& drawnShapes(const core::Body& body);
+
 // Axis-aligned world bounds of one non-plane shape of a body in the given pose (conservative).
 Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose);
 
-// Bounds of all non-plane shapes of the moving bodies (or of all bodies when `movingOnly` is false).
+// Bounds of all drawn non-plane shapes of the moving bodies (or of all bodies when `movingOnly` is
+// false).
 Bounds bodyBounds(const core::Model& model, const core::State& state, bool movingOnly);
 
-// `box` grown by its projection onto every plane shape that faces up and lies below it, so a
+// `box` grown by its projection onto every drawn plane shape that faces up and lies below it, so a
 // camera framing the result also sees where falling bodies will land.
 Bounds withGround(const Bounds& box, const core::Model& model);
 

@@ -3,6 +3,7 @@
 #include "io/scene.h"
 #include "io_test_util.h"
 
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <numbers>
@@ -175,7 +176,10 @@ bodies:
     EXPECT_NEAR((b.shapes[0].position_BS - core::Vec3(-0.75, -0.75, -0.75)).norm(), 0.0, 1e-14);
     EXPECT_EQ(b.shapes[0].vertices.size(), 8u);
     EXPECT_EQ(b.shapes[0].triangles.size(), 12u);
-    EXPECT_EQ(b.shapes[0].vertices[6], core::Vec3(1, 1, 1));
+    // Vertices stay in the file's frame, scaled: the corner (2,2,2) is at (1,1,1) (the shift to
+    // the centre of mass is in position_BS).
+    EXPECT_NE(std::find(b.shapes[0].vertices.begin(), b.shapes[0].vertices.end(), core::Vec3(1, 1, 1)),
+              b.shapes[0].vertices.end());
     expectDiagonal(b.inertia_B, m * 0.25 / 6, m * 0.25 / 6, m * 0.25 / 6, 1e-15);
 }
 

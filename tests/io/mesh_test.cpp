@@ -1,15 +1,21 @@
-// tests/io/mesh_test.cpp: OBJ and STL meshes through scenes (volume, faces, errors).
+// tests/io/mesh_test.cpp: mesh files (STL, OBJ, COLLADA) written here with known geometry, read
+// directly and through scenes (volume, vertices, units, node transforms, winding, errors).
+#include "io/mesh_file.h"
 #include "io/scene.h"
 #include "io_test_util.h"
 
 #include <cstdint>
 #include <cstring>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 namespace frontier::io::test
 {
 namespace
 {
+
+using detail::loadMeshFile;
+using Triangle = std::array<core::Vec3, 3>;
 
 // A tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1), outward-facing: volume 1/6.
 const char* const cTetraAsciiStl = R"(
@@ -45,19 +51,159 @@ solid tetra
 endsolid tetra
 )";
 
-std::string binaryStl(const std::vector<std::array<float, 9>>& triangles)
+// Corner i of the unit cube [0, 1]^3: bit 0 is x, bit 1 is y, bit 2 is z.
+core::Vec3 cubeCorner(int i)
+{
+    return core::Vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+}
+
+// The unit cube's faces as quads of corner indices, counter-clockwise seen from outside
+// (z = 0, z = 1, y = 0, y = 1, x = 0, x = 1).
+constexpr std::array<std::array<int, 4>, 6> cCubeQuads = {
+    {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}}};
+
+std::vector<Triangle> unitCubeTriangles()
+{
+    std::vector<Triangle> out;
+    for (const auto& q : cCubeQuads)
+    {
+        out.push_back({cubeCorner(q[0]), cubeCorner(q[1]), cubeCorner(q[2])});
+        out.push_back({cubeCorner(q[0]), cubeCorner(q[2]), cubeCorner(q[3])});
+    }
+    return out;
+}
+
+std::string asciiStl(const std::vector<Triangle>& triangles)
+{
+    std::string out = "solid cube\n";
+    for (const Triangle& t : triangles)
+    {
+        out += "facet normal 0 0 0\nouter loop\n";
+        for (const core::Vec3& v : t)
+        {
+            out += "vertex " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " +
+                   std::to_string(v.z()) + "\n";
+        }
+        out += "endloop\nendfacet\n";
+    }
+    return out + "endsolid cube\n";
+}
+
+std::string binaryStl(const std::vector<Triangle>& triangles)
 {
     std::string data(80, ' ');
     const auto count = static_cast<std::uint32_t>(triangles.size());
     data.append(reinterpret_cast<const char*>(&count), 4);
-    for (const auto& t : triangles)
+    for (const Triangle& t : triangles)
     {
-        const float normal[3] = {0, 0, 0};
-        data.append(reinterpret_cast<const char*>(normal), sizeof(normal));
-        data.append(reinterpret_cast<const char*>(t.data()), sizeof(float) * 9);
+        float values[12] = {0, 0, 0}; // normal, then the corners
+        for (int k = 0; k < 3; ++k)
+        {
+            for (int c = 0; c < 3; ++c)
+            {
+                values[3 + 3 * k + c] = static_cast<float>(t[static_cast<std::size_t>(k)][c]);
+            }
+        }
+        data.append(reinterpret_cast<const char*>(values), sizeof(values));
         data.append(2, '\0');
     }
     return data;
+}
+
+const std::vector<Triangle> cTetraTriangles = {
+    {core::Vec3(0, 0, 0), core::Vec3(0, 1, 0), core::Vec3(1, 0, 0)},
+    {core::Vec3(0, 0, 0), core::Vec3(1, 0, 0), core::Vec3(0, 0, 1)},
+    {core::Vec3(0, 0, 0), core::Vec3(0, 0, 1), core::Vec3(0, 1, 0)},
+    {core::Vec3(1, 0, 0), core::Vec3(0, 1, 0), core::Vec3(0, 0, 1)}};
+
+// A COLLADA file in units of `meter` metres with the given <up_axis>, holding one geometry, the
+// tetrahedron (0,0,0) (100,0,0) (0,200,0) (0,0,300) in file units with outward faces, instanced
+// by the nodes in `nodes` (XML of <node> elements; "#tetra" names the geometry).
+std::string colladaTetra(const std::string& meter, const std::string& upAxis, const std::string& nodes)
+{
+    return R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter=")" +
+           meter + R"(" name="unit"/><up_axis>)" + upAxis + R"(</up_axis></asset>
+  <library_geometries>
+    <geometry id="tetra" name="tetra">
+      <mesh>
+        <source id="tetra-pos">
+          <float_array id="tetra-pos-array" count="12">0 0 0 100 0 0 0 200 0 0 0 300</float_array>
+          <technique_common>
+            <accessor source="#tetra-pos-array" count="4" stride="3">
+              <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+            </accessor>
+          </technique_common>
+        </source>
+        <vertices id="tetra-vtx"><input semantic="POSITION" source="#tetra-pos"/></vertices>
+        <triangles count="4">
+          <input semantic="VERTEX" source="#tetra-vtx" offset="0"/>
+          <p>0 2 1 0 1 3 0 3 2 1 2 3</p>
+        </triangles>
+      </mesh>
+    </geometry>
+  </library_geometries>
+  <library_visual_scenes>
+    <visual_scene id="scene">)" +
+           nodes + R"(</visual_scene>
+  </library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+}
+
+const char* const cInstance = R"(<instance_geometry url="#tetra"/>)";
+
+// Signed volume by the divergence theorem: positive when the closed surface faces outwards.
+double signedVolume(const core::Shape& shape)
+{
+    double sixTimes = 0.0;
+    for (const auto& t : shape.triangles)
+    {
+        const core::Vec3& a = shape.vertices.at(static_cast<std::size_t>(t[0]));
+        const core::Vec3& b = shape.vertices.at(static_cast<std::size_t>(t[1]));
+        const core::Vec3& c = shape.vertices.at(static_cast<std::size_t>(t[2]));
+        sixTimes += a.dot(b.cross(c));
+    }
+    return sixTimes / 6.0;
+}
+
+// Every expected point is a vertex (within tol) and there are no others.
+void expectVertexSet(const core::Shape& shape, const std::vector<core::Vec3>& expected, double tol)
+{
+    EXPECT_EQ(shape.vertices.size(), expected.size());
+    for (const core::Vec3& e : expected)
+    {
+        double nearest = 1e300;
+        for (const core::Vec3& v : shape.vertices)
+        {
+            nearest = std::min(nearest, (v - e).norm());
+        }
+        EXPECT_LE(nearest, tol) << "no vertex at " << e.transpose();
+    }
+}
+
+// Every triangle of a convex shape faces away from `centre`.
+void expectOutwardFaces(const core::Shape& shape, const core::Vec3& centre)
+{
+    for (const auto& t : shape.triangles)
+    {
+        const core::Vec3& a = shape.vertices.at(static_cast<std::size_t>(t[0]));
+        const core::Vec3& b = shape.vertices.at(static_cast<std::size_t>(t[1]));
+        const core::Vec3& c = shape.vertices.at(static_cast<std::size_t>(t[2]));
+        EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3.0 - centre), 0.0);
+    }
+}
+
+std::vector<core::Vec3> scaledCubeCorners(const core::Vec3& scale)
+{
+    std::vector<core::Vec3> out;
+    for (int i = 0; i < 8; ++i)
+    {
+        out.push_back(cubeCorner(i).cwiseProduct(scale));
+    }
+    return out;
 }
 
 core::Model loadMeshScene(const TempDir& dir, const std::string& file)
@@ -65,6 +211,17 @@ core::Model loadMeshScene(const TempDir& dir, const std::string& file)
     const std::string scene =
         dir.write("scene.yaml", "bodies: [{name: m, density: 6, shape: {type: mesh, file: " + file + "}}]\n");
     return loadScene(scene);
+}
+
+// A mesh error raised at the scene's `file:` node: the scene's place, the mesh path and `reason`.
+void expectSceneMeshError(const TempDir& dir, const std::string& file, const std::string& reason)
+{
+    const InputError e = captureInputError([&] { loadMeshScene(dir, file); });
+    EXPECT_INPUT_ERROR_AT(
+        e, dir.file("scene.yaml"), 1,
+        static_cast<int>(std::string("bodies: [{name: m, density: 6, shape: {type: mesh, file: ").size()) + 1,
+        "cannot read mesh file '" + dir.file(file) + "'");
+    EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
 }
 
 TEST(Mesh, AsciiStlTetrahedron)
@@ -82,43 +239,157 @@ TEST(Mesh, AsciiStlTetrahedron)
 TEST(Mesh, BinaryStlTetrahedron)
 {
     TempDir dir;
-    dir.write("tetra.stl", binaryStl({{0, 0, 0, 0, 1, 0, 1, 0, 0},
-                                      {0, 0, 0, 1, 0, 0, 0, 0, 1},
-                                      {0, 0, 0, 0, 0, 1, 0, 1, 0},
-                                      {1, 0, 0, 0, 1, 0, 0, 0, 1}}));
+    dir.write("tetra.stl", binaryStl(cTetraTriangles));
     const core::Model model = loadMeshScene(dir, "tetra.stl");
     EXPECT_NEAR(model.bodies.at(0).mass, 1.0, 1e-14);
     EXPECT_EQ(model.bodies.at(0).shapes.at(0).vertices.size(), 4u);
 }
 
-TEST(Mesh, BinaryStlWithWrongSize)
+TEST(Mesh, AsciiStlCubeScaled)
 {
     TempDir dir;
-    std::string data = binaryStl({{0, 0, 0, 0, 1, 0, 1, 0, 0}});
-    data.pop_back();
-    dir.write("bad.stl", data);
-    const InputError e = captureInputError([&] { loadMeshScene(dir, "bad.stl"); });
-    EXPECT_EQ(e.file(), dir.file("scene.yaml"))
-        << e.what(); // a whole-file problem: reported at the scene node
-    EXPECT_NE(std::string(e.what()).find("binary STL declares 1 triangles"), std::string::npos) << e.what();
+    const std::string path = dir.write("cube.stl", asciiStl(unitCubeTriangles()));
+    const core::Vec3 scale(0.5, 2.0, 3.0);
+    const core::Shape shape = loadMeshFile(path, scale);
+    EXPECT_EQ(shape.type, core::ShapeType::Mesh);
+    EXPECT_EQ(shape.meshFile, path);
+    EXPECT_EQ(shape.triangles.size(), 12u);
+    expectVertexSet(shape, scaledCubeCorners(scale), 0.0); // corners merged, exact
+    expectOutwardFaces(shape, 0.5 * scale);
+    EXPECT_NEAR(signedVolume(shape), 3.0, 1e-14);
+}
+
+TEST(Mesh, BinaryStlCube)
+{
+    TempDir dir;
+    const std::string path = dir.write("cube.stl", binaryStl(unitCubeTriangles()));
+    const core::Shape shape = loadMeshFile(path, core::Vec3::Ones());
+    EXPECT_EQ(shape.triangles.size(), 12u);
+    expectVertexSet(shape, scaledCubeCorners(core::Vec3::Ones()), 0.0);
+    expectOutwardFaces(shape, core::Vec3::Constant(0.5));
+}
+
+TEST(Mesh, ObjQuadsAreSplitIntoOutwardTriangles)
+{
+    TempDir dir;
+    std::string obj = "# unit cube, one quad per face\n";
+    for (int i = 0; i < 8; ++i)
+    {
+        const core::Vec3 c = cubeCorner(i);
+        obj +=
+            "v " + std::to_string(c.x()) + " " + std::to_string(c.y()) + " " + std::to_string(c.z()) + "\n";
+    }
+    for (const auto& q : cCubeQuads)
+    {
+        obj += "f " + std::to_string(q[0] + 1) + " " + std::to_string(q[1] + 1) + " " +
+               std::to_string(q[2] + 1) + " " + std::to_string(q[3] + 1) + "\n";
+    }
+    const std::string path = dir.write("cube.obj", obj);
+    const core::Vec3 scale(1.0, 2.0, 3.0);
+    const core::Shape shape = loadMeshFile(path, scale);
+    EXPECT_EQ(shape.triangles.size(), 12u);
+    expectVertexSet(shape, scaledCubeCorners(scale), 0.0);
+    expectOutwardFaces(shape, 0.5 * scale);
+    EXPECT_NEAR(signedVolume(shape), 6.0, 1e-14);
 }
 
 TEST(Mesh, ObjNegativeIndicesAndSlashes)
 {
     TempDir dir;
-    dir.write("tetra.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\n"
+    // The texture and normal indices refer to a defined vt and vn (assimp refuses undefined ones).
+    dir.write("tetra.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvn 0 0 1\n"
                            "f 1//1 3//1 2//1\nf -4/1/1 -3/1/1 -1/1/1\nf 1 4 3\nf 2 3 4\n");
     const core::Model model = loadMeshScene(dir, "tetra.obj");
     EXPECT_NEAR(model.bodies.at(0).mass, 1.0, 1e-14);
+    EXPECT_EQ(model.bodies.at(0).shapes.at(0).vertices.size(), 4u);
+}
+
+// <unit meter="0.01">: file coordinates in centimetres; Z_UP kept as it is (no rotation to y-up).
+TEST(Mesh, ColladaUnitAndZUp)
+{
+    TempDir dir;
+    const std::string path = dir.write(
+        "part.dae", colladaTetra("0.01", "Z_UP", std::string(R"(<node id="a">)") + cInstance + "</node>"));
+    const core::Shape shape = loadMeshFile(path, core::Vec3::Ones());
+    EXPECT_EQ(shape.triangles.size(), 4u);
+    expectVertexSet(shape, {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}, {0, 0, 3}}, 1e-6);
+    EXPECT_NEAR(signedVolume(shape), 1.0, 1e-6); // 1 x 2 x 3 / 6 m^3, faces outward
+
+    // The caller's scale multiplies the unit.
+    const core::Shape scaled = loadMeshFile(path, core::Vec3(2.0, 1.0, 0.5));
+    expectVertexSet(scaled, {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1.5}}, 1e-6);
+}
+
+TEST(Mesh, ColladaYUpIsAlsoKeptAsItIs)
+{
+    TempDir dir;
+    const std::string path = dir.write(
+        "part.dae", colladaTetra("1", "Y_UP", std::string(R"(<node id="a">)") + cInstance + "</node>"));
+    expectVertexSet(loadMeshFile(path, core::Vec3::Ones()),
+                    {{0, 0, 0}, {100, 0, 0}, {0, 200, 0}, {0, 0, 300}}, 1e-4);
+}
+
+// Two instances: one translated, one rotated with a translated child node. Without the node
+// transforms both would land on the same four vertices.
+TEST(Mesh, ColladaNodeTransformsAreApplied)
+{
+    TempDir dir;
+    const std::string nodes = std::string(R"(<node id="a"><translate>10 0 0</translate>)") + cInstance +
+                              R"(</node>
+      <node id="b"><rotate>0 0 1 90</rotate>
+        <node id="c"><translate>0 0 100</translate>)" +
+                              cInstance + "</node></node>";
+    const std::string path = dir.write("parts.dae", colladaTetra("0.01", "Z_UP", nodes));
+    const core::Shape shape = loadMeshFile(path, core::Vec3::Ones());
+    EXPECT_EQ(shape.triangles.size(), 8u);
+    // a: the tetrahedron (m) + (0.1, 0, 0). b then c: Rz(90 deg) (p + (0, 0, 1)), Rz(x, y, z) = (-y, x, z).
+    expectVertexSet(
+        shape,
+        {{0.1, 0, 0}, {1.1, 0, 0}, {0.1, 2, 0}, {0.1, 0, 3}, {0, 0, 1}, {0, 1, 1}, {-2, 0, 1}, {0, 0, 4}},
+        1e-6);
+    EXPECT_NEAR(signedVolume(shape), 2.0, 1e-6);
+}
+
+TEST(Mesh, ColladaMirroredNodeStillFacesOutwards)
+{
+    TempDir dir;
+    const std::string path =
+        dir.write("mirror.dae",
+                  colladaTetra("0.01", "Z_UP",
+                               std::string(R"(<node id="m"><scale>-1 1 1</scale>)") + cInstance + "</node>"));
+    const core::Shape shape = loadMeshFile(path, core::Vec3::Ones());
+    expectVertexSet(shape, {{0, 0, 0}, {-1, 0, 0}, {0, 2, 0}, {0, 0, 3}}, 1e-6);
+    EXPECT_NEAR(signedVolume(shape), 1.0, 1e-6);
+}
+
+TEST(Mesh, ColladaThroughASceneWithScale)
+{
+    TempDir dir;
+    dir.write("part.dae",
+              colladaTetra("0.01", "Z_UP", std::string(R"(<node id="a">)") + cInstance + "</node>"));
+    const std::string scene = dir.write(
+        "scene.yaml", "bodies: [{name: m, density: 3, shape: {type: mesh, file: part.dae, scale: 2}}]\n");
+    const core::Model model = loadScene(scene);
+    // Volume 1 m^3 from the file, times 2^3 from the scale; centroid (1, 2, 3) / 4 x 2.
+    EXPECT_NEAR(model.bodies.at(0).mass, 3.0 * 8.0, 1e-4);
+    EXPECT_NEAR((model.bodies.at(0).position_W - core::Vec3(0.5, 1.0, 1.5)).norm(), 0.0, 1e-6);
+}
+
+TEST(Mesh, BinaryStlWithWrongSize)
+{
+    TempDir dir;
+    std::string data = binaryStl({cTetraTriangles[0]});
+    data.pop_back();
+    dir.write("bad.stl", data);
+    expectSceneMeshError(dir, "bad.stl", "Failed to determine STL storage representation");
 }
 
 TEST(Mesh, ObjIndexOutOfRange)
 {
     TempDir dir;
     dir.write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
-    const InputError e = captureInputError([&] { loadMeshScene(dir, "bad.obj"); });
-    EXPECT_INPUT_ERROR_AT(e, dir.file("bad.obj"), 4, 7,
-                          "vertex index 4 is out of range (3 vertices defined so far)");
+    // assimp does not say which line; the scene's mesh node and the file are named.
+    expectSceneMeshError(dir, "bad.obj", "OBJ: vertex index out of range");
 }
 
 TEST(Mesh, AsciiStlFacetWithTwoVertices)
@@ -127,8 +398,7 @@ TEST(Mesh, AsciiStlFacetWithTwoVertices)
     dir.write(
         "bad.stl",
         "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid\n");
-    const InputError e = captureInputError([&] { loadMeshScene(dir, "bad.stl"); });
-    EXPECT_INPUT_ERROR_AT(e, dir.file("bad.stl"), 2, 1, "expected a facet with 3 vertices, got 2");
+    expectSceneMeshError(dir, "bad.stl", "STL: Invalid number of vertices");
 }
 
 TEST(Mesh, InsideOutMeshOnAMovingBodyIsAnError)
@@ -142,14 +412,72 @@ TEST(Mesh, InsideOutMeshOnAMovingBodyIsAnError)
     EXPECT_NE(std::string(e.what()).find("encloses no positive volume"), std::string::npos) << e.what();
 }
 
-TEST(Mesh, UnsupportedFormat)
+TEST(Mesh, UnknownFormat)
+{
+    TempDir dir;
+    dir.write("thing.xyz", "not a mesh\n");
+    expectSceneMeshError(dir, "thing.xyz", "No suitable reader found");
+}
+
+TEST(Mesh, EmptyColladaDocument)
 {
     TempDir dir;
     dir.write("thing.dae", "<COLLADA/>");
-    const InputError e = captureInputError([&] { loadMeshScene(dir, "thing.dae"); });
-    EXPECT_NE(std::string(e.what()).find("unsupported mesh format '.dae'; expected .obj or .stl"),
-              std::string::npos)
-        << e.what();
+    expectSceneMeshError(dir, "thing.dae", "Collada");
+}
+
+TEST(Mesh, NonFiniteVertex)
+{
+    TempDir dir;
+    const std::string path = dir.write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n");
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0, "non-finite vertex");
+}
+
+TEST(Mesh, NoTrianglesIsAnError)
+{
+    TempDir dir;
+    // The geometry exists but no node places it.
+    const std::string path = dir.write("none.dae", colladaTetra("1", "Z_UP", R"(<node id="empty"/>)"));
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0, "mesh file has no triangles");
+    // Points and lines only: nothing to collide with or draw either.
+    const std::string lines = dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+    const InputError l = captureInputError([&] { loadMeshFile(lines, core::Vec3::Ones()); });
+    EXPECT_EQ(l.file(), lines);
+    EXPECT_NE(std::string(l.what()).find("No meshes remaining"), std::string::npos) << l.what();
+}
+
+TEST(Mesh, MissingFile)
+{
+    TempDir dir;
+    const InputError e = captureInputError([&] { loadMeshFile(dir.file("nope.stl"), core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, dir.file("nope.stl"), 0, 0, "no such mesh file");
+}
+
+// Refused before assimp sees them: a FIFO would block the reader, /dev/zero never ends.
+TEST(Mesh, OnlyRegularFilesAreRead)
+{
+    TempDir dir;
+    const InputError d = captureInputError([&] { loadMeshFile(dir.path().string(), core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(d, dir.path().string(), 0, 0, "is a directory, expected a mesh file");
+
+    const std::string fifo = dir.file("pipe.stl");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const InputError f = captureInputError([&] { loadMeshFile(fifo, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(f, fifo, 0, 0, "is not a regular file");
+
+    const InputError z = captureInputError([&] { loadMeshFile("/dev/zero", core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(z, "/dev/zero", 0, 0, "is not a regular file");
+}
+
+TEST(Mesh, TooLargeFileIsRefused)
+{
+    TempDir dir;
+    const std::string path = dir.write("huge.stl", "");
+    std::filesystem::resize_file(path, (std::uintmax_t{512} << 20) + 1); // sparse: no disk space used
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0, "mesh file has 536870913 bytes, above the limit of 512 MiB");
 }
 
 } // namespace

@@ -115,6 +115,39 @@ TEST(Renderer, BoxCastsAShadowAwayFromTheLight)
     EXPECT_NEAR(lit, bareLit, 0.05 * bareLit);
 }
 
+bool isRed(const std::array<double, 3>& c)
+{
+    return c[0] > 150 && c[1] < 90 && c[2] < 90;
+}
+
+// The red box body of redBoxScene with a render-only visual: a 0.4 m box 0.8 m to the side of
+// its 0.3 m collision box. Seen from above, the red shows where the visual is, not the collision
+// box; without the visual it is the other way round.
+TEST(Renderer, DrawsTheVisualsInsteadOfTheCollisionShapes)
+{
+    core::Model model = testing::redBoxScene();
+    core::Body& body = model.bodies.at(1);
+    body.shapes.at(0).size = core::Vec3(0.3, 0.3, 0.3);
+    core::Shape visual;
+    visual.type = core::ShapeType::Box;
+    visual.size = core::Vec3(0.4, 0.4, 0.4);
+    visual.position_BS = core::Vec3(0.8, 0.0, 0.0);
+    body.visuals.push_back(visual);
+
+    Renderer withVisual(model, smallOptions());
+    const Image drawn = withVisual.render(core::initialState(model));
+    const auto visualAt = floorPixel(drawn, 0.8, 0.0);
+    const auto collisionAt = floorPixel(drawn, 0.0, 0.0);
+    EXPECT_TRUE(isRed(pixel(drawn, visualAt[0], visualAt[1])));
+    EXPECT_FALSE(isRed(pixel(drawn, collisionAt[0], collisionAt[1])));
+
+    body.visuals.clear();
+    Renderer collisionOnly(model, smallOptions());
+    const Image shapes = collisionOnly.render(core::initialState(model));
+    EXPECT_FALSE(isRed(pixel(shapes, visualAt[0], visualAt[1])));
+    EXPECT_TRUE(isRed(pixel(shapes, collisionAt[0], collisionAt[1])));
+}
+
 TEST(Renderer, ImageSizeAsAsked)
 {
     const core::Model model = testing::mixedScene(5);
