@@ -141,6 +141,7 @@ void evaluateJoint(const Joint& joint, const JointPose& pose, bool parentMoves, 
         writeFixedJoint(joint, pose, out);
         break;
     }
+    out.constraintRows = out.count;
     if (!parentMoves)
     {
         out.J_a.setZero();
