@@ -53,9 +53,10 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     {
         const Joint& joint = model.joints[k];
         const JointPose pose = jointPose(state, joint);
+        const detail::JointGeometry g = detail::jointGeometry(joint, pose);
         const bool parentMoves = !jointToWorld(model, joint);
-        evaluateJoint(joint, pose, parentMoves, system.joints[k]);
-        writeDriveRows(joint, pose, parentMoves, driveStep, system.joints[k]);
+        evaluateJoint(joint, pose, g, parentMoves, system.joints[k]);
+        writeDriveRows(joint, g, parentMoves, driveStep, system.joints[k]);
         if (layout.jointBlock[k] >= 0)
         {
             system.rowCount += system.joints[k].count;

@@ -18,7 +18,8 @@ int jointBlockRows(const Joint& joint)
     return jointRowCount(joint.type) + blockDriveRows(joint);
 }
 
-void writeDriveRows(const Joint& joint, const JointPose& pose, bool parentMoves, double h, JointRows& out)
+void writeDriveRows(const Joint& joint, const detail::JointGeometry& g, bool parentMoves, double h,
+                    JointRows& out)
 {
     if (blockDriveRows(joint) == 0)
     {
@@ -28,7 +29,6 @@ void writeDriveRows(const Joint& joint, const JointPose& pose, bool parentMoves,
     // limit as E grows: J = 0, E = 1, lambda = 0.
     const double compliance = 1.0 / (joint.damping * h);
     const bool active = std::isfinite(compliance);
-    const detail::JointGeometry g = detail::jointGeometry(joint, pose);
     for (const JointCoordinate coordinate : jointCoordinates(joint.type))
     {
         const int row = out.count++;

@@ -36,8 +36,9 @@ int blockDriveRows(const Joint& joint);
 // Rows of a joint's block: its conditions (jointRowCount), then its drive rows; at most 6.
 int jointBlockRows(const Joint& joint);
 
-// Appends the joint's drive rows to `out`, which evaluateJoint filled at the same pose, for a
-// solve of duration h (s). parentMoves as for evaluateJoint.
-void writeDriveRows(const Joint& joint, const JointPose& pose, bool parentMoves, double h, JointRows& out);
+// Appends the joint's drive rows to `out`, which evaluateJoint filled at the pose of g, for a solve
+// of duration h (s). parentMoves as for evaluateJoint.
+void writeDriveRows(const Joint& joint, const detail::JointGeometry& g, bool parentMoves, double h,
+                    JointRows& out);
 
 } // namespace frontier::core

@@ -70,12 +70,18 @@ int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out,
 int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& out, int row);
 int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, int row);
 
-void writeBallJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeRevoluteJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeAngleJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeCylindricalJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writePrismaticJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeFixedJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+// Per type; g = jointGeometry(joint, pose).
+void writeBallJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeRevoluteJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeAngleJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeCylindricalJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
 } // namespace detail
+
+// evaluateJoint with the joint's geometry at that pose at hand (detail::jointGeometry), which the
+// drive rows reuse.
+void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
+                   bool parentMoves, JointRows& out);
 
 } // namespace frontier::core
