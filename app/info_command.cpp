@@ -62,12 +62,22 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
     {
         const core::Joint& joint = model.joints[k];
         rows += core::jointRowCount(joint.type);
-        out["joints"].push_back({{"name", joint.name},
-                                 {"type", core::jointTypeName(joint.type)},
-                                 {"rows", core::jointRowCount(joint.type)},
-                                 {"parent", bodyName(model, joint.parent)},
-                                 {"child", bodyName(model, joint.child)},
-                                 {"loop", layout.jointBlock[k] < 0}});
+        nlohmann::json entry = {{"name", joint.name},
+                                {"type", core::jointTypeName(joint.type)},
+                                {"rows", core::jointRowCount(joint.type)},
+                                {"parent", bodyName(model, joint.parent)},
+                                {"child", bodyName(model, joint.child)},
+                                {"loop", layout.jointBlock[k] < 0}};
+        // SI: N m s/rad and N m about a revolute axis, N s/m and N along a prismatic one.
+        if (joint.damping > 0.0)
+        {
+            entry["damping"] = joint.damping;
+        }
+        if (joint.friction > 0.0)
+        {
+            entry["friction"] = joint.friction;
+        }
+        out["joints"].push_back(entry);
     }
     if (model.joints.empty())
     {
@@ -127,7 +137,17 @@ void printText(const nlohmann::json& info)
         std::cout << "  " << joint["name"].get<std::string>() << "  " << joint["type"].get<std::string>()
                   << " (" << joint["rows"].get<int>() << " rows)  " << joint["parent"].get<std::string>()
                   << " -> " << joint["child"].get<std::string>()
-                  << (joint["loop"].get<bool>() ? "  [closes a loop]" : "") << "\n";
+                  << (joint["loop"].get<bool>() ? "  [closes a loop]" : "");
+        const bool turns = joint["type"].get<std::string>() == "revolute";
+        if (joint.contains("damping"))
+        {
+            std::cout << "  damping " << joint["damping"].get<double>() << (turns ? " N m s/rad" : " N s/m");
+        }
+        if (joint.contains("friction"))
+        {
+            std::cout << "  friction " << joint["friction"].get<double>() << (turns ? " N m" : " N");
+        }
+        std::cout << "\n";
     }
     std::cout << "degrees of freedom: " << info["degrees_of_freedom"].get<int>() << "\n";
     std::cout << "frontier order (" << info["trees"].get<int>() << " trees):";

@@ -124,7 +124,7 @@ struct Problem
     {
         layout = core::buildFrontierLayout(model);
         state = core::initialState(model);
-        core::assembleRows(model, layout, state, system);
+        core::assembleRows(model, layout, state, model.simulation.dt, system);
         rhs.resize(model.bodies.size(), model.joints.size());
         rhs.setZero();
         for (std::size_t i = 0; i < model.bodies.size(); ++i)
@@ -162,7 +162,8 @@ template <Shape S> void BM_LinearAssemble(benchmark::State& state)
     Problem problem(S, n);
     for (auto _ : state)
     {
-        core::assembleRows(problem.model, problem.layout, problem.state, problem.system);
+        core::assembleRows(problem.model, problem.layout, problem.state, problem.model.simulation.dt,
+                           problem.system);
         benchmark::ClobberMemory();
     }
     setCounters(state, n);

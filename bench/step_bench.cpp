@@ -8,6 +8,9 @@
 // bent. Counters: us_per_step, us_per_body_step (wall time / steps / n) and
 // max_joint_error_m, the largest joint position error after any benchmarked step.
 // The target: `linear` us_per_body_step flat within 1.5x from 100 to 10 000 links.
+// Hinge cases: the same chain on revolute joints about y (it swings in the xz plane), `linear`,
+// plain, with damping on every hinge (a compliant row in each joint block) and with Coulomb
+// friction on every hinge (a bounded extra row per joint): what joint damping and friction cost.
 //
 //   step_bench --benchmark_min_time=0.5
 #include "core/model.h"
@@ -21,6 +24,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace
@@ -33,9 +37,19 @@ constexpr int cWarmUpSteps = 300;
 constexpr double cLinkLength = 0.1; // m, joint to joint
 constexpr double cLinkMass = 0.1;   // kg
 
+// What the chain's joints are: ball joints, or hinges about y with damping (N m s/rad) and Coulomb
+// friction (N m) on each.
+struct ChainJoints
+{
+    core::JointType type = core::JointType::Ball;
+    double damping = 0.0;
+    double friction = 0.0;
+    auto operator<=>(const ChainJoints&) const = default;
+};
+
 // n capsules (radius 0.01 m, segment 0.08 m) along +x at z = 2 m, capsule axis (local z) along
-// world x, ball joints at the link ends, the first nailed to the world by a ball joint.
-core::Model makeChain(int n, core::SolverKind solver)
+// world x, joints at the link ends, the first joined to the world.
+core::Model makeChain(int n, core::SolverKind solver, const ChainJoints& joints = {})
 {
     core::Model model;
     model.name = "chain of " + std::to_string(n);
@@ -65,10 +79,13 @@ core::Model makeChain(int n, core::SolverKind solver)
     {
         core::Joint joint;
         joint.name = "joint" + std::to_string(i);
-        joint.type = core::JointType::Ball;
+        joint.type = joints.type;
+        joint.damping = joints.damping;
+        joint.friction = joints.friction;
         joint.parent = i == 0 ? core::cWorld : i - 1;
         joint.child = i;
-        core::setJointFrames(model, joint, Vec3(i * cLinkLength, 0.0, 2.0), Vec3::UnitZ());
+        const Vec3 axis = joints.type == core::JointType::Ball ? Vec3::UnitZ() : Vec3::UnitY();
+        core::setJointFrames(model, joint, Vec3(i * cLinkLength, 0.0, 2.0), axis);
         model.joints.push_back(joint);
     }
     return model;
@@ -81,19 +98,19 @@ struct Prepared
     core::State warm;
 };
 
-const Prepared& prepare(int n, core::SolverKind solver)
+const Prepared& prepare(int n, core::SolverKind solver, const ChainJoints& joints)
 {
-    static std::map<std::pair<int, core::SolverKind>, Prepared> cache;
-    const auto key = std::make_pair(n, solver);
+    static std::map<std::tuple<int, core::SolverKind, ChainJoints>, Prepared> cache;
+    const auto key = std::make_tuple(n, solver, joints);
     auto found = cache.find(key);
     if (found != cache.end())
     {
         return found->second;
     }
     Prepared p;
-    p.model = std::make_unique<core::Model>(makeChain(n, solver));
+    p.model = std::make_unique<core::Model>(makeChain(n, solver, joints));
     const core::SolverKind warmSolver = solver == core::SolverKind::Dense ? core::SolverKind::Linear : solver;
-    const core::Model warmModel = makeChain(n, warmSolver);
+    const core::Model warmModel = makeChain(n, warmSolver, joints);
     core::Simulator warmUp(warmModel);
     p.warm = core::initialState(warmModel);
     for (int k = 0; k < cWarmUpSteps; ++k)
@@ -103,13 +120,13 @@ const Prepared& prepare(int n, core::SolverKind solver)
     return cache.emplace(key, std::move(p)).first->second;
 }
 
-void stepChain(benchmark::State& st, core::SolverKind solver)
+void stepChain(benchmark::State& st, core::SolverKind solver, const ChainJoints& joints = {})
 {
     const int n = static_cast<int>(st.range(0));
     const Prepared* prepared = nullptr;
     try
     {
-        prepared = &prepare(n, solver);
+        prepared = &prepare(n, solver, joints);
     }
     catch (const core::SimulationError& error)
     {
@@ -158,7 +175,24 @@ void BM_StepPgs20(benchmark::State& st)
     stepChain(st, core::SolverKind::Pgs);
 }
 
+void BM_StepHinges(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 0.0, 0.0});
+}
+void BM_StepHingesDamped(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 1e-3, 0.0});
+}
+void BM_StepHingesFriction(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 0.0, 1e-3});
+}
+
 BENCHMARK(BM_StepLinear)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepHinges)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StepHingesDamped)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+// Friction rows are extra rows: their Delassus matrix is dense within a tree (O(n^2) per step).
+BENCHMARK(BM_StepHingesFriction)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 // Dense LU is O(n^3) per factorization: ~0.05 s per step at 100 links, ~0.4 s at 200.
 BENCHMARK(BM_StepDense)->Arg(10)->Arg(100)->Arg(200)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepPgs20)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);

@@ -69,7 +69,7 @@ CollisionOutcome respondToCollision(const Model& model, const State& state, cons
 {
     const FrontierLayout layout = buildFrontierLayout(model);
     RowSystem system;
-    assembleRows(model, layout, state, system);
+    assembleRows(model, layout, state, 0.0, system); // an instant: drives give no impulse
     auto solver = makeSolver(solverKind, pgsIterations);
     solver->factor(system);
 

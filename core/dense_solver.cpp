@@ -37,6 +37,11 @@ Eigen::MatrixXd DenseSolver::assemble(const RowSystem& system)
         };
         couple(joint.parent, rows.J_a);
         couple(joint.child, rows.J_b);
+        // Drive rows J u + E lambda = c: -E on the diagonal (the unknown is -lambda).
+        for (int q = r - block.driveRows; q < r; ++q)
+        {
+            a(block.offset + q, block.offset + q) = -rows.compliance(q);
+        }
     }
     return a;
 }

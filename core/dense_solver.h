@@ -17,7 +17,8 @@ class DenseSolver final : public ImpulseSolver
     void solve(const BlockVector& rhs, BlockVector& solution) override;
     const char* name() const override { return "dense"; }
 
-    // The assembled KKT matrix [M J^T; J 0] in layout order (for tests and the benchmark).
+    // The assembled KKT matrix [M J^T; J -E] in layout order (for tests and the benchmark); E is
+    // the compliance of drive rows, zero elsewhere.
     static Eigen::MatrixXd assemble(const RowSystem& system);
 
   private:

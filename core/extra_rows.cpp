@@ -1,8 +1,10 @@
-// core/extra_rows.cpp: contact, loop and limit rows (their solve: core/extra_rows_solve.cpp).
+// core/extra_rows.cpp: contact, limit and joint friction rows (their solve:
+// core/extra_rows_solve.cpp; loop rows: core::Simulator::buildLoopRows).
 #include "core/extra_rows.h"
 
 #include "core/collision_response.h"
 #include "core/frontier_order.h"
+#include "core/joints/coordinates.h"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -10,52 +12,6 @@
 
 namespace frontier::core
 {
-
-namespace
-{
-struct LimitGeometry
-{
-    Vec3 axis_W;                          // the joint axis in world
-    Eigen::Matrix<double, 1, 6> J_A, J_B; // d(coordinate)/dt = J_A u_A + J_B u_B
-    double coordinate = 0.0;
-};
-
-LimitGeometry limitGeometry(const State& state, const Joint& joint)
-{
-    JointPose pose;
-    if (joint.parent != cWorld)
-    {
-        pose.x_a = state.bodies[static_cast<std::size_t>(joint.parent)].position_W;
-        pose.q_a = state.bodies[static_cast<std::size_t>(joint.parent)].orientation_WB;
-    }
-    pose.x_b = state.bodies[static_cast<std::size_t>(joint.child)].position_W;
-    pose.q_b = state.bodies[static_cast<std::size_t>(joint.child)].orientation_WB;
-    const detail::JointGeometry g = detail::jointGeometry(joint, pose);
-    LimitGeometry out;
-    const Vec3 k = g.R_a * joint.axisParent;
-    out.axis_W = k;
-    out.J_A.setZero();
-    out.J_B.setZero();
-    if (joint.type == JointType::Revolute)
-    {
-        // theta = atan2(i_c . d_j, i_c . d_i), i_c the child's copy of d_i; d theta/dt = (w_b - w_a) . k.
-        const Vec3 ic = g.R_b * joint.perpChild1;
-        out.coordinate = std::atan2(ic.dot(g.R_a * joint.perpParent2), ic.dot(g.R_a * joint.perpParent1));
-        out.J_A.tail<3>() = -k.transpose();
-        out.J_B.tail<3>() = k.transpose();
-    }
-    else
-    {
-        // s = k . (p_b - p_a); exact derivative with a's lever arm at p_b (PAPER.md §4 notes).
-        out.coordinate = k.dot(g.p_b - g.p_a);
-        out.J_A.head<3>() = -k.transpose();
-        out.J_A.tail<3>() = -(g.p_b - g.x_a).cross(k).transpose();
-        out.J_B.head<3>() = k.transpose();
-        out.J_B.tail<3>() = g.r_b.cross(k).transpose();
-    }
-    return out;
-}
-} // namespace
 
 ExtraBlock& appendContactBlock(const Model& model, const State& state, const Contact& contact,
                                double friction, int source, std::vector<ExtraBlock>& out)
@@ -73,11 +29,6 @@ ExtraBlock& appendContactBlock(const Model& model, const State& state, const Con
     return block;
 }
 
-double jointCoordinate(const Model& model, const State& state, int jointIndex)
-{
-    return limitGeometry(state, model.joints[static_cast<std::size_t>(jointIndex)]).coordinate;
-}
-
 void appendLimitBlocks(const Model& model, const State& state, int jointIndex, double margin,
                        std::vector<ExtraBlock>& out)
 {
@@ -86,20 +37,25 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
     {
         return;
     }
-    const LimitGeometry g = limitGeometry(state, joint);
+    // The angle continued from the last step (core/joints/coordinates.h): a limit beyond +-pi holds.
+    const JointCoordinate coordinate =
+        joint.type == JointType::Revolute ? JointCoordinate::Rotation : JointCoordinate::Slide;
+    const double q = jointCoordinate(model, state, jointIndex, coordinate);
+    const CoordinateRow row =
+        coordinateRow(joint, detail::jointGeometry(joint, jointPose(state, joint)), coordinate);
     const double lower = (*joint.limits)[0];
     const double upper = (*joint.limits)[1];
     double sign = 0.0;
     double violation = 0.0;
-    if (g.coordinate < lower + margin)
+    if (q < lower + margin)
     {
         sign = 1.0; // keep the coordinate increasing
-        violation = lower - g.coordinate;
+        violation = lower - q;
     }
-    else if (g.coordinate > upper - margin)
+    else if (q > upper - margin)
     {
         sign = -1.0;
-        violation = g.coordinate - upper;
+        violation = q - upper;
     }
     else
     {
@@ -110,8 +66,8 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
     block.count = 1;
     block.bodyA = jointToWorld(model, joint) ? -1 : joint.parent;
     block.bodyB = joint.child;
-    block.J_A.row(0) = sign * g.J_A;
-    block.J_B.row(0) = sign * g.J_B;
+    block.J_A.row(0) = sign * row.J_a.transpose();
+    block.J_B.row(0) = sign * row.J_b.transpose();
     if (block.bodyA < 0)
     {
         block.J_A.setZero();
@@ -119,6 +75,34 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
     block.error(0) = violation;
     block.source = jointIndex;
     out.push_back(block);
+}
+
+void appendFrictionBlocks(const Model& model, const State& state, int jointIndex, double h,
+                          std::vector<ExtraBlock>& out)
+{
+    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    if (!(joint.friction > 0.0))
+    {
+        return;
+    }
+    const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
+    const bool parentMoves = !jointToWorld(model, joint);
+    for (const JointCoordinate coordinate : jointCoordinates(joint.type))
+    {
+        const CoordinateRow row = coordinateRow(joint, g, coordinate);
+        ExtraBlock& block = out.emplace_back();
+        block.kind = ExtraBlock::Kind::Drive;
+        block.count = 1;
+        block.bodyA = parentMoves ? joint.parent : -1;
+        block.bodyB = joint.child;
+        if (parentMoves)
+        {
+            block.J_A.row(0) = row.J_a.transpose();
+        }
+        block.J_B.row(0) = row.J_b.transpose();
+        block.bound = joint.friction * h; // target 0: the joint sticks unless the bound gives
+        block.source = jointIndex;
+    }
 }
 
 int layoutExtraRows(std::vector<ExtraBlock>& blocks)

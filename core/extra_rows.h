@@ -1,6 +1,7 @@
 // core/extra_rows.h: rows beyond the joint tree, solved in constraint space on top of the O(n)
 // tree factorization (PAPER.md §5): contacts (one-sided normal, Coulomb friction cone), joints
-// that close a loop (bilateral), and joint limits (one-sided).
+// that close a loop (bilateral), joint limits (one-sided), and bounded drive rows (Coulomb joint
+// friction, core/joints/drive.h).
 //
 // Each block couples at most two moving bodies: rows J_A u_A + J_B u_B. After the tree solve
 // gives u_free, the block impulses lambda solve a small complementarity problem in
@@ -24,8 +25,9 @@ struct ExtraBlock
     enum class Kind
     {
         Contact, // row 0 normal (lambda >= 0), rows 1-2 friction (|lambda_t| <= mu lambda_n) when mu > 0
-        Loop,    // a loop-closing joint: all rows bilateral
+        Loop,    // a loop-closing joint: all rows bilateral (its drive rows compliant)
         Limit,   // a joint limit: one row, lambda >= 0
+        Drive,   // a bounded drive row of a joint: one row, |lambda| <= bound
     };
     Kind kind = Kind::Contact;
     int count = 0;  // rows, 1..6
@@ -35,9 +37,13 @@ struct ExtraBlock
     Mat6 J_B = Mat6::Zero();
     Vec6 target = Vec6::Zero(); // lower bound (one-sided rows) or value (bilateral) of J u (m/s, rad/s)
     Vec6 error = Vec6::Zero();  // position-level violation to remove (m or rad): contacts and limits > 0
-    double friction = 0.0;      // mu (contacts)
-    int source = -1;            // contact index, or joint index (loops, limits)
-    int offset = 0;             // first row of the block in G
+    // Loops and drives: row r is J u + E_r lambda = target (core/joints/drive.h), E_r > 0 only for
+    // a drive row ((m/s)/(N s) or (rad/s)/(N m s)).
+    Vec6 compliance = Vec6::Zero();
+    double friction = 0.0; // mu (contacts)
+    double bound = 0.0;    // drives: |lambda| <= bound (N s or N m s)
+    int source = -1;       // contact index, or joint index (loops, limits, drives)
+    int offset = 0;        // first row of the block in G
 };
 
 // Rows for one contact (normal, and two tangents when mu > 0), PAPER.md §2 collision conditions,
@@ -50,8 +56,11 @@ ExtraBlock& appendContactBlock(const Model& model, const State& state, const Con
 void appendLimitBlocks(const Model& model, const State& state, int jointIndex, double margin,
                        std::vector<ExtraBlock>& out);
 
-// Joint coordinate of a revolute (rad) or prismatic (m) joint at a state.
-double jointCoordinate(const Model& model, const State& state, int jointIndex);
+// Coulomb friction f of a joint (N m or N; core::Joint::friction) over a solve of duration h (s):
+// one drive row per coordinate of the joint, J u = 0 with |lambda| <= f h (stick, or slip against
+// the motion with the whole bound). Appends nothing for a joint without friction.
+void appendFrictionBlocks(const Model& model, const State& state, int jointIndex, double h,
+                          std::vector<ExtraBlock>& out);
 
 // Sets offsets; returns the number of rows in all.
 int layoutExtraRows(std::vector<ExtraBlock>& blocks);
@@ -119,15 +128,17 @@ double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::Vec
                          const Eigen::VectorXd& lambda);
 
 // conditionResidual(blocks, velocity, lambda) <= tolerance, stopping at the first block that is
-// not (NaN counts as not met): the Gauss-Seidel's test after each sweep.
+// not (NaN counts as not met): the Gauss-Seidel's test after each sweep. A drive row: its
+// condition J u + E lambda = target while inside its bound, on the bound the side it pushes from.
 bool conditionsMet(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
                    const Eigen::VectorXd& lambda, double tolerance);
 
 // Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
 // given the others; a contact's normal row clamped at zero, then its two tangential rows solved
 // together and projected radially onto the friction cone |lambda_t| <= mu lambda_n; limit rows
-// clamped at zero. `lambda` is the warm start on entry (size = rows) and the result on exit.
-// `coupling` (optional) restricts each block's velocity updates to the rows it can move.
+// clamped at zero; drive rows clamped to their bound. Compliance adds to a row's pivot. `lambda` is the warm
+// start on entry (size = rows) and the result on exit. `coupling` (optional) restricts each block's velocity
+// updates to the rows it can move.
 ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
                                Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,

@@ -112,7 +112,20 @@ double blockResidual(const ExtraBlock& block, const Eigen::VectorXd& velocity, c
     }
     if (block.kind == ExtraBlock::Kind::Loop)
     {
-        return (velocity.segment(o, block.count) - block.target.head(block.count)).cwiseAbs().maxCoeff();
+        return (velocity.segment(o, block.count) +
+                block.compliance.head(block.count).cwiseProduct(lambda.segment(o, block.count)) -
+                block.target.head(block.count))
+            .cwiseAbs()
+            .maxCoeff();
+    }
+    if (block.kind == ExtraBlock::Kind::Drive)
+    {
+        // Inside its bound the row holds; on the bound it may only fall short of the side it
+        // pushes from (on +bound the row would take more, w <= 0; on -bound less, w >= 0).
+        const double w = velocity(o) + block.compliance(0) * lambda(o) - block.target(0);
+        const bool upper = lambda(o) >= block.bound;
+        const bool lower = lambda(o) <= -block.bound;
+        return upper && lower ? 0.0 : upper ? std::max(0.0, w) : lower ? std::max(0.0, -w) : std::abs(w);
     }
     // One-sided row: at its target while it pushes, at or above it otherwise.
     const double gap = velocity(o) - block.target(0);
@@ -270,7 +283,8 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
     // relative 1e-9 of the largest diagonal so the update stays bounded.
     const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
     // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
-    // tangential block, limits their one row. And the nonzero runs of each block's columns.
+    // tangential block, limits and drives their one row (compliance on the diagonal). And the
+    // nonzero runs of each block's columns.
     std::vector<Mat6>& inverse = scratch.inverse;
     const bool pivotsKnown = matrixVersion != 0 && matrixVersion == scratch.pivotsVersion &&
                              inverse.size() == blocks.size() && scratch.pivotsRows == m;
@@ -306,9 +320,18 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
         }
         if (blocks[b].kind == ExtraBlock::Kind::Loop)
         {
-            const Eigen::MatrixXd block =
-                G.block(o, o, n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
+            Eigen::MatrixXd block = G.block(o, o, n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
+            block.diagonal() += blocks[b].compliance.head(n);
             inverse[b].topLeftCorner(n, n) = block.inverse();
+            continue;
+        }
+        if (blocks[b].kind == ExtraBlock::Kind::Drive)
+        {
+            // A drive row's impulse is bounded, so a small pivot cannot make it run away; the
+            // regularization would leave a relative 1e-9 slip in a sticking joint every step,
+            // which the carried-over impulses of later steps would add up.
+            const double pivot = G(o, o) + blocks[b].compliance(0);
+            inverse[b](0, 0) = 1.0 / (pivot > regularization ? pivot : pivot + regularization);
             continue;
         }
         inverse[b](0, 0) = 1.0 / (G(o, o) + regularization);
@@ -388,7 +411,14 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
             if (block.kind == ExtraBlock::Kind::Loop)
             {
                 const SmallVec target = block.target.head(n);
-                next += inverse[b].topLeftCorner(n, n) * (target - velocity.segment(o, n));
+                next += inverse[b].topLeftCorner(n, n) *
+                        (target - velocity.segment(o, n) - block.compliance.head(n).cwiseProduct(old));
+            }
+            else if (block.kind == ExtraBlock::Kind::Drive)
+            {
+                const double free =
+                    old(0) + inverse[b](0, 0) * (block.target(0) - v[o] - block.compliance(0) * old(0));
+                next(0) = std::clamp(free, -block.bound, block.bound);
             }
             else
             {

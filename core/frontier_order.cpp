@@ -1,6 +1,8 @@
 // core/frontier_order.cpp: spanning forest, leaf-peeling numbering, block layout (PAPER.md §3).
 #include "core/frontier_order.h"
 
+#include "core/joints/drive.h"
+
 #include <numeric>
 
 namespace frontier::core
@@ -149,7 +151,9 @@ FrontierLayout buildFrontierLayout(const Model& model)
                     LayoutBlock edge;
                     edge.kind = LayoutBlock::Kind::Edge;
                     edge.index = edgeJoint;
-                    edge.dim = jointRowCount(model.joints[static_cast<std::size_t>(edgeJoint)].type);
+                    const Joint& joint = model.joints[static_cast<std::size_t>(edgeJoint)];
+                    edge.dim = jointBlockRows(joint);
+                    edge.driveRows = blockDriveRows(joint);
                     layout.jointBlock[static_cast<std::size_t>(edgeJoint)] =
                         static_cast<int>(layout.blocks.size());
                     layout.blocks.push_back(edge);

@@ -23,13 +23,14 @@ struct LayoutBlock
     enum class Kind
     {
         Node, // a moving body: equations (1), (2), 6 rows
-        Edge, // a joint: its velocity conditions, jointRowCount rows
+        Edge, // a joint: its velocity conditions (jointRowCount rows), then its drive rows
     };
     Kind kind = Kind::Node;
-    int index = 0;   // body index (Node) or joint index (Edge)
-    int dim = 6;     // rows of the block
-    int parent = -1; // layout index of the one later neighbour, -1 for the last block of a tree
-    int offset = 0;  // first scalar row of the block in the whole system
+    int index = 0;     // body index (Node) or joint index (Edge)
+    int dim = 6;       // rows of the block
+    int driveRows = 0; // Edge: its last driveRows rows are compliant drive rows (core/joints/drive.h)
+    int parent = -1;   // layout index of the one later neighbour, -1 for the last block of a tree
+    int offset = 0;    // first scalar row of the block in the whole system
     // Edge: its child node (the block just before it) is the joint's child body (else its parent).
     bool childIsJointChild = false;
 };

@@ -2,6 +2,8 @@
 #include "core/impulse_solver.h"
 
 #include "core/dense_solver.h"
+#include "core/joints/coordinates.h"
+#include "core/joints/drive.h"
 #include "core/pgs_solver.h"
 #include "core/tree_solver.h"
 
@@ -31,7 +33,8 @@ SingularJointError::SingularJointError(std::string jointName, const std::string&
 {
 }
 
-void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, RowSystem& system)
+void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
+                  RowSystem& system)
 {
     system.model = &model;
     system.layout = &layout;
@@ -49,17 +52,11 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
-        JointPose pose;
-        if (joint.parent != cWorld)
-        {
-            const BodyState& a = state.bodies[static_cast<std::size_t>(joint.parent)];
-            pose.x_a = a.position_W;
-            pose.q_a = a.orientation_WB;
-        }
-        const BodyState& b = state.bodies[static_cast<std::size_t>(joint.child)];
-        pose.x_b = b.position_W;
-        pose.q_b = b.orientation_WB;
-        evaluateJoint(joint, pose, !jointToWorld(model, joint), system.joints[k]);
+        const JointPose pose = jointPose(state, joint);
+        const detail::JointGeometry g = detail::jointGeometry(joint, pose);
+        const bool parentMoves = !jointToWorld(model, joint);
+        evaluateJoint(joint, pose, g, parentMoves, system.joints[k]);
+        writeDriveRows(joint, g, parentMoves, driveStep, system.joints[k]);
         if (layout.jointBlock[k] >= 0)
         {
             system.rowCount += system.joints[k].count;

@@ -3,8 +3,9 @@
 // Unknowns: post-impulse velocities u_i = [v_i; w_i] of every moving body and the multipliers
 // lambda_k of every tree joint. Equations (PAPER.md eqs. (1)-(3), joint rows of §4):
 //     M_i u_i - sum_k J_ki^T lambda_k = p_i      (momentum: p = M u* + external impulses)
-//     J_ka u_a + J_kb u_b             = c_k      (joint velocity conditions; c = 0 in a plain solve)
-// In KKT form [M J^T; J 0][u; -lambda] = [p; c], symmetric and quasi-definite when the joint rows
+//     J_ka u_a + J_kb u_b + E_k lambda_k = c_k   (joint velocity conditions; c = 0 in a plain solve;
+//                                              compliance E_k = 0 but on drive rows, core/joints/drive.h)
+// In KKT form [M J^T; J -E][u; -lambda] = [p; c], symmetric and quasi-definite when the joint rows
 // are independent. `linear` eliminates it in frontier order in O(n) (PAPER.md §3); `dense` is
 // Moore's dense Gaussian elimination of the same matrix, O(n^3); `pgs` is projected Gauss-Seidel
 // over the same rows with a fixed iteration count (what game engines do: O(n) per sweep, inexact).
@@ -35,8 +36,11 @@ struct RowSystem
     int rowCount = 0;              // tree joint rows in all
 };
 
-// Evaluates masses and joint rows at a state (PAPER.md §2, §4). `system` keeps its storage.
-void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, RowSystem& system);
+// Evaluates masses and joint rows at a state (PAPER.md §2, §4), with the drive rows of a solve of
+// duration driveStep (s; 0 for an instantaneous impulse: drives give none, core/joints/drive.h).
+// `system` keeps its storage.
+void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
+                  RowSystem& system);
 
 // Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
 struct BlockVector

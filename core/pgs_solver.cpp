@@ -41,7 +41,8 @@ void PgsSolver::factor(const RowSystem& system)
             row.JB = rows.J_b.row(k).transpose();
             row.WA = parentMoves ? applyInverseMass(system, joint.parent, row.JA) : Vec6::Zero();
             row.WB = applyInverseMass(system, joint.child, row.JB);
-            const double diag = row.JA.dot(row.WA) + row.JB.dot(row.WB);
+            row.compliance = k >= rows.constraintRows ? rows.compliance(k) : 0.0;
+            const double diag = row.JA.dot(row.WA) + row.JB.dot(row.WB) + row.compliance;
             if (!(diag > 0.0))
             {
                 throw SingularJointError(joint.name,
@@ -77,8 +78,11 @@ void PgsSolver::solve(const BlockVector& rhs, BlockVector& solution)
             {
                 jv += row.JA.dot(solution.body[static_cast<std::size_t>(row.bodyA)]);
             }
-            const double delta = (rhs.joint[static_cast<std::size_t>(row.joint)](row.k) - jv) * row.invDiag;
-            solution.joint[static_cast<std::size_t>(row.joint)](row.k) += delta;
+            double& lambda = solution.joint[static_cast<std::size_t>(row.joint)](row.k);
+            const double delta =
+                (rhs.joint[static_cast<std::size_t>(row.joint)](row.k) - jv - row.compliance * lambda) *
+                row.invDiag;
+            lambda += delta;
             uB += delta * row.WB;
             if (row.bodyA >= 0)
             {

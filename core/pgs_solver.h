@@ -25,9 +25,10 @@ class PgsSolver final : public ImpulseSolver
         int k = 0;      // row within the joint
         int bodyA = -1; // -1: world/static
         int bodyB = 0;
-        Vec6 JA, JB;          // the row's Jacobian entries
-        Vec6 WA, WB;          // M^-1 J^T: velocity change per unit impulse
-        double invDiag = 0.0; // 1 / (J M^-1 J^T)
+        Vec6 JA, JB;             // the row's Jacobian entries
+        Vec6 WA, WB;             // M^-1 J^T: velocity change per unit impulse
+        double compliance = 0.0; // E of a drive row (J u + E lambda = c), 0 for conditions
+        double invDiag = 0.0;    // 1 / (J M^-1 J^T + E)
     };
     int mIterations;
     std::vector<Row> mRows;

@@ -2,6 +2,8 @@
 // schemes.
 #include "core/simulator.h"
 
+#include "core/joints/coordinates.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -53,6 +55,12 @@ bool finite(const Vec3& v)
 {
     return v.allFinite();
 }
+
+// One-sided rows that keep bodies apart (contacts, limits): what removePenetration projects.
+bool pushesApart(const ExtraBlock& block)
+{
+    return block.kind == ExtraBlock::Kind::Contact || block.kind == ExtraBlock::Kind::Limit;
+}
 } // namespace
 
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
@@ -81,6 +89,10 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
         if (joint.limits && (joint.type == JointType::Revolute || joint.type == JointType::Prismatic))
         {
             mLimitedJoints.push_back(static_cast<int>(k));
+        }
+        if (joint.friction > 0.0 && !jointCoordinates(joint.type).empty())
+        {
+            mFrictionJoints.push_back(static_cast<int>(k));
         }
     }
 }
@@ -132,6 +144,7 @@ void Simulator::stepEuler(State& state)
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
     carryAngularMomentum(state);
+    trackJointAngles(mModel, state);
     state.time += mDt;
     ++state.step;
     checkState(state, "end of step");
@@ -150,7 +163,7 @@ void Simulator::rowsAtStart(const State& state)
     }
     else
     {
-        assembleRows(mModel, mLayout, state, mRows);
+        assembleRows(mModel, mLayout, state, driveStep(), mRows);
     }
     mEndRowsValid = false;
 }
@@ -196,6 +209,7 @@ bool Simulator::stepRattle(State& state)
     carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
     kickByGravity(state, 0.5 * mDt);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
+    trackJointAngles(mModel, state);
     state.time += mDt;
     ++state.step;
     checkState(state, "end of step");
@@ -209,7 +223,7 @@ void Simulator::factorAtStart(const State& state)
 {
     if (!(mFactoredPoseValid && samePose(state, mFactoredPose)))
     {
-        assembleRows(mModel, mLayout, state, mRows);
+        assembleRows(mModel, mLayout, state, driveStep(), mRows);
         mSolver->factor(mRows);
     }
     mFactoredPoseValid = false;
@@ -229,6 +243,11 @@ void Simulator::projectVelocities(State& state)
     mEndBlocks = mLoopBlocks;
     for (const ExtraBlock& block : mExtra)
     {
+        if (block.kind == ExtraBlock::Kind::Drive)
+        {
+            mEndBlocks.push_back(block); // joint friction acts in both halves of the step
+            continue;
+        }
         if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
         {
             ExtraBlock normal = block;
@@ -401,6 +420,10 @@ void Simulator::buildExtraRows(const State& state)
             mExtra.back().target(0) = mExtra.back().error(0) / mDt; // the gap to the limit
         }
     }
+    for (int joint : mFrictionJoints)
+    {
+        appendFrictionBlocks(mModel, state, joint, driveStep(), mExtra);
+    }
     mStats.extraRows = layoutExtraRows(mExtra);
 }
 
@@ -420,6 +443,8 @@ void Simulator::buildLoopRows(const RowSystem& rows)
         block.J_A = r.J_a;
         block.J_B = r.J_b;
         block.error = r.error;
+        const int drives = r.count - r.constraintRows;
+        block.compliance.segment(r.constraintRows, drives) = r.compliance.segment(r.constraintRows, drives);
         block.source = k;
         mLoopBlocks.push_back(block);
     }
@@ -772,7 +797,7 @@ void Simulator::removePenetration(State& state)
     bool any = false;
     for (const ExtraBlock& block : mExtra)
     {
-        any = any || (block.kind != ExtraBlock::Kind::Loop && excessOf(block) > 0.0);
+        any = any || (pushesApart(block) && excessOf(block) > 0.0);
     }
     if (!any)
     {
@@ -784,6 +809,10 @@ void Simulator::removePenetration(State& state)
     rows.clear();
     for (const ExtraBlock& block : mExtra)
     {
+        if (block.kind == ExtraBlock::Kind::Drive)
+        {
+            continue; // joint friction has no position to restore
+        }
         ExtraBlock p = block;
         p.target.setZero();
         if (block.kind != ExtraBlock::Kind::Loop)
@@ -879,7 +908,7 @@ bool Simulator::stabilizeJoints(State& state)
     const bool rattle = mRattleStep;
     for (int iteration = 0;; ++iteration)
     {
-        assembleRows(mModel, mLayout, state, mRowsAfter);
+        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
         measureJointErrors(mRowsAfter);
         const double error = std::max(mStats.maxJointErrorM, mStats.maxJointErrorRad);
         if (error <= mOptions.stabilizationTolerance)
@@ -922,6 +951,7 @@ bool Simulator::stabilizeJoints(State& state)
         {
             // Loop rows join the projection exactly: their Delassus block, once per factorization.
             mSolver->delassus(mLoopBlocks, layoutExtraRows(mLoopBlocks), mLoopG);
+            addLoopCompliance();
             mLoopLdlt.compute(mLoopG);
             loopsFactored = true;
         }
@@ -973,6 +1003,15 @@ void Simulator::correctLoops()
     mSolver->applyExtraImpulses(mLoopBlocks, mu, mCorrection);
 }
 
+// Drive rows of loop joints are compliant in the projection too: G_loop gains E on their diagonal.
+void Simulator::addLoopCompliance()
+{
+    for (const ExtraBlock& loop : mLoopBlocks)
+    {
+        mLoopG.diagonal().segment(loop.offset, loop.count) += loop.compliance.head(loop.count);
+    }
+}
+
 // The angular momentum I_W(R_n) w that the step gave each body is kept through the rotation:
 // w_{n+1} = I_W(R_{n+1})^-1 I_W(R_n) w.
 void Simulator::carryAngularMomentum(State& state)
@@ -995,7 +1034,7 @@ void Simulator::carryAngularMomentum(State& state)
 std::pair<double, double> Simulator::jointErrors(const State& state)
 {
     mEndRowsValid = false; // mRowsAfter is about to hold other rows
-    assembleRows(mModel, mLayout, state, mRowsAfter);
+    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
     measureJointErrors(mRowsAfter);
     return {mStats.maxJointErrorM, mStats.maxJointErrorRad};
 }

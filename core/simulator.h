@@ -10,6 +10,9 @@
 // (PAPER.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
 // restitution above cRestitutionSpeed; penetration beyond a slop is removed by a separate
 // position projection (no velocity bias, so no bodies jump).
+// Joint damping is a compliant drive row in the joint's block of the factorization (implicit, so
+// stable for any value), Coulomb joint friction a bounded extra row (core/joints/drive.h). Each step
+// ends by continuing the joints' angles across +-pi (State::jointAngles), which limits read.
 // Velocity level (PAPER.md §5 "Time stepping"): u* = u + h M^-1 f, then the joint impulses
 // solve M u' = M u* + J^T lambda, J u' = 0 with the chosen solver. Positions: x += h v,
 // R = exp(h w) R (a rotation-vector update, so orientations stay unit).
@@ -29,6 +32,7 @@
 // with the factorization at q_{n+1}, which the next step reuses. Contacts, limits and impacts
 // are impulses of the first stage (first order across an impact, as any impulse method); contacts
 // and limits that pushed in the first stage keep pushing (one-sided) in the final projection.
+// Joint damping and friction act in both velocity stages, each over h/2.
 #pragma once
 
 #include "core/contact.h"
@@ -108,7 +112,7 @@ struct StepStats
     double maxJointErrorRad = 0.0;             // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
     int contacts = 0;      // contact points found this step
-    int extraRows = 0;     // contact, loop and limit rows this step
+    int extraRows = 0;     // contact, loop, limit and joint friction rows this step
     int contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem
     ContactRoute contactRoute = ContactRoute::None;
     double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
@@ -130,7 +134,8 @@ class Simulator
     const StepStats& lastStep() const { return mStats; }
     // Joint violations of a state (m, rad), without stepping.
     std::pair<double, double> jointErrors(const State& state);
-    // Joint impulses of the last step (per joint index; N s or N m s).
+    // Joint impulses of the last step (per joint index; N s or N m s), row by row as in JointRows:
+    // the joint's conditions, then its drive rows (the damping impulse, core/joints/drive.h).
     const LargeVector<Vec6>& jointImpulses() const { return mSolution.joint; }
 
   private:
@@ -154,6 +159,10 @@ class Simulator
     bool stabilizeJoints(State& state); // false: a rattle step stalled
     void buildLoopRows(const RowSystem& rows);
     void correctLoops();
+    void addLoopCompliance();
+    // Duration of one impulse solve (s): the step, or half of it for rattle, whose two velocity
+    // stages each take half of the joints' damping and friction (core/joints/drive.h).
+    double driveStep() const { return mRattleStep ? 0.5 * mDt : mDt; }
     void displacePositions(State& state, const BlockVector& displacement);
     void carryAngularMomentum(State& state);
     void measureJointErrors(const RowSystem& rows);
@@ -162,7 +171,7 @@ class Simulator
     StepOptions mOptions;
     ContactSource* mContactSource;
     std::vector<Contact> mContacts;
-    std::vector<ExtraBlock> mExtra; // contacts, loops, limits of this step
+    std::vector<ExtraBlock> mExtra; // contacts, loops, limits, joint friction of this step
     Eigen::MatrixXd mG;             // their Delassus matrix
     Eigen::VectorXd mExtraVelocity, mExtraLambda;
     ExtraSolveScratch mExtraScratch;
@@ -178,8 +187,9 @@ class Simulator
     std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, for the stabilization
     Eigen::MatrixXd mLoopG;
     Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
-    Eigen::VectorXd mLoopError;      // C of the loop rows (m, rad)
-    std::vector<int> mLimitedJoints; // joints with limits (revolute, prismatic)
+    Eigen::VectorXd mLoopError;       // C of the loop rows (m, rad)
+    std::vector<int> mLimitedJoints;  // joints with limits (revolute, prismatic)
+    std::vector<int> mFrictionJoints; // joints with Coulomb friction (a bounded drive row per coordinate)
     // Warm start: last step's contacts and their impulses (normal, two tangents; N s).
     std::vector<Contact> mPreviousContacts;
     std::vector<Vec3> mPreviousImpulses;

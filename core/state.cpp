@@ -20,6 +20,8 @@ State initialState(const Model& model)
         }
         state.bodies.push_back(s);
     }
+    // The joint frames are set at the model's initial pose (setJointFrames): every angle is 0.
+    state.jointAngles.assign(model.joints.size(), 0.0);
     return state;
 }
 

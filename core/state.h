@@ -21,6 +21,10 @@ struct State
     double time = 0.0; // s
     long step = 0;
     std::vector<BodyState> bodies; // one per Model::bodies entry, static ones included (never change)
+    // Per Model::joints entry: the rotation of revolute and cylindrical joints about their axis,
+    // continuous across +-pi (rad, 0 at the model's initial pose; core/joints/coordinates.h); 0
+    // for the other types. Part of the state so that copies and restarts of a step agree.
+    std::vector<double> jointAngles;
 };
 
 State initialState(const Model& model);

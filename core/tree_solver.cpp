@@ -293,6 +293,10 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
         {
             info.flags |= cChildIsJointChild;
         }
+        if (edge && block.driveRows > 0)
+        {
+            info.flags |= cDriven;
+        }
         if (mSeen[b])
         {
             info.flags |= cHasChildren;
@@ -428,6 +432,16 @@ void TreeSolver::eliminate(std::size_t b)
             throw SingularJointError(body.name, msg.str());
         }
         return;
+    }
+    if (info.flags & cDriven)
+    {
+        // Drive rows (core/joints/drive.h): J u + E lambda = c puts -E on the KKT diagonal, so the
+        // pivot -D_e = J D_child^-1 J^T that the child node left gains +E.
+        const JointRows& rows = system.joints[index];
+        for (int r = rows.constraintRows; r < rows.count; ++r)
+        {
+            own[tri(info.dim, r, r)] += rows.compliance(r);
+        }
     }
     // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
     // the joint is the one its child node is not on.

@@ -6,8 +6,9 @@
 //   §3 step 2 (eliminate):  D_p -= H_bp^T D_b^-1 H_bp,  keeping L_b = D_b^-1 H_bp
 //   §3 step 3 (back substitute): forward z_p -= L_b^T z_b; x_b = D_b^-1 z_b; backward x_b -= L_b x_p
 // Node pivots stay positive definite (M plus J^T S^-1 J terms), edge pivots negative definite
-// (-J D^-1 J^T), so no pivoting is needed; a pivot that vanishes means dependent or degenerate
-// joint rows and is reported with the joint's name (PAPER.md §3 "Pivots").
+// (-J D^-1 J^T, minus the compliance of drive rows, core/joints/drive.h), so no pivoting is needed; a pivot
+// that vanishes means dependent or degenerate joint rows and is reported with the joint's name (PAPER.md §3
+// "Pivots").
 //
 // Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (a packed
 // dim x dim lower triangle) and L_b (dim x dim_p) at their real sizes, in layout order in one
@@ -67,6 +68,7 @@ class TreeSolver final : public ImpulseSolver
     static constexpr std::uint8_t cFirstChild = 4;        // the first (in layout order) child of its parent
     static constexpr std::uint8_t cChildIsJointChild = 8; // edge: its child node is the joint's child
                                                           // body (LayoutBlock::childIsJointChild)
+    static constexpr std::uint8_t cDriven = 16;           // edge: ends with compliant drive rows
 
     LargeVector<BlockInfo> mBlocks; // layout order
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:

@@ -12,8 +12,8 @@ namespace frontier::io::detail
 namespace
 {
 
-const std::vector<std::string> cJointKeys = {"name",   "type", "parent", "child",
-                                             "anchor", "axis", "limits", "collide"};
+const std::vector<std::string> cJointKeys = {"name", "type",   "parent",  "child",    "anchor",
+                                             "axis", "limits", "damping", "friction", "collide"};
 const std::vector<std::string> cJointTypes = {"ball",        "nail",      "revolute", "angle",
                                               "cylindrical", "prismatic", "fixed"};
 
@@ -23,9 +23,26 @@ bool needsAxis(core::JointType type)
            type == core::JointType::Cylindrical || type == core::JointType::Prismatic;
 }
 
+// Limits, damping and friction act on the one coordinate of these types (core/joints/coordinates.h).
 bool hasLimits(core::JointType type)
 {
     return type == core::JointType::Revolute || type == core::JointType::Prismatic;
+}
+
+// `damping:` (N m s/rad or N s/m) and `friction:` (N m or N) of a joint's coordinate, >= 0.
+void readJointForces(const MapNode& map, const std::string& typeName, core::Joint& joint)
+{
+    const bool turns = joint.type == core::JointType::Revolute;
+    for (const std::string key : {"damping", "friction"})
+    {
+        if (map.has(key) && !hasLimits(joint.type))
+        {
+            map.failAtKey(key, map.context() + " of type " + typeName + " takes no '" + key +
+                                   "' (only revolute and prismatic joints do)");
+        }
+    }
+    joint.damping = map.optNonNegative("damping", turns ? "(N m s/rad)" : "(N s/m)").value_or(0.0);
+    joint.friction = map.optNonNegative("friction", turns ? "(N m)" : "(N)").value_or(0.0);
 }
 
 void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
@@ -116,6 +133,7 @@ void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
         }
         joint.limits = std::array<double, 2>{limits[0], limits[1]};
     }
+    readJointForces(map, typeName, joint);
     joint.collideConnected = map.optBool("collide").value_or(false);
     core::setJointFrames(model, joint, anchor, axis);
     builder.jointMarks[joint.name] = nameNode.Mark();

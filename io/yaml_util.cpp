@@ -293,6 +293,17 @@ std::optional<double> MapNode::optPositive(const std::string& key) const
     return entry ? std::optional(toPositive(*mSource, entry->value, what(key))) : std::nullopt;
 }
 
+std::optional<double> MapNode::optNonNegative(const std::string& key, const std::string& unit) const
+{
+    const std::optional<double> value = optNumber(key);
+    if (value && !(*value >= 0.0))
+    {
+        failAtValue(key, "expected a number >= 0 for " + what(key) + (unit.empty() ? "" : " " + unit) +
+                             ", got " + describeNode(get(key)));
+    }
+    return value;
+}
+
 std::optional<int> MapNode::optInteger(const std::string& key) const
 {
     const Entry* entry = find(key);

@@ -78,6 +78,8 @@ class MapNode
     double number(const std::string& key) const { return toNumber(*mSource, require(key), what(key)); }
     std::optional<double> optNumber(const std::string& key) const;
     std::optional<double> optPositive(const std::string& key) const;
+    // A finite number >= 0; `unit` ends the message ("(N m s/rad)"), may be empty.
+    std::optional<double> optNonNegative(const std::string& key, const std::string& unit = "") const;
     std::optional<int> optInteger(const std::string& key) const;
     std::optional<bool> optBool(const std::string& key) const;
     std::string string(const std::string& key) const { return toString(*mSource, require(key), what(key)); }

@@ -6,9 +6,8 @@
 namespace frontier::core::detail
 {
 
-void writeBallJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+void writeBallJoint(const Joint& /*joint*/, const JointPose& /*pose*/, const JointGeometry& g, JointRows& out)
 {
-    const JointGeometry g = jointGeometry(joint, pose);
     out.positionRows = 3;
     out.count = writeBallRows(g, out, 0);
 }

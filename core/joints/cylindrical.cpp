@@ -7,9 +7,9 @@
 namespace frontier::core::detail
 {
 
-void writeCylindricalJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+void writeCylindricalJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g,
+                           JointRows& out)
 {
-    const JointGeometry g = jointGeometry(joint, pose);
     const int row = writeSlidingRows(joint, g, out, 0);
     out.positionRows = 2;
     out.count = writeAxisAlignmentRows(joint, g, out, row);

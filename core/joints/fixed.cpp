@@ -5,9 +5,8 @@
 namespace frontier::core::detail
 {
 
-void writeFixedJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out)
 {
-    const JointGeometry g = jointGeometry(joint, pose);
     const int row = writeBallRows(g, out, 0);
     out.positionRows = 3;
     out.count = writeWeldRotationRows(joint, pose, out, row);

@@ -118,29 +118,36 @@ int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, in
 
 void evaluateJoint(const Joint& joint, const JointPose& pose, bool parentMoves, JointRows& out)
 {
+    evaluateJoint(joint, pose, detail::jointGeometry(joint, pose), parentMoves, out);
+}
+
+void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
+                   bool parentMoves, JointRows& out)
+{
     using namespace detail;
     switch (joint.type)
     {
     case JointType::Ball:
     case JointType::Nail:
-        writeBallJoint(joint, pose, out);
+        writeBallJoint(joint, pose, g, out);
         break;
     case JointType::Revolute:
-        writeRevoluteJoint(joint, pose, out);
+        writeRevoluteJoint(joint, pose, g, out);
         break;
     case JointType::Angle:
-        writeAngleJoint(joint, pose, out);
+        writeAngleJoint(joint, pose, g, out);
         break;
     case JointType::Cylindrical:
-        writeCylindricalJoint(joint, pose, out);
+        writeCylindricalJoint(joint, pose, g, out);
         break;
     case JointType::Prismatic:
-        writePrismaticJoint(joint, pose, out);
+        writePrismaticJoint(joint, pose, g, out);
         break;
     case JointType::Fixed:
-        writeFixedJoint(joint, pose, out);
+        writeFixedJoint(joint, pose, g, out);
         break;
     }
+    out.constraintRows = out.count;
     if (!parentMoves)
     {
         out.J_a.setZero();

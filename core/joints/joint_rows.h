@@ -6,6 +6,8 @@
 // and the joint impulse body a receives is J_a^T lambda, body b J_b^T lambda (N s, N m s).
 // Each row is the exact time derivative of a position-level condition C(q) = 0, so the same
 // rows drive the velocity solve and the drift correction; `error` holds C (m or rad).
+// A joint's block may end with drive rows (core/joints/drive.h): compliant rows on its
+// coordinates, J u + E lambda = c, with no position condition (error 0).
 #pragma once
 
 #include "core/model.h"
@@ -23,11 +25,15 @@ using JacobianRows = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 
 struct JointRows
 {
-    int count = 0;        // r_k, 3..6
-    int positionRows = 0; // rows 0..positionRows-1 are positions (m), the rest angles (rad)
+    int count = 0;          // rows of the joint's block, 3..6: its conditions, then its drive rows
+    int constraintRows = 0; // rows 0..constraintRows-1 are the conditions C(q) = 0 (PAPER.md §4)
+    int positionRows = 0;   // rows 0..positionRows-1 are positions (m), the rest angles (rad)
     JacobianRows J_a = JacobianRows::Zero(); // rows 0..count-1 used; zero for a world parent
     JacobianRows J_b = JacobianRows::Zero();
-    Vec6 error = Vec6::Zero(); // C(q): position-level violation of each row (m or rad)
+    Vec6 error = Vec6::Zero(); // C(q): position-level violation of each row (m or rad); 0 for drive rows
+    // Drive rows (constraintRows..count-1): compliance E of J u + E lambda = c, (m/s)/(N s) or
+    // (rad/s)/(N m s); entries of constraint rows are not read.
+    Vec6 compliance = Vec6::Zero();
 };
 
 // Pose of the two bodies of a joint. For a world parent, the parent pose is the identity; for a
@@ -40,8 +46,9 @@ struct JointPose
     Quat q_b = Quat::Identity();
 };
 
-// Fills rows for the joint's type at the given pose. parentMoves: false for world/static parents
-// (J_a is then left zero).
+// Fills the condition rows for the joint's type at the given pose (count = constraintRows; drive
+// rows are appended by writeDriveRows, core/joints/drive.h). parentMoves: false for world/static
+// parents (J_a is then left zero).
 void evaluateJoint(const Joint& joint, const JointPose& pose, bool parentMoves, JointRows& out);
 
 namespace detail
@@ -63,12 +70,18 @@ int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out,
 int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& out, int row);
 int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, int row);
 
-void writeBallJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeRevoluteJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeAngleJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeCylindricalJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writePrismaticJoint(const Joint& joint, const JointPose& pose, JointRows& out);
-void writeFixedJoint(const Joint& joint, const JointPose& pose, JointRows& out);
+// Per type; g = jointGeometry(joint, pose).
+void writeBallJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeRevoluteJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeAngleJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeCylindricalJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
+void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out);
 } // namespace detail
+
+// evaluateJoint with the joint's geometry at that pose at hand (detail::jointGeometry), which the
+// drive rows reuse.
+void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
+                   bool parentMoves, JointRows& out);
 
 } // namespace frontier::core

@@ -6,9 +6,8 @@
 namespace frontier::core::detail
 {
 
-void writePrismaticJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out)
 {
-    const JointGeometry g = jointGeometry(joint, pose);
     const int row = writeSlidingRows(joint, g, out, 0);
     out.positionRows = 2;
     out.count = writeWeldRotationRows(joint, pose, out, row);

@@ -7,9 +7,8 @@
 namespace frontier::core::detail
 {
 
-void writeRevoluteJoint(const Joint& joint, const JointPose& pose, JointRows& out)
+void writeRevoluteJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, JointRows& out)
 {
-    const JointGeometry g = jointGeometry(joint, pose);
     const int row = writeBallRows(g, out, 0);
     out.positionRows = 3;
     out.count = writeAxisAlignmentRows(joint, g, out, row);

@@ -116,5 +116,38 @@ TEST(Info, TextModeRuns)
     EXPECT_NE(r.out.find("degrees of freedom: 32"), std::string::npos) << r.out;
 }
 
+// Damping and friction are shown for the joints that have them, and only there.
+TEST(Info, ShowsJointDampingAndFriction)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("damped.yaml", R"(
+bodies:
+  - {name: rod, shape: {type: box, size: [0.5, 0.04, 0.04]}, mass: 1, position: [0.25, 0, 1]}
+  - {name: slider, shape: {type: box, size: [0.1, 0.1, 0.1]}, mass: 2, position: [0, 1, 1]}
+  - {name: ball, shape: {type: sphere, radius: 0.1}, mass: 1, position: [0, 2, 1]}
+joints:
+  - {name: hinge, type: revolute, parent: world, child: rod, anchor: [0, 0, 1], axis: [0, 1, 0], damping: 0.25, friction: 0.5}
+  - {name: rail, type: prismatic, parent: world, child: slider, anchor: [0, 1, 1], axis: [1, 0, 0], friction: 3}
+  - {name: pin, type: ball, parent: world, child: ball, anchor: [0, 2, 1.1]}
+)");
+    const Result json = dir.run("info " + scene + " --json");
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    const nlohmann::json info = nlohmann::json::parse(json.out);
+    const nlohmann::json& joints = info.at("joints");
+    ASSERT_EQ(joints.size(), 3u);
+    EXPECT_EQ(joints[0].at("damping").get<double>(), 0.25);
+    EXPECT_EQ(joints[0].at("friction").get<double>(), 0.5);
+    EXPECT_FALSE(joints[1].contains("damping"));
+    EXPECT_EQ(joints[1].at("friction").get<double>(), 3.0);
+    EXPECT_FALSE(joints[2].contains("damping"));
+    EXPECT_FALSE(joints[2].contains("friction"));
+
+    const Result text = dir.run("info " + scene);
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("damping 0.25 N m s/rad  friction 0.5 N m"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("rail  prismatic (5 rows)  world -> slider  friction 3 N\n"), std::string::npos)
+        << text.out;
+}
+
 } // namespace
 } // namespace frontier::app::test

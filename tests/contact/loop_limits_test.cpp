@@ -3,6 +3,7 @@
 #include "contact_harness.h"
 #include "core/extra_rows.h"
 #include "core/frontier_order.h"
+#include "core/joints/coordinates.h"
 
 #include <cstdio>
 #include <fstream>

@@ -266,7 +266,7 @@ TEST(CollisionResponse, StickingChainMatchesOneDenseSystemWithTheCollisionRows)
 
     const core::FrontierLayout layout = core::buildFrontierLayout(model);
     core::RowSystem system;
-    core::assembleRows(model, layout, hit.state, system);
+    core::assembleRows(model, layout, hit.state, 0.0, system);
     const Eigen::MatrixXd a = core::DenseSolver::assemble(system);
     const int n = layout.size;
     Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n + 3, n + 3);

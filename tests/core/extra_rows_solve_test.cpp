@@ -360,4 +360,74 @@ TEST(ExtraRowsSolve, ImpulsesInTheRightHandSideEqualAppliedImpulses)
     EXPECT_LE((velocity - expected).cwiseAbs().maxCoeff(), 1e-10 * expected.cwiseAbs().maxCoeff());
 }
 
+// Drive rows (joint friction, core/joints/drive.h): one row J u + E lambda = target with
+// |lambda| <= bound. Alone, its impulse is the closed form clamp((target - v_free) / (G + E),
+// -bound, bound), after one sweep; coupled to others (two rows of one body), the result meets each
+// row's condition: inside its bound exactly, on it from the side it pushes.
+TEST(ExtraRowsSolve, DriveRowsTakeTheClampedClosedFormImpulse)
+{
+    struct Case
+    {
+        double compliance, target, free, bound;
+    };
+    const double g = 0.7; // (rad/s) / (N m s)
+    for (const Case c : {Case{0.0, 0.0, 2.0, 10.0}, Case{0.0, 0.0, 2.0, 1.0}, Case{0.0, 0.0, -2.0, 1.0},
+                         Case{0.5, 0.3, -1.0, 10.0}, Case{0.5, 0.3, -1.0, 0.2}})
+    {
+        std::vector<core::ExtraBlock> blocks(1);
+        blocks[0].kind = core::ExtraBlock::Kind::Drive;
+        blocks[0].count = 1;
+        blocks[0].bodyB = 0;
+        blocks[0].compliance(0) = c.compliance;
+        blocks[0].target(0) = c.target;
+        blocks[0].bound = c.bound;
+        core::layoutExtraRows(blocks);
+        const Eigen::MatrixXd G = Eigen::MatrixXd::Constant(1, 1, g);
+        const Eigen::VectorXd free = Eigen::VectorXd::Constant(1, c.free);
+        Eigen::VectorXd lambda = Eigen::VectorXd::Zero(1);
+        core::ExtraSolveScratch scratch;
+        const core::ExtraSolveStats stats =
+            core::solveExtraRows(blocks, G, free, core::ExtraSolveSettings{}, lambda, scratch);
+        const double expected = std::clamp((c.target - c.free) / (g + c.compliance), -c.bound, c.bound);
+        EXPECT_NEAR(lambda(0), expected, 1e-15 * std::abs(expected))
+            << "free " << c.free << ", bound " << c.bound;
+        EXPECT_TRUE(stats.converged);
+        EXPECT_EQ(stats.sweeps, 1);
+        EXPECT_LE(core::conditionResidual(blocks, scratch.velocity, lambda), 1e-15);
+    }
+}
+
+TEST(ExtraRowsSolve, CoupledDriveRowsMeetTheirConditions)
+{
+    // Two drive rows of one body with G = [[2, 1], [1, 3]]: the first sticks (its bound is large),
+    // the second slides on its bound.
+    std::vector<core::ExtraBlock> blocks(2);
+    for (core::ExtraBlock& block : blocks)
+    {
+        block.kind = core::ExtraBlock::Kind::Drive;
+        block.count = 1;
+        block.bodyB = 0;
+    }
+    blocks[0].bound = 100.0;
+    blocks[1].bound = 0.25;
+    core::layoutExtraRows(blocks);
+    Eigen::MatrixXd G(2, 2);
+    G << 2.0, 1.0, 1.0, 3.0;
+    const Eigen::VectorXd free = Eigen::Vector2d(1.0, 4.0);
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(2);
+    core::ExtraSolveScratch scratch;
+    core::ExtraSolveSettings settings;
+    settings.velocityTolerance = 1e-13;
+    settings.tolerance = 0.0;
+    settings.maxSweeps = 200;
+    const core::ExtraSolveStats stats = core::solveExtraRows(blocks, G, free, settings, lambda, scratch);
+    ASSERT_TRUE(stats.converged);
+    // Row 1 on its lower bound; row 0 then sticks: 2 l0 + 1 (-0.25) = -1.
+    EXPECT_DOUBLE_EQ(lambda(1), -0.25);
+    EXPECT_NEAR(lambda(0), (-1.0 + 0.25) / 2.0, 1e-13);
+    const Eigen::VectorXd v = free + G * lambda;
+    EXPECT_NEAR(v(0), 0.0, 1e-13);
+    EXPECT_GT(v(1), 0.0) << "still sliding forward, against the friction";
+}
+
 } // namespace frontier::test

@@ -178,7 +178,7 @@ std::unique_ptr<Problem> makeProblem(const Model& model)
     auto problem = std::make_unique<Problem>();
     problem->layout = core::buildFrontierLayout(model);
     problem->state = core::initialState(model);
-    core::assembleRows(model, problem->layout, problem->state, problem->system);
+    core::assembleRows(model, problem->layout, problem->state, model.simulation.dt, problem->system);
     return problem;
 }
 

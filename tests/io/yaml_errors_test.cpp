@@ -211,17 +211,52 @@ TEST(YamlErrors, JointParentEqualsChild)
     EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12, "joins body 'upper' to itself");
 }
 
-TEST(YamlErrors, LimitsOnAJointTypeWithoutLimits)
+// Limits, damping and friction act on a joint's one coordinate: a ball joint has none.
+TEST(YamlErrors, LimitsDampingOrFrictionOnAJointTypeWithoutACoordinate)
 {
-    const InputError e = yamlError(withJoints(R"(
-  - name: j
-    type: ball
-    parent: world
-    child: upper
-    anchor: [0, 0, 1.5]
-    limits: [-1, 1]
-)"));
-    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 17, 5, "joint 'j' of type ball takes no 'limits'");
+    for (const std::string line : {"limits: [-1, 1]", "damping: 0.1", "friction: 0.1"})
+    {
+        const std::string key = line.substr(0, line.find(':'));
+        const std::string joint = "  - name: j\n    type: ball\n    parent: world\n    child: upper\n"
+                                  "    anchor: [0, 0, 1.5]\n    " +
+                                  line + "\n";
+        const InputError e = yamlError(text(cJointBase) + joint);
+        EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 17, 5,
+                              "joint 'j' of type ball takes no '" + key +
+                                  "' (only revolute and prismatic joints do)");
+    }
+}
+
+// A hinge or a rail with one bad `damping:` or `friction:` line (line 18, the value at the key's
+// length + 7): the message names the key, the joint, the unit and what was found.
+TEST(YamlErrors, NegativeOrNonNumericDampingAndFriction)
+{
+    struct Case
+    {
+        const char* type;
+        const char* line;
+        int column;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"revolute", "damping: -0.5", 14,
+         "expected a number >= 0 for 'damping' in joint 'j' (N m s/rad), got '-0.5'"},
+        {"revolute", "friction: -1", 15,
+         "expected a number >= 0 for 'friction' in joint 'j' (N m), got '-1'"},
+        {"prismatic", "damping: -3", 14,
+         "expected a number >= 0 for 'damping' in joint 'j' (N s/m), got '-3'"},
+        {"prismatic", "friction: -2", 15, "expected a number >= 0 for 'friction' in joint 'j' (N), got '-2'"},
+        {"prismatic", "damping: lots", 14, "expected a number for 'damping' in joint 'j', got 'lots'"},
+    };
+    for (const Case& c : cases)
+    {
+        const std::string joint = std::string("  - name: j\n    type: ") + c.type +
+                                  "\n    parent: world\n    child: upper\n    anchor: [0, 0, 1.5]\n"
+                                  "    axis: [0, 1, 0]\n    " +
+                                  c.line + "\n";
+        const InputError e = yamlError(text(cJointBase) + joint);
+        EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 18, c.column, c.message);
+    }
 }
 
 TEST(YamlErrors, LimitsLowerAboveUpper)

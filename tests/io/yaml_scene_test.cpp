@@ -38,7 +38,7 @@ bodies:
     orientation: [2, 0, 0, 0]
     group: arm
 joints:
-  - {name: shoulder, type: revolute, parent: floor, child: upper, anchor: [0, 0, 2], axis: [0, 3, 0], limits: [-1.5, 0.5]}
+  - {name: shoulder, type: revolute, parent: floor, child: upper, anchor: [0, 0, 2], axis: [0, 3, 0], limits: [-1.5, 0.5], damping: 0.3, friction: 0.05}
   - {name: elbow, type: ball, parent: upper, child: lower, anchor: [0, 0, 1.5], collide: true}
   - {name: weld, type: fixed, parent: world, child: lower}
 )";
@@ -98,10 +98,14 @@ TEST(YamlScene, EverySectionIsRead)
     EXPECT_LT((upper.orientation_WB * shoulder.axisChild - core::Vec3(0, 1, 0)).norm(), 1e-15);
     ASSERT_TRUE(shoulder.limits.has_value());
     EXPECT_EQ(*shoulder.limits, (std::array<double, 2>{-1.5, 0.5}));
+    EXPECT_EQ(shoulder.damping, 0.3);
+    EXPECT_EQ(shoulder.friction, 0.05);
     EXPECT_FALSE(shoulder.collideConnected);
 
     const core::Joint& elbow = model.joints[1];
     EXPECT_EQ(elbow.type, core::JointType::Ball);
+    EXPECT_EQ(elbow.damping, 0.0);
+    EXPECT_EQ(elbow.friction, 0.0);
     EXPECT_TRUE(elbow.collideConnected);
     EXPECT_LT((elbow.anchorParent - core::Vec3(0, 0, -0.25)).norm(), 1e-15);
     EXPECT_LT((elbow.anchorChild - core::Vec3(0, 0, 0.25)).norm(), 1e-15);
