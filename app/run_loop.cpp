@@ -74,6 +74,10 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     {
         summary.finite = false;
         summary.failure = error.what();
+        // The failing step detected its contacts before it failed: a run that fails at step 0
+        // still reports the overlap it started with.
+        summary.maxPenetrationM = std::max(summary.maxPenetrationM, simulator.lastStep().maxPenetrationM);
+        summary.maxContacts = std::max(summary.maxContacts, simulator.lastStep().contacts);
     }
     summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary.energyFinalJ = core::totalEnergy(model, state);

@@ -2,7 +2,9 @@
 // schemes.
 #include "core/simulator.h"
 
+#include "core/failure_hint.h"
 #include "core/joints/coordinates.h"
+#include "core/penetration.h"
 
 #include <algorithm>
 #include <array>
@@ -110,11 +112,13 @@ void Simulator::step(State& state)
     }
     mStepStart = state;
     mEndRowsValid = false; // the rattle projection swaps mRowsAfter away
+    const bool penetrationCapped = mPenetrationCapped;
     if (!stepRattle(state))
     {
         // RATTLE's position iteration stalled (very fast rotation within the step): this step is
         // taken again from its start by the robust first-order scheme.
         state = mStepStart;
+        mPenetrationCapped = penetrationCapped;
         mRattleStep = false;
         mFactoredPoseValid = false;
         stepEuler(state);
@@ -132,6 +136,7 @@ void Simulator::stepEuler(State& state)
     computeFreeVelocities(state, mDt);
     rowsAtStart(state);
     buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
+    recordStartDefects(state);
     setMomentumRhs(state);
     carryImpulses(); // the last step's impulses on those rows join the right-hand side
     // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
@@ -195,6 +200,7 @@ bool Simulator::stepRattle(State& state)
     factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
     clock.lap(StepStage::Factor);
     buildExtraRows(state);
+    recordStartDefects(state);
     setMomentumRhs(state);
     carryImpulses();
     mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
@@ -283,6 +289,50 @@ void Simulator::projectVelocities(State& state)
     }
 }
 
+// The first step's contacts and limit rows tell whether the scene started with bodies deep inside
+// each other or a joint beyond its limit (core/failure_hint.h).
+void Simulator::recordStartDefects(const State& state)
+{
+    if (!mStartRecorded)
+    {
+        mStartDefects = findStartDefects(mContacts, mExtra, mModel, state);
+        mStartRecorded = true;
+    }
+}
+
+// The hint of a failure at this state: the start defects while their recovery (at most
+// penetrationMaxSpeed, penetrationMaxAngularSpeed) could still be under way, with some steps to
+// spare, or while they are still there; else a smaller step when a body turned far within the
+// failing step.
+std::string Simulator::likelyCause(const State& state) const
+{
+    constexpr double cSpareSteps = 10.0;
+    const double recoverySteps =
+        cSpareSteps + mStartDefects.overlapM / (mOptions.penetrationMaxSpeed * mDt) +
+        mStartDefects.limitExcess /
+            (std::min(mOptions.penetrationMaxSpeed, mOptions.penetrationMaxAngularSpeed) * mDt);
+    bool stillThere = mStats.maxPenetrationM > cDeepOverlap;
+    for (const ExtraBlock& block : mExtra)
+    {
+        stillThere =
+            stillThere || (block.kind == ExtraBlock::Kind::Limit &&
+                           block.source == mStartDefects.limitJoint && block.error(0) > cDeepOverlap);
+    }
+    double rotation = 0.0;
+    int fastest = -1;
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        const double turn = mStart[i].angularVelocity_W.norm() * mDt;
+        if (!mModel.bodies[i].isStatic && turn > rotation)
+        {
+            rotation = turn;
+            fastest = static_cast<int>(i);
+        }
+    }
+    const bool recovering = stillThere || static_cast<double>(state.step) <= recoverySteps;
+    return failureHint(mModel, mStartDefects, recovering, rotation, fastest);
+}
+
 void Simulator::checkState(const State& state, const char* where) const
 {
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -310,7 +360,8 @@ void Simulator::checkState(const State& state, const char* where) const
             std::ostringstream msg;
             msg << "simulation blew up at step " << state.step << " (t = " << state.time << " s, " << where
                 << "): body '" << mModel.bodies[i].name << "' has a non-finite or runaway " << quantity
-                << " (limits " << cMaxSpeed << " m/s, " << cMaxAngularSpeed << " rad/s)";
+                << " (limits " << cMaxSpeed << " m/s, " << cMaxAngularSpeed << " rad/s)"
+                << likelyCause(state);
             throw SimulationError(msg.str());
         }
     }
@@ -779,9 +830,14 @@ void Simulator::displacePositions(State& state, const BlockVector& displacement)
 // Penetration beyond the slop (contacts) or past a limit, predicted at the end of the step, is
 // removed by a displacement H^-1 J^T mu (through the joints, so they stay together) with mu >= 0:
 // a position projection that leaves velocities, and so kinetic energy, unchanged. Loop joints
-// ride along as bilateral rows with target 0.
+// ride along as bilateral rows with target 0. It is bounded (core/penetration.h): rows the joints
+// hold are left alone, and a step moves no body faster than penetrationMaxSpeed nor turns it
+// faster than penetrationMaxAngularSpeed (deep overlaps come out over several steps); a
+// displacement that turns bodies puts their joints back by displacement too (restoreJoints).
 void Simulator::removePenetration(State& state)
 {
+    const bool wasCapped = mPenetrationCapped;
+    mPenetrationCapped = false; // set again below when this step's displacement is capped
     if (mStats.extraRows == 0)
     {
         return;
@@ -803,10 +859,12 @@ void Simulator::removePenetration(State& state)
     {
         return;
     }
+    buildDelassus();
     std::vector<ExtraBlock>& blocks = mPenetrationBlocks;
     std::vector<int>& rows = mPenetrationRows;
     blocks.clear();
     rows.clear();
+    any = false;
     for (const ExtraBlock& block : mExtra)
     {
         if (block.kind == ExtraBlock::Kind::Drive)
@@ -817,8 +875,15 @@ void Simulator::removePenetration(State& state)
         p.target.setZero();
         if (block.kind != ExtraBlock::Kind::Loop)
         {
+            // A row the joints hold: no displacement they allow moves it (its G_ii is round-off).
+            if (heldByJoints(block, mG(block.offset, block.offset), mRows, mPrincipal,
+                             mOptions.penetrationHeldRatio))
+            {
+                continue;
+            }
             p.count = 1;
             p.target(0) = std::max(0.0, excessOf(block));
+            any = any || p.target(0) > 0.0;
         }
         for (int k = 0; k < p.count; ++k)
         {
@@ -826,8 +891,11 @@ void Simulator::removePenetration(State& state)
         }
         blocks.push_back(p);
     }
+    if (!any)
+    {
+        return;
+    }
     const int n = layoutExtraRows(blocks);
-    buildDelassus();
     mPenetrationG = mG(rows, rows); // the normal, limit and loop rows of the step's G
     mPenetrationFree.setZero(n);
     mPenetrationImpulse.setZero(n);
@@ -838,7 +906,67 @@ void Simulator::removePenetration(State& state)
                    &mPenetrationCoupling);
     mCorrection.setZero();
     mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
+    const double scale = displacementScale(mModel, mCorrection, mOptions.penetrationMaxSpeed * mDt,
+                                           mOptions.penetrationMaxAngularSpeed * mDt);
+    if (scale < 1.0)
+    {
+        for (Vec6& d : mCorrection.body)
+        {
+            d *= scale;
+        }
+    }
+    // A recovery (its capped steps, and the one that finishes it) keeps the joints by displacement.
+    const bool recovering = scale < 1.0 || wasCapped;
+    mPenetrationCapped = scale < 1.0;
+    if (recovering || largestRotation(mModel, mCorrection) > cRestoreRotation)
+    {
+        restoreJoints(state);
+        return;
+    }
     displacePositions(state, mCorrection);
+}
+
+// Applies the penetration displacement (mCorrection) and puts the joints back as they were. The
+// displacement keeps them to first order only: turning a body by theta leaves a joint at lever L
+// about theta^2 L / 2 apart, which stabilizeJoints would remove with a velocity (C / h), adding
+// kinetic energy. Here the tree joints' conditions are driven back to their values before the
+// displacement by further displacements H^-1 J^T nu (J d = -(C - C_before)), on the step's
+// factorization; velocities are not touched. Loop joints are left to stabilizeJoints.
+void Simulator::restoreJoints(State& state)
+{
+    constexpr int cRestoreIterations = 10;
+    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+    mJointErrorBefore.resize(mModel.joints.size());
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        mJointErrorBefore[k] = mRowsAfter.joints[k].error;
+    }
+    displacePositions(state, mCorrection);
+    for (int iteration = 0; iteration < cRestoreIterations; ++iteration)
+    {
+        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+        double worst = 0.0;
+        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+        {
+            const JointRows& r = mRowsAfter.joints[k];
+            mRhs.joint[k] = -(r.error - mJointErrorBefore[k]);
+            if (!std::binary_search(mLayout.loopJoints.begin(), mLayout.loopJoints.end(),
+                                    static_cast<int>(k)))
+            {
+                worst = std::max(worst, mRhs.joint[k].head(r.count).cwiseAbs().maxCoeff());
+            }
+        }
+        if (worst <= mOptions.stabilizationTolerance)
+        {
+            break;
+        }
+        for (Vec6& p : mRhs.body)
+        {
+            p.setZero();
+        }
+        mSolver->solve(mRhs, mCorrection);
+        displacePositions(state, mCorrection);
+    }
 }
 
 // x_{n+1} = x_n + h v_{n+1}, from the start-of-step pose. Rotation: euler R_{n+1} = exp(h w) R_n;
@@ -934,7 +1062,7 @@ bool Simulator::stabilizeJoints(State& state)
                     << mModel.bodies[static_cast<std::size_t>(joint.child)].name << "' came off " << parent
                     << " at joint '" << joint.name << "': joint " << (positional ? "position" : "orientation")
                     << " error " << error << (positional ? " m" : " rad")
-                    << " after the correction did not converge; try a smaller --dt";
+                    << " after the correction did not converge" << likelyCause(state);
                 throw SimulationError(msg.str());
             }
             break;

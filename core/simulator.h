@@ -36,6 +36,7 @@
 #pragma once
 
 #include "core/contact.h"
+#include "core/failure_hint.h"
 #include "core/free_rotation.h"
 #include "core/impulse_solver.h"
 
@@ -67,8 +68,18 @@ struct StepOptions
 {
     double stabilizationTolerance = 1e-10; // m (rad for angular rows)
     int stabilizationIterations = 40;
-    double restitutionSpeed = 0.1;   // m/s: slower impacts do not bounce, so things come to rest
-    double penetrationSlop = 5e-4;   // m: overlap left to the next steps' contacts, not projected
+    double restitutionSpeed = 0.1; // m/s: slower impacts do not bounce, so things come to rest
+    double penetrationSlop = 5e-4; // m: overlap left to the next steps' contacts, not projected
+    // Bounds of the penetration projection (core/penetration.h): a step displaces no body by more
+    // than penetrationMaxSpeed * dt nor turns it by more than penetrationMaxAngularSpeed * dt, so
+    // deep overlaps come out over several steps (at 1 ms: 5 mm and 0.02 rad a step; the bundled
+    // scenes' projections stay below 1 m/s and 4.7 rad/s at 1 ms, 2 m/s and 13.4 rad/s at 1/30 s).
+    // A row whose Delassus diagonal is below penetrationHeldRatio of its bodies' free-body value is
+    // held by the joints (round-off: a row they leave free is above 0.03 in those scenes) and left
+    // alone.
+    double penetrationMaxSpeed = 5.0;         // m/s
+    double penetrationMaxAngularSpeed = 20.0; // rad/s
+    double penetrationHeldRatio = 1e-9;
     double limitMargin = 0.02;       // rad or m: limit rows appear this close to a limit
     ExtraSolveSettings contactSolve; // tolerance of the contact problem
     // Resting contact may solve with the Delassus matrix of a recent step with the same rows, the
@@ -144,6 +155,10 @@ class Simulator
     bool mRattleStep = false;      // the step under way is a rattle step
     State mStepStart;              // the state a rattle step started from
     void checkState(const State& state, const char* where) const;
+    void recordStartDefects(const State& state);
+    std::string likelyCause(const State& state) const; // "; ..." for a failure message, or empty
+    StartDefects mStartDefects;                        // what the first step found wrong with the start
+    bool mStartRecorded = false;                       // mStartDefects is set
     void detectContacts(const State& state);
     void computeFreeVelocities(State& state, double h);
     void kickByGravity(State& state, double h);
@@ -156,7 +171,15 @@ class Simulator
     void solveContactImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
-    bool stabilizeJoints(State& state); // false: a rattle step stalled
+    void restoreJoints(State& state);
+    // A penetration displacement that recovers a deep defect (capped, or the one after a capped
+    // step) or turns a body by more than this (rad) puts the joints back by restoreJoints. Below it
+    // their second-order gap (theta^2 L / 2, under 5e-5 m at L = 1 m) is left to stabilizeJoints
+    // as before (the bundled scenes turn bodies by up to 4.7e-3 rad a step at 1 ms).
+    static constexpr double cRestoreRotation = 0.01;
+    std::vector<Vec6> mJointErrorBefore; // restoreJoints: C per joint before the displacement
+    bool mPenetrationCapped = false;     // the last step's penetration displacement was capped
+    bool stabilizeJoints(State& state);  // false: a rattle step stalled
     void buildLoopRows(const RowSystem& rows);
     void correctLoops();
     void addLoopCompliance();
