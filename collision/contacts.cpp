@@ -14,7 +14,9 @@
 //   4. Narrowphase per pair: spheres and capsules against each other in closed form
 //      (swept_spheres.cpp); pairs proven apart by more than the margin along an axis are done
 //      (separation.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
-//      (up to 4 points).
+//      (up to 4 points). Moving meshes are their convex hulls (fcl::Convexd, built once
+//      here); a hull against a hull or a box, and a hull or box against a static triangle
+//      mesh, get one face clipped against the other along FCL's normal (polytope_manifold.cpp).
 //      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
 //      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
 //      vertices, capsule end spheres, cylinder rim points and mesh vertices tested against the
@@ -39,6 +41,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -97,7 +100,7 @@ class MarginObject : public fcl::CollisionObjectd
     bool mHasFat = false;
 };
 
-std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape)
+std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape, const ShapeInstance& instance)
 {
     switch (shape.type)
     {
@@ -111,6 +114,13 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape)
         return std::make_shared<fcl::Cylinderd>(shape.radius, shape.length); // lz = full height (m)
     case core::ShapeType::Mesh:
     {
+        if (instance.convexHull)
+        {
+            const detail::ConvexHull& hull = instance.hull;
+            return std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Vec3>>(hull.vertices),
+                                                  static_cast<int>(hull.normals.size()),
+                                                  std::make_shared<const std::vector<int>>(hull.faces));
+        }
         if (shape.triangles.empty() || shape.vertices.empty())
             return nullptr;
         std::vector<fcl::Triangle> triangles;
@@ -128,6 +138,12 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape)
         break;
     }
     return nullptr;
+}
+
+// A mesh colliding as triangles (FCL's BVH): a static mesh, or a moving one without a hull.
+bool isTriangleMesh(const ShapeInstance& s)
+{
+    return s.type == core::ShapeType::Mesh && !s.convexHull;
 }
 
 void* indexToUserData(int index)
@@ -194,21 +210,27 @@ struct ContactDetector::Impl
     fcl::DistanceRequestd distanceRequest{true}; // with nearest points (world frame)
     fcl::DistanceResultd distanceResult;
     std::vector<RawContact> raw;
+    std::vector<std::intptr_t> rawTriangles; // per FCL point in raw: the triangle of the mesh in the pair
+    std::vector<RawContact> clipped;
+    ShapeInstance triangle; // one triangle of a mesh as a flat polytope (polytope_manifold.cpp)
 
     bool candidatesReady = false;
     std::vector<std::pair<int, int>> candidates;
     DetectorStats stats;
 
-    Impl(const core::Model& model, double marginIn);
+    Impl(const core::Model& model, double marginIn, MovingMeshes movingMeshes);
     void poseShape(int index, const core::State& state);
     void planePass(std::vector<Contact>& out);
     void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
     void narrowphase(int i, int j, std::vector<Contact>& out);
+    bool nearestGap(int i, int j, RawContact& out);
+    void clipAgainstTriangles(int i, int j);
     void emit(int bodyA, int bodyB, std::vector<Contact>& out);
     static bool broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
 };
 
-ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(marginIn), filter(model)
+ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMeshes movingMeshes)
+    : margin(marginIn), filter(model)
 {
     const int bodyCount = static_cast<int>(model.bodies.size());
     bodyCollides.assign(model.bodies.size(), 0);
@@ -228,12 +250,16 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn) : margin(
                 continue;
             }
             const int index = static_cast<int>(shapes.size());
-            shapes.push_back(detail::makeShapeInstance(shape, b));
+            // Moving meshes collide as their convex hulls (built here, once); static ones keep
+            // their triangles: terrain and fixtures may be concave, and nothing moves them into
+            // each other (two static bodies never collide).
+            shapes.push_back(detail::makeShapeInstance(
+                shape, b, !body.isStatic && movingMeshes == MovingMeshes::ConvexHulls));
             detail::setBodyPose(shapes.back(), R_WB, body.position_W);
             bodyCollides[static_cast<std::size_t>(b)] = 1;
             (body.isStatic ? staticShapes : movingShapes).push_back(index);
             std::unique_ptr<MarginObject> object;
-            if (auto geometry = makeGeometry(shape))
+            if (auto geometry = makeGeometry(shape, shapes.back()))
             {
                 fcl::Transform3d tf = fcl::Transform3d::Identity();
                 tf.linear() = shapes.back().R_WS;
@@ -355,7 +381,10 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
 {
     const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
     const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
-    const bool mesh = a.type == core::ShapeType::Mesh || b.type == core::ShapeType::Mesh;
+    const bool aTriangles = isTriangleMesh(a);
+    const bool bTriangles = isTriangleMesh(b);
+    const bool triangles = aTriangles || bTriangles;
+    const bool polytopes = detail::usesPolytopeManifold(a, b);
     if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
     {
         sweptSpherePair(a, b, out);
@@ -367,31 +396,58 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         return;
     }
 
+    // FCL 0.7 computes a shape against a triangle mesh as the mesh against the shape, whatever
+    // the argument order, and reports it that way (measured: the normal from the mesh towards
+    // the shape, the triangle as primitive b1). So the mesh goes first, and its normals are
+    // turned round when the mesh is b. Its sphere-triangle test returns the depth negated.
+    const bool meshFirst = bTriangles && !aTriangles;
     result.clear(); // CollisionResult accumulates otherwise
-    fcl::collide(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
-                 mesh ? meshRequest : request, result);
+    fcl::collide(objects[static_cast<std::size_t>(meshFirst ? j : i)].get(),
+                 objects[static_cast<std::size_t>(meshFirst ? i : j)].get(),
+                 triangles ? meshRequest : request, result);
     ++stats.narrowphaseTests;
 
-    // FCL's points, normal from o1 (a) to o2 (b), positive depth. Drop the degenerate ones
-    // (BVH meshes give zero normals and zero depths).
+    // FCL's points, normal from a to b, positive depth. Drop the degenerate ones (BVH meshes
+    // give zero normals and zero depths).
+    const double normalSign = meshFirst ? -1.0 : 1.0;
+    const double depthSign =
+        (aTriangles && b.type == core::ShapeType::Sphere) || (bTriangles && a.type == core::ShapeType::Sphere)
+            ? -1.0
+            : 1.0;
     raw.clear();
+    rawTriangles.clear();
     double fclDepth = -std::numeric_limits<double>::infinity();
     RawContact deepest;
     for (std::size_t k = 0; k < result.numContacts(); ++k)
     {
         const fcl::Contactd& c = result.getContact(k);
         const double length = c.normal.norm();
-        if (!(length > 0.5) || !(c.penetration_depth > 0.0) || !c.pos.allFinite())
+        const double depth = depthSign * c.penetration_depth;
+        if (!(length > 0.5) || !(depth > 0.0) || !c.pos.allFinite())
             continue;
-        raw.push_back({c.pos, c.normal / length, c.penetration_depth});
-        if (c.penetration_depth > fclDepth)
+        raw.push_back({c.pos, normalSign * (c.normal / length), depth});
+        rawTriangles.push_back(c.b1); // the triangle, when one shape is a triangle mesh (it went first)
+        if (depth > fclDepth)
         {
-            fclDepth = c.penetration_depth;
+            fclDepth = depth;
             deepest = raw.back();
         }
     }
 
-    if (detail::usesFeatureManifold(a.type, b.type))
+    if (polytopes)
+    {
+        // A hull against a hull or a box: one face clipped against the other along FCL's normal
+        // (or, apart, the normal of the gap) for the whole patch.
+        RawContact reference = deepest;
+        raw.clear();
+        if (fclDepth > 0.0 || nearestGap(i, j, reference))
+            detail::polytopeContacts(a, b, reference, margin, raw);
+    }
+    else if (triangles && !(aTriangles && bTriangles) && (detail::isPolytope(a) || detail::isPolytope(b)))
+    {
+        clipAgainstTriangles(i, j);
+    }
+    else if (detail::usesFeatureManifold(a, b))
     {
         const std::size_t fclCount = raw.size();
         detail::featureContacts(a, b, fclCount > 0 ? &deepest : nullptr, margin, raw);
@@ -419,25 +475,65 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
                 raw.push_back({c.pos, c.normal / length, c.penetration_depth - margin});
         }
     }
-    else if (raw.empty() && !mesh)
+    else if (raw.empty() && !triangles && !polytopes)
     {
         // Apart: a speculative contact at the nearest points when the gap is below the margin,
         // so that a body arriving fast is caught before it sinks in (depth = -gap).
-        distanceResult.clear();
-        const double gap =
-            fcl::distance(objects[static_cast<std::size_t>(i)].get(),
-                          objects[static_cast<std::size_t>(j)].get(), distanceRequest, distanceResult);
-        if (gap > 0.0 && gap < margin)
-        {
-            const Vec3 pa = distanceResult.nearest_points[0];
-            const Vec3 pb = distanceResult.nearest_points[1];
-            const Vec3 d = pb - pa;
-            if (d.norm() > 1e-12 && pa.allFinite() && pb.allFinite())
-                raw.push_back({0.5 * (pa + pb), d / d.norm(), -gap});
-        }
+        RawContact gap;
+        if (nearestGap(i, j, gap))
+            raw.push_back(gap);
     }
     detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
     emit(a.body, b.body, out);
+}
+
+// A box or a hull (one of shapes i and j) against a triangle mesh (the other): the contacts of
+// the polytope clipped against each triangle that FCL reported touching (raw, rawTriangles),
+// with FCL's contact there as the reference; they replace raw.
+void ContactDetector::Impl::clipAgainstTriangles(int i, int j)
+{
+    const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
+    const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
+    const bool meshIsB = isTriangleMesh(b);
+    const fcl::CollisionObjectd& object = *objects[static_cast<std::size_t>(meshIsB ? j : i)];
+    const auto& mesh = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(*object.collisionGeometry());
+    const fcl::Transform3d& tf = object.getTransform();
+    clipped.clear();
+    for (std::size_t k = 0; k < raw.size(); ++k)
+    {
+        const std::intptr_t t = rawTriangles[k];
+        if (t < 0 || t >= mesh.num_tris)
+            continue;
+        const fcl::Triangle& corners = mesh.tri_indices[t];
+        if (!detail::setTrianglePolytope(tf * mesh.vertices[corners[0]], tf * mesh.vertices[corners[1]],
+                                         tf * mesh.vertices[corners[2]], triangle))
+            continue;
+        if (meshIsB)
+            detail::polytopeContacts(a, triangle, raw[k], margin, clipped);
+        else
+            detail::polytopeContacts(triangle, b, raw[k], margin, clipped);
+    }
+    raw.swap(clipped);
+}
+
+// The nearest points of shapes i and j when they are apart by less than the margin: a contact
+// halfway between them, normal from i towards j, depth = -gap. False when they touch, overlap or
+// are farther apart.
+bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out)
+{
+    distanceResult.clear();
+    const double gap =
+        fcl::distance(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
+                      distanceRequest, distanceResult);
+    if (!(gap > 0.0 && gap < margin))
+        return false;
+    const Vec3 pa = distanceResult.nearest_points[0];
+    const Vec3 pb = distanceResult.nearest_points[1];
+    const Vec3 d = pb - pa;
+    if (!(d.norm() > 1e-12) || !pa.allFinite() || !pb.allFinite())
+        return false;
+    out = {0.5 * (pa + pb), d / d.norm(), -gap};
+    return true;
 }
 
 // Spheres and capsules in closed form (swept_spheres.cpp) instead of libccd's MPR and GJK; a
@@ -450,7 +546,7 @@ void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeI
     raw.clear();
     RawContact closest;
     const bool near = detail::sweptSphereContact(a, b, margin, closest);
-    if (detail::usesFeatureManifold(a.type, b.type))
+    if (detail::usesFeatureManifold(a, b))
     {
         detail::featureContacts(a, b, near && closest.depth > 0.0 ? &closest : nullptr, margin, raw);
     }
@@ -466,8 +562,8 @@ void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeI
     emit(a.body, b.body, out);
 }
 
-ContactDetector::ContactDetector(const core::Model& model, double margin)
-    : mImpl(std::make_unique<Impl>(model, margin))
+ContactDetector::ContactDetector(const core::Model& model, double margin, MovingMeshes movingMeshes)
+    : mImpl(std::make_unique<Impl>(model, margin, movingMeshes))
 {
 }
 

@@ -33,12 +33,21 @@ struct DetectorStats
     long contacts = 0;         // contacts reported
 };
 
+// How the meshes of moving bodies collide (static bodies' meshes are always triangles).
+enum class MovingMeshes
+{
+    ConvexHulls, // as their convex hulls (collision/README.md "Meshes"): the default
+    Triangles,   // as triangle meshes (FCL's BVH), for comparison in tests and benchmarks
+};
+
 class ContactDetector final : public core::ContactSource
 {
   public:
     // margin: contacts are reported while the shapes are closer than this (m), depth may then
-    // be negative (a gap), so that resting contact does not flicker.
-    explicit ContactDetector(const core::Model& model, double margin = 1e-3);
+    // be negative (a gap), so that resting contact does not flicker. The convex hulls of moving
+    // meshes are computed here, once.
+    explicit ContactDetector(const core::Model& model, double margin = 1e-3,
+                             MovingMeshes movingMeshes = MovingMeshes::ConvexHulls);
     ~ContactDetector() override;
     ContactDetector(const ContactDetector&) = delete;
     ContactDetector& operator=(const ContactDetector&) = delete;

@@ -8,11 +8,16 @@
 // A capsule (or a lying cylinder) across a narrower box is held along a line that its end
 // points do not reach, so the capsule axis is also clipped to the box's contact face (or a
 // cylinder's cap, or the other's axial extent) and the two ends of the clipped part tested.
+// A mesh that collides as its convex hull has an exact signed distance too (the largest
+// face-plane distance inside, the nearest face polygon outside), and its corners are features,
+// so a sphere, capsule or cylinder on a hull gets its patch the same way. (A hull against a
+// hull or a box is two polytopes: polytope_manifold.cpp clips their faces instead.)
 #include "collision/internal.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace frontier::collision::detail
 {
@@ -20,13 +25,106 @@ namespace frontier::collision::detail
 namespace
 {
 
+bool isRound(core::ShapeType t)
+{
+    return t == core::ShapeType::Capsule || t == core::ShapeType::Cylinder;
+}
+
+bool hasFeatures(core::ShapeType t)
+{
+    return isRound(t) || t == core::ShapeType::Box;
+}
+
+bool hasDistance(const ShapeInstance& s)
+{
+    return hasFeatures(s.type) || s.type == core::ShapeType::Sphere || s.convexHull;
+}
+
 double sign(double x)
 {
     return x >= 0.0 ? 1.0 : -1.0;
 }
 
-// Signed distance in the shape frame; grad is the unit outward direction there.
-double localDistance(const ShapeInstance& s, const Vec3& p, Vec3& grad)
+// The corners of face k of a hull, counter-clockwise seen from outside: calls f(a, b) for each
+// edge from a to b.
+template <class F> void forEachFaceEdge(const ConvexHull& h, std::size_t k, F&& f)
+{
+    const auto start = static_cast<std::size_t>(h.faceStart[k]);
+    const auto n = static_cast<std::size_t>(h.faces[start]);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const auto a = static_cast<std::size_t>(h.faces[start + 1 + i]);
+        const auto b = static_cast<std::size_t>(h.faces[start + 1 + (i + 1) % n]);
+        f(h.vertices[a], h.vertices[b]);
+    }
+}
+
+// The point of face k nearest to p, which lies `height` (> 0) above the face's plane.
+Vec3 nearestOnFace(const ConvexHull& h, std::size_t k, const Vec3& p, double height)
+{
+    const Vec3& n = h.normals[k];
+    const Vec3 q = p - height * n; // p projected onto the plane
+    bool inside = true;
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 nearest = q;
+    forEachFaceEdge(h, k,
+                    [&](const Vec3& a, const Vec3& b)
+                    {
+                        const Vec3 e = b - a;
+                        if (n.cross(e).dot(q - a) < 0.0) // outside this edge (n x e points inwards)
+                            inside = false;
+                        const double t =
+                            std::clamp(e.dot(q - a) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
+                        const Vec3 onEdge = a + t * e;
+                        if ((q - onEdge).squaredNorm() < best)
+                        {
+                            best = (q - onEdge).squaredNorm();
+                            nearest = onEdge;
+                        }
+                    });
+    return inside ? q : nearest;
+}
+
+// Signed distance to a convex hull in its frame. Inside (or on it), the largest face-plane
+// distance, exact. Outside, the distance to the nearest face polygon among those facing p, exact
+// but O(faces x corners), so only computed when the largest face-plane distance (a lower bound
+// of the distance) is below exactBelow; otherwise that lower bound is returned.
+double hullDistance(const ConvexHull& h, const Vec3& p, double exactBelow, Vec3& grad)
+{
+    std::size_t best = 0;
+    double planeDistance = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < h.normals.size(); ++k)
+    {
+        const double d = h.normals[k].dot(p) - h.offsets[k];
+        if (d > planeDistance)
+        {
+            planeDistance = d;
+            best = k;
+        }
+    }
+    grad = h.normals[best];
+    if (planeDistance <= 0.0 || planeDistance >= exactBelow)
+        return planeDistance;
+    double distance = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < h.normals.size(); ++k)
+    {
+        const double height = h.normals[k].dot(p) - h.offsets[k];
+        if (height <= 0.0)
+            continue; // p is behind this face: the nearest point is on a face p is in front of
+        const Vec3 nearest = nearestOnFace(h, k, p, height);
+        const double d = (p - nearest).norm();
+        if (d < distance) // d >= height > 0
+        {
+            distance = d;
+            grad = (p - nearest) / d;
+        }
+    }
+    return std::max(distance, planeDistance); // the face `best` was visited: distance is finite
+}
+
+// Signed distance in the shape frame; grad is the unit outward direction there. exactBelow: see
+// hullDistance (the other shapes are always exact).
+double localDistance(const ShapeInstance& s, const Vec3& p, double exactBelow, Vec3& grad)
 {
     switch (s.type)
     {
@@ -76,15 +174,19 @@ double localDistance(const ShapeInstance& s, const Vec3& p, Vec3& grad)
         return std::max(qx, qz);
     }
     case core::ShapeType::Mesh:
+        if (s.convexHull)
+            return hullDistance(s.hull, p, exactBelow, grad);
+        break;
     case core::ShapeType::Plane:
         break;
     }
     grad = Vec3::UnitZ();
-    return 1e300; // not supported: never in contact
+    return 1e300; // not supported (triangle meshes): never in contact
 }
 
 // Calls f(centre_W, radius) for each point feature of s: box vertices (radius 0), capsule end
-// spheres (radius r), cylinder rim samples and the rim points farthest along `toward` (radius 0).
+// spheres (radius r), cylinder rim samples and the rim points farthest along `toward` (radius 0),
+// mesh vertices (radius 0), the sphere itself (radius r).
 template <class F> void forEachPointFeature(const ShapeInstance& s, const Vec3& toward_W, F&& f)
 {
     const Mat3& R = s.R_WS;
@@ -119,6 +221,8 @@ template <class F> void forEachPointFeature(const ShapeInstance& s, const Vec3& 
             f(Vec3(p + R * vertex), 0.0);
         break;
     case core::ShapeType::Sphere:
+        f(p, s.radius); // against a mesh: exact against a hull, where libccd's point is approximate
+        break;
     case core::ShapeType::Plane:
         break;
     }
@@ -234,8 +338,28 @@ bool clipToContactRegion(const ShapeInstance& other, const Vec3& normal_W, const
         t1 = std::min(t1, (-qb + root) / qa);
         return t0 <= t1;
     }
-    case core::ShapeType::Sphere:
     case core::ShapeType::Mesh:
+    {
+        if (!other.convexHull)
+            break;
+        // The hull's face turned most towards the segment (its outward normal closest to -n),
+        // then the prism over that face polygon: inside each edge's side plane.
+        const ConvexHull& h = other.hull;
+        std::size_t face = 0;
+        for (std::size_t k = 1; k < h.normals.size(); ++k)
+            if (-n.dot(h.normals[k]) > -n.dot(h.normals[face]))
+                face = k;
+        bool kept = true;
+        forEachFaceEdge(h, face,
+                        [&](const Vec3& q0, const Vec3& q1)
+                        {
+                            const Vec3 inward = h.normals[face].cross(q1 - q0);
+                            kept = kept && clipLinear(inward.dot(a - q0), inward.dot(b), 0.0,
+                                                      std::numeric_limits<double>::infinity(), t0, t1);
+                        });
+        return kept;
+    }
+    case core::ShapeType::Sphere:
     case core::ShapeType::Plane:
         break;
     }
@@ -256,7 +380,7 @@ struct FeatureTester
     {
         if (reference)
             return otherIsB ? reference->normal_W : Vec3(-reference->normal_W);
-        if (other.type == core::ShapeType::Mesh) // no distance function: centre to centre
+        if (!hasDistance(other)) // a triangle mesh: centre to centre
             return (other.p_WS - self.p_WS).normalized();
         Vec3 grad;
         signedDistance(other, self.p_WS, grad);
@@ -266,7 +390,7 @@ struct FeatureTester
     void test(const Vec3& centre, double radius) const
     {
         Vec3 grad;
-        const double separation = signedDistance(other, centre, grad) - radius;
+        const double separation = signedDistance(other, centre, grad, margin + radius) - radius;
         if (!(separation < margin))
             return;
         if (reference)
@@ -291,7 +415,17 @@ struct FeatureTester
     void run(const ShapeInstance& self) const
     {
         const Vec3 toward = towardOther(self);
-        forEachPointFeature(self, toward, [&](const Vec3& centre, double radius) { test(centre, radius); });
+        // A hull's distance costs O(faces) per feature, so features farther than the margin
+        // beyond its supporting plane across `toward` (a lower bound of their distance) are
+        // skipped first. (The closed-form distances of the primitives are cheaper than this.)
+        const double nearest = other.convexHull ? -supportHeight(other, -toward) - margin
+                                                : -std::numeric_limits<double>::infinity();
+        forEachPointFeature(self, toward,
+                            [&](const Vec3& centre, double radius)
+                            {
+                                if (toward.dot(centre) + radius > nearest)
+                                    test(centre, radius);
+                            });
         Vec3 p0, p1;
         double radius = 0.0;
         if (!lineFeature(self, toward, p0, p1, radius))
@@ -306,38 +440,21 @@ struct FeatureTester
     }
 };
 
-bool isRound(core::ShapeType t)
-{
-    return t == core::ShapeType::Capsule || t == core::ShapeType::Cylinder;
-}
-
-bool hasFeatures(core::ShapeType t)
-{
-    return isRound(t) || t == core::ShapeType::Box;
-}
-
-bool hasDistance(core::ShapeType t)
-{
-    return hasFeatures(t) || t == core::ShapeType::Sphere;
-}
-
 } // namespace
 
-double signedDistance(const ShapeInstance& s, const Vec3& p_W, Vec3& grad_W)
+double signedDistance(const ShapeInstance& s, const Vec3& p_W, Vec3& grad_W, double exactBelow)
 {
     Vec3 grad;
-    const double d = localDistance(s, s.R_WS.transpose() * (p_W - s.p_WS), grad);
+    const double d = localDistance(s, s.R_WS.transpose() * (p_W - s.p_WS), exactBelow, grad);
     grad_W = s.R_WS * grad;
     return d;
 }
 
-bool usesFeatureManifold(core::ShapeType a, core::ShapeType b)
+bool usesFeatureManifold(const ShapeInstance& a, const ShapeInstance& b)
 {
-    if (a == core::ShapeType::Mesh)
-        return hasDistance(b);
-    if (b == core::ShapeType::Mesh)
-        return hasDistance(a);
-    return (isRound(a) || isRound(b)) && hasFeatures(a) && hasFeatures(b);
+    if (a.type == core::ShapeType::Mesh || b.type == core::ShapeType::Mesh)
+        return hasDistance(a) || hasDistance(b);
+    return (isRound(a.type) || isRound(b.type)) && hasFeatures(a.type) && hasFeatures(b.type);
 }
 
 void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact* reference,

@@ -1,14 +1,17 @@
 // collision/internal.h: private to collision/ (never include it from other folders). Shape
-// instances in world pose, raw contacts between two shapes, and the helpers that build contact
-// manifolds without FCL: the plane manifolds, the feature-point manifolds of capsules and
-// cylinders, and the merge/reduce step. FCL stays out of this header (DEPS.md §2).
+// instances in world pose (a moving mesh as its convex hull), raw contacts between two shapes,
+// and the helpers that build contact manifolds without FCL: the plane manifolds, the
+// feature-point manifolds of capsules, cylinders and meshes, the clipped faces of polytopes,
+// and the merge/reduce step. FCL stays out of this header (DEPS.md §2).
 #pragma once
 
+#include "collision/convex_hull.h"
 #include "core/model.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,8 @@ struct RawContact
     double depth = 0.0;            // m, > 0 penetrating, < 0 a gap within the margin
 };
 
+using collision::ConvexHull;
+
 // One non-plane shape of one body, with its geometry in its own frame S and its current pose.
 struct ShapeInstance
 {
@@ -36,7 +41,14 @@ struct ShapeInstance
     double halfLength = 0.0;         // Capsule: half segment; Cylinder: half height (m)
     double boundingRadius = 0.0;     // of a sphere about the shape origin holding the shape (m)
     double mergeDistance = 0.0;      // contacts of one pair closer than this are merged (m)
-    std::vector<Vec3> meshVertices;  // Mesh: unique vertices in S (m)
+    std::vector<Vec3> meshVertices;  // Mesh: unique vertices in S (m); the hull's when convexHull
+    // Mesh of a moving body: it collides as its convex hull (FCL's Convex, GJK/EPA), not as
+    // triangles (FCL's BVH). False for static meshes (terrain may be concave) and for meshes
+    // without a 3-d hull (flat or collinear vertices: they keep the triangles).
+    bool convexHull = false;
+    // The shape as a convex polytope, in S: the hull of a convexHull mesh, or a box's 8 corners
+    // and 6 faces (for the face clipping of polytope_manifold.cpp); empty for other shapes.
+    ConvexHull hull;
     // Fixed pose in the body frame.
     Mat3 R_BS = Mat3::Identity();
     Vec3 p_BS = Vec3::Zero(); // m
@@ -56,8 +68,9 @@ inline Vec3 boxCorner(const Vec3& half, int k)
 inline constexpr int cRimSamples = 8;
 const std::array<std::array<double, 2>, cRimSamples>& rimDirections();
 
-// Builds the instance (everything but the world pose) from a model shape of a given body.
-ShapeInstance makeShapeInstance(const core::Shape& shape, int body);
+// Builds the instance (everything but the world pose) from a model shape of a given body. A
+// mesh becomes its convex hull when meshAsHull and it has one.
+ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull);
 
 // World pose from the body pose: R_WS = R_WB R_BS, p_WS = p_WB + R_WB p_BS.
 void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB);
@@ -71,14 +84,18 @@ void planeContacts(const ShapeInstance& s, const Vec3& n, double offset, double 
                    std::vector<RawContact>& out);
 
 // --- feature_manifold.cpp -------------------------------------------------------------------
-// Signed distance (m, < 0 inside) from a world point to a Box, Sphere, Capsule or Cylinder
-// instance, and the unit outward direction grad_W of that distance at the point.
-double signedDistance(const ShapeInstance& s, const Vec3& p_W, Vec3& grad_W);
+// Signed distance (m, < 0 inside) from a world point to a Box, Sphere, Capsule, Cylinder or
+// convex-hull instance, and the unit outward direction grad_W of that distance at the point.
+// A hull's distance outside costs O(faces x corners); at or above exactBelow (m) its cheap lower
+// bound (the largest face-plane distance) is returned instead.
+double signedDistance(const ShapeInstance& s, const Vec3& p_W, Vec3& grad_W,
+                      double exactBelow = std::numeric_limits<double>::infinity());
 
 // True for the pairs whose FCL result gets the feature points added: a capsule or a cylinder
-// against a box, capsule or cylinder (FCL gives one point), and a mesh against a box, sphere,
-// capsule or cylinder (FCL gives per-triangle points, not the mesh's corners).
-bool usesFeatureManifold(core::ShapeType a, core::ShapeType b);
+// against a box, capsule or cylinder (FCL gives one point), and a mesh against a shape with a
+// distance function (box, sphere, capsule, cylinder, hull): GJK/EPA gives a hull one point,
+// and a triangle mesh gets per-triangle points, not the mesh's corners.
+bool usesFeatureManifold(const ShapeInstance& a, const ShapeInstance& b);
 
 // Appends the feature contacts of a against b and of b against a (normals from a towards b):
 // box vertices, capsule end spheres, cylinder rim points and mesh vertices of one shape, plus the ends of the
@@ -91,9 +108,30 @@ bool usesFeatureManifold(core::ShapeType a, core::ShapeType b);
 void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact* reference,
                      double margin, std::vector<RawContact>& out);
 
+// --- polytope_manifold.cpp -----------------------------------------------------------------
+// A box or a convex-hull mesh: it has a `hull` to clip faces with.
+bool isPolytope(const ShapeInstance& s);
+
+// True for two polytopes of which at least one is a hull mesh (box-box keeps FCL's own
+// box-box manifold).
+bool usesPolytopeManifold(const ShapeInstance& a, const ShapeInstance& b);
+
+// Appends the contacts of two polytopes whose separation is below margin (m), normals from a
+// towards b: one face clipped against the other along the best of the reference normal and
+// the two faces it picks, or the reference contact itself for an edge against an edge.
+// reference: FCL's deepest contact, or the nearest points of a gap below the margin.
+void polytopeContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact& reference,
+                      double margin, std::vector<RawContact>& out);
+
+// Makes `out` the triangle t0 t1 t2 (world, counter-clockwise seen from the side it faces) as
+// a flat polytope in the world frame: two faces, front and back. Reuses out's storage. False
+// for a degenerate triangle.
+bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, ShapeInstance& out);
+
 // --- separation.cpp -------------------------------------------------------------------------
 // True when a and b are proven farther apart than margin (m) along some axis: the centre line,
-// a box's face normals, a capsule's or cylinder's axis. Meshes count as their bounding sphere.
+// a box's face normals, a capsule's or cylinder's axis. A convex hull's extent along an axis
+// is exact (its corners); a triangle mesh counts as its bounding sphere.
 bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin);
 
 // --- swept_spheres.cpp ----------------------------------------------------------------------

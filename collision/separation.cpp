@@ -3,7 +3,8 @@
 // The gap between two convex shapes is at least their separation along any unit axis u: the
 // distance between their centres along u less each shape's half extent along u (its support
 // function). Trying the line between the centres and the shapes' own axes (box face normals,
-// capsule and cylinder axes) catches most pairs that the margin-grown AABBs let through.
+// capsule and cylinder axes) catches most pairs that the margin-grown AABBs let through. A
+// convex hull's extent is exact (its corners); a triangle mesh counts as its bounding sphere.
 #include "collision/internal.h"
 
 #include <algorithm>
@@ -15,35 +16,58 @@ namespace frontier::collision::detail
 namespace
 {
 
-// Half extent of the shape along unit u (m): max over the shape of (x - p_WS) . u.
-double halfExtent(const ShapeInstance& s, const Vec3& u)
+// The interval [lo, hi] (m) that (x - p_WS) . u covers over the shape, u unit.
+void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi)
 {
+    double half = s.boundingRadius; // a triangle mesh: its bounding sphere
     switch (s.type)
     {
     case core::ShapeType::Box:
-        return s.halfExtents.x() * std::abs(s.R_WS.col(0).dot(u)) +
+        half = s.halfExtents.x() * std::abs(s.R_WS.col(0).dot(u)) +
                s.halfExtents.y() * std::abs(s.R_WS.col(1).dot(u)) +
                s.halfExtents.z() * std::abs(s.R_WS.col(2).dot(u));
+        break;
     case core::ShapeType::Sphere:
-        return s.radius;
+        half = s.radius;
+        break;
     case core::ShapeType::Capsule:
-        return s.radius + s.halfLength * std::abs(s.R_WS.col(2).dot(u));
+        half = s.radius + s.halfLength * std::abs(s.R_WS.col(2).dot(u));
+        break;
     case core::ShapeType::Cylinder:
     {
         const double c = std::abs(s.R_WS.col(2).dot(u));
-        return s.halfLength * c + s.radius * std::sqrt(std::max(0.0, 1.0 - c * c));
+        half = s.halfLength * c + s.radius * std::sqrt(std::max(0.0, 1.0 - c * c));
+        break;
     }
     case core::ShapeType::Mesh:
+        if (s.convexHull)
+        {
+            // Exact: the hull's corners, which need not be centred on the shape origin.
+            const Vec3 u_S = s.R_WS.transpose() * u;
+            lo = hi = u_S.dot(s.meshVertices.front());
+            for (const Vec3& v : s.meshVertices)
+            {
+                lo = std::min(lo, u_S.dot(v));
+                hi = std::max(hi, u_S.dot(v));
+            }
+            return;
+        }
+        break;
     case core::ShapeType::Plane:
         break;
     }
-    return s.boundingRadius;
+    lo = -half;
+    hi = half;
 }
 
 // Separation of a and b along unit u (m); negative when their projections overlap.
 double separationAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u)
 {
-    return std::abs((b.p_WS - a.p_WS).dot(u)) - halfExtent(a, u) - halfExtent(b, u);
+    double loA = 0.0, hiA = 0.0, loB = 0.0, hiB = 0.0;
+    extentAlong(a, u, loA, hiA);
+    extentAlong(b, u, loB, hiB);
+    const double d = (b.p_WS - a.p_WS).dot(u); // b's origin relative to a's along u
+    return std::max(d - hiA + loB, -d + loA - hiB);
 }
 
 // Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder).

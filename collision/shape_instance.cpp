@@ -22,9 +22,35 @@ std::vector<Vec3> uniqueVertices(const std::vector<Vec3>& vertices)
     return out;
 }
 
+// A box as a polytope: corner k as boxCorner(half, k), faces counter-clockwise from outside.
+ConvexHull boxPolytope(const Vec3& half)
+{
+    ConvexHull box;
+    for (int k = 0; k < 8; ++k)
+        box.vertices.push_back(boxCorner(half, k));
+    for (int i = 0; i < 3; ++i)
+    {
+        // Corners of the face normal to axis i, by their signs along axes j and k = i + 1, i + 2
+        // (e_i = e_j x e_k): (-,-), (+,-), (+,+), (-,+) turns counter-clockwise about +e_i.
+        const int j = (i + 1) % 3;
+        const int k = (i + 2) % 3;
+        const int around[4] = {0, 1 << j, (1 << j) | (1 << k), 1 << k};
+        for (const int side : {1, -1})
+        {
+            box.faceStart.push_back(static_cast<int>(box.faces.size()));
+            box.faces.push_back(4);
+            for (int c = 0; c < 4; ++c)
+                box.faces.push_back((side > 0 ? 1 << i : 0) | around[side > 0 ? c : (4 - c) % 4]);
+            box.normals.push_back(static_cast<double>(side) * Vec3::Unit(i));
+            box.offsets.push_back(half[i]);
+        }
+    }
+    return box;
+}
+
 } // namespace
 
-ShapeInstance makeShapeInstance(const core::Shape& shape, int body)
+ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull)
 {
     ShapeInstance s;
     s.body = body;
@@ -35,6 +61,7 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body)
     {
     case core::ShapeType::Box:
         s.halfExtents = 0.5 * shape.size;
+        s.hull = boxPolytope(s.halfExtents);
         s.boundingRadius = s.halfExtents.norm();
         s.mergeDistance = 0.25 * shape.size.minCoeff();
         break;
@@ -56,11 +83,19 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body)
         s.mergeDistance = 0.25 * shape.radius;
         break;
     case core::ShapeType::Mesh:
-        s.meshVertices = uniqueVertices(shape.vertices);
+    {
+        // A mesh without a 3-d hull (flat, collinear, under 4 points) keeps its triangles: it
+        // still collides as before, and a flat plate has no volume for GJK/EPA to work in.
+        std::string reason;
+        s.convexHull = meshAsHull && computeConvexHull(shape.vertices, s.hull, reason);
+        // Only the hull's corners can be a deepest point (against a plane, a face, along an
+        // axis), so the plane and feature contacts, bounds and support functions use them.
+        s.meshVertices = s.convexHull ? s.hull.vertices : uniqueVertices(shape.vertices);
         for (const Vec3& v : s.meshVertices)
             s.boundingRadius = std::max(s.boundingRadius, v.norm());
         s.mergeDistance = 0.05 * s.boundingRadius;
         break;
+    }
     case core::ShapeType::Plane:
         break; // planes are not instances (contacts.cpp keeps them apart)
     }

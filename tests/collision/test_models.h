@@ -5,6 +5,7 @@
 #include "core/model.h"
 #include "core/state.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -62,6 +63,77 @@ inline core::Shape cubeMesh(double side)
     return s;
 }
 
+// A closed prism of the given height along z over a simple polygon (counter-clockwise in the xy
+// plane, a fan from its first corner must cover it), centred on z = 0.
+inline core::Shape prismMesh(const std::vector<std::array<double, 2>>& polygon, double height)
+{
+    core::Shape s;
+    s.type = core::ShapeType::Mesh;
+    const int n = static_cast<int>(polygon.size());
+    for (const double z : {-0.5 * height, 0.5 * height})
+        for (const auto& [x, y] : polygon)
+            s.vertices.emplace_back(x, y, z);
+    for (int i = 1; i + 1 < n; ++i)
+    {
+        s.triangles.push_back({0, i + 1, i});         // bottom, seen from below
+        s.triangles.push_back({n, n + i, n + i + 1}); // top
+    }
+    for (int i = 0; i < n; ++i)
+    {
+        const int j = (i + 1) % n;
+        s.triangles.push_back({i, j, n + j});
+        s.triangles.push_back({i, n + j, n + i});
+    }
+    return s;
+}
+
+// An L: the 2 x 2 square less its upper right quarter, times `unit` (m), `height` thick.
+inline core::Shape lShapeMesh(double unit, double height)
+{
+    return prismMesh({{0, 0}, {2 * unit, 0}, {2 * unit, unit}, {unit, unit}, {unit, 2 * unit}, {0, 2 * unit}},
+                     height);
+}
+
+// A closed, star-shaped and in general non-convex triangle mesh: a sphere of `rings` latitude
+// bands and `segments` longitudes whose vertex radii vary in radius (1 +- jitter), pseudo-random
+// from `seed` (the same every run).
+inline core::Shape rockMesh(double radius, int rings, int segments, double jitter, unsigned seed)
+{
+    core::Shape s;
+    s.type = core::ShapeType::Mesh;
+    unsigned state = seed * 2654435761u + 1u;
+    auto random = [&state]
+    {
+        state = state * 1664525u + 1013904223u; // a fixed LCG: portable and deterministic
+        return static_cast<double>(state >> 8) / static_cast<double>(1u << 24);
+    };
+    auto point = [&](double theta, double phi)
+    {
+        const double r = radius * (1.0 + jitter * (2.0 * random() - 1.0));
+        return Vec3(r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
+                    r * std::cos(theta));
+    };
+    const double pi = 3.14159265358979323846;
+    s.vertices.push_back(point(0.0, 0.0)); // north pole, 0
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < segments; ++j)
+            s.vertices.push_back(point(pi * i / rings, 2.0 * pi * j / segments));
+    s.vertices.push_back(point(pi, 0.0)); // south pole
+    const int south = static_cast<int>(s.vertices.size()) - 1;
+    auto at = [segments](int ring, int j) { return 1 + (ring - 1) * segments + (j % segments); };
+    for (int j = 0; j < segments; ++j)
+    {
+        s.triangles.push_back({0, at(1, j), at(1, j + 1)});
+        for (int i = 1; i + 1 < rings; ++i)
+        {
+            s.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+            s.triangles.push_back({at(i, j + 1), at(i + 1, j), at(i + 1, j + 1)});
+        }
+        s.triangles.push_back({at(rings - 1, j), south, at(rings - 1, j + 1)});
+    }
+    return s;
+}
+
 inline core::Body moving(const std::string& name, const core::Shape& shape, const Vec3& position,
                          const Quat& orientation = Quat::Identity())
 {
@@ -72,6 +144,19 @@ inline core::Body moving(const std::string& name, const core::Shape& shape, cons
     b.shapes.push_back(shape);
     b.position_W = position;
     b.orientation_WB = orientation;
+    return b;
+}
+
+// A moving body of one mesh of the given density (kg/m^3), its mass properties from the mesh and
+// its centre of mass at `centre` (the shape is placed so that the mesh keeps its shape frame).
+inline core::Body movingMesh(const std::string& name, core::Shape mesh, const Vec3& centre,
+                             double density = 1000.0, const Quat& orientation = Quat::Identity())
+{
+    const core::MassProperties props = core::shapeMassProperties(mesh, density);
+    mesh.position_BS = -props.centre;
+    core::Body b = moving(name, mesh, centre, orientation);
+    b.mass = props.mass;
+    b.inertia_B = props.inertia;
     return b;
 }
 
