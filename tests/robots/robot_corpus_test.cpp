@@ -138,7 +138,7 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenRobot{"NotARobot", cDart + "urdf/test/testWorld.urdf", "", 1, "expected a <robot> root element", 2},
         // One massless link and nothing else: it cannot float...
         BrokenRobot{"MasslessRoot", cDart + "urdf/test/primitive_geometry.urdf", "", 3, "has no mass", 2},
-        BrokenRobot{"MasslessJointedLinks", cDart + "urdf/test/joint_properties.urdf", "--fixed-base", 18,
+        BrokenRobot{"MasslessJointedLinks", cDart + "urdf/test/joint_properties.urdf", "--fixed-base", 17,
                     "joint '0_to_1' moves it", 2},
         // ... and bolted down, what is wrong with its visual mesh is a warning.
         BrokenRobot{"MissingMesh", cDart + "urdf/test/missing_mesh.urdf", "--fixed-base", 6,
