@@ -36,12 +36,19 @@ struct ShapeInstance
 {
     int body = 0; // index in core::Model::bodies
     core::ShapeType type = core::ShapeType::Box;
-    Vec3 halfExtents = Vec3::Zero(); // Box (m)
-    double radius = 0.0;             // Sphere, Capsule, Cylinder (m)
-    double halfLength = 0.0;         // Capsule: half segment; Cylinder: half height (m)
-    double boundingRadius = 0.0;     // of a sphere about the shape origin holding the shape (m)
-    double mergeDistance = 0.0;      // contacts of one pair closer than this are merged (m)
-    std::vector<Vec3> meshVertices;  // Mesh: unique vertices in S (m); the hull's when convexHull
+    Vec3 halfExtents = Vec3::Zero();   // Box (m)
+    double radius = 0.0;               // Sphere, Capsule, Cylinder (m)
+    double halfLength = 0.0;           // Capsule: half segment; Cylinder: half height (m)
+    double boundingRadius = 0.0;       // of a sphere about the shape origin holding the shape (m)
+    double mergeDistance = 0.0;        // contacts of one pair closer than this are merged (m)
+    std::vector<Vec3> meshVertices;    // Mesh: unique vertices in S (m); the hull's when convexHull
+    Vec3 meshBoxCentre = Vec3::Zero(); // Mesh: centre of the box in S that holds meshVertices (m)
+    Vec3 meshBoxHalf = Vec3::Zero();   // Mesh: its half extents along S's axes (m)
+    // convexHull: each corner's neighbours along the hull's edges, for hill climbing to the corner
+    // furthest along a direction (hullExtremeCorner) in a few steps instead of a pass over all.
+    std::vector<std::vector<int>> hullNeighbours;
+    std::vector<int> hullSeeds; // the corners furthest along the 26 directions of a cube's faces,
+                                // edges and corners: the climb starts at the best of them
     // Mesh of a moving body: it collides as its convex hull (FCL's Convex, GJK/EPA), not as
     // triangles (FCL's BVH). False for static meshes (terrain may be concave) and for meshes
     // without a 3-d hull (flat or collinear vertices: they keep the triangles).
@@ -56,6 +63,10 @@ struct ShapeInstance
     Mat3 R_WS = Mat3::Identity();
     Vec3 p_WS = Vec3::Zero(); // m
 };
+
+// Index of the hull corner of `s` (a convexHull mesh) furthest along u_S (shape frame): the hill
+// climb over its edges ends at the maximum, as a convex polytope's edge graph has no other peak.
+int hullExtremeCorner(const ShapeInstance& s, const Vec3& u_S);
 
 // Corner k (0..7, bit i set = +x_i side) of a box with the given half extents, shape frame (m).
 inline Vec3 boxCorner(const Vec3& half, int k)

@@ -16,8 +16,10 @@ namespace frontier::collision::detail
 namespace
 {
 
-// The interval [lo, hi] (m) that (x - p_WS) . u covers over the shape, u unit.
-void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi)
+// The interval [lo, hi] (m) that (x - p_WS) . u covers over the shape, u unit. Not exact (a hull
+// mesh by the box that holds it: three products instead of a pass over its corners): an interval
+// that holds the exact one.
+void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi, bool exact)
 {
     double half = s.boundingRadius; // a triangle mesh: its bounding sphere
     switch (s.type)
@@ -40,16 +42,22 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi)
         break;
     }
     case core::ShapeType::Mesh:
+        if (s.convexHull && !exact)
+        {
+            const Vec3 u_S = s.R_WS.transpose() * u;
+            const double centre = u_S.dot(s.meshBoxCentre);
+            const double reach = s.meshBoxHalf.dot(u_S.cwiseAbs());
+            lo = centre - reach;
+            hi = centre + reach;
+            return;
+        }
         if (s.convexHull)
         {
-            // Exact: the hull's corners, which need not be centred on the shape origin.
+            // Exact: the hull's corners furthest either way, which need not be centred on the
+            // shape origin.
             const Vec3 u_S = s.R_WS.transpose() * u;
-            lo = hi = u_S.dot(s.meshVertices.front());
-            for (const Vec3& v : s.meshVertices)
-            {
-                lo = std::min(lo, u_S.dot(v));
-                hi = std::max(hi, u_S.dot(v));
-            }
+            lo = u_S.dot(s.meshVertices[static_cast<std::size_t>(hullExtremeCorner(s, -u_S))]);
+            hi = u_S.dot(s.meshVertices[static_cast<std::size_t>(hullExtremeCorner(s, u_S))]);
             return;
         }
         break;
@@ -61,13 +69,23 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi)
 }
 
 // Separation of a and b along unit u (m); negative when their projections overlap.
-double separationAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u)
+double separationAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, bool exact)
 {
     double loA = 0.0, hiA = 0.0, loB = 0.0, hiB = 0.0;
-    extentAlong(a, u, loA, hiA);
-    extentAlong(b, u, loB, hiB);
+    extentAlong(a, u, loA, hiA, exact);
+    extentAlong(b, u, loB, hiB, exact);
     const double d = (b.p_WS - a.p_WS).dot(u); // b's origin relative to a's along u
     return std::max(d - hiA + loB, -d + loA - hiB);
+}
+
+// Separation along u beyond the margin: first by the hulls' boxes (cheap), then exactly.
+bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin)
+{
+    if (separationAlong(a, b, u, false) > margin)
+    {
+        return true;
+    }
+    return (a.convexHull || b.convexHull) && separationAlong(a, b, u, true) > margin;
 }
 
 // Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder).
@@ -78,7 +96,7 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
     case core::ShapeType::Box:
         for (int k = 0; k < 3; ++k)
         {
-            if (separationAlong(a, b, s.R_WS.col(k)) > margin)
+            if (separatedAlong(a, b, s.R_WS.col(k), margin))
             {
                 return true;
             }
@@ -86,7 +104,7 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
         return false;
     case core::ShapeType::Capsule:
     case core::ShapeType::Cylinder:
-        return separationAlong(a, b, s.R_WS.col(2)) > margin;
+        return separatedAlong(a, b, s.R_WS.col(2), margin);
     default:
         return false;
     }
@@ -98,7 +116,7 @@ bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double marg
 {
     const Vec3 between = b.p_WS - a.p_WS;
     const double length = between.norm();
-    if (length > 0.0 && separationAlong(a, b, between / length) > margin)
+    if (length > 0.0 && separatedAlong(a, b, between / length, margin))
     {
         return true;
     }

@@ -93,6 +93,39 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         s.meshVertices = s.convexHull ? s.hull.vertices : uniqueVertices(shape.vertices);
         for (const Vec3& v : s.meshVertices)
             s.boundingRadius = std::max(s.boundingRadius, v.norm());
+        if (s.convexHull)
+        {
+            s.hullNeighbours.assign(s.hull.vertices.size(), {});
+            for (const int start : s.hull.faceStart)
+            {
+                const int n = s.hull.faces[static_cast<std::size_t>(start)];
+                for (int k = 0; k < n; ++k)
+                {
+                    const int i = s.hull.faces[static_cast<std::size_t>(start + 1 + k)];
+                    const int j = s.hull.faces[static_cast<std::size_t>(start + 1 + (k + 1) % n)];
+                    s.hullNeighbours[static_cast<std::size_t>(i)].push_back(j); // each edge is in two faces,
+                }                                                               // once either way round
+            }
+            s.hullSeeds = {0};
+            for (int x = -1; x <= 1; ++x)
+                for (int y = -1; y <= 1; ++y)
+                    for (int z = -1; z <= 1; ++z)
+                        if (x != 0 || y != 0 || z != 0)
+                            s.hullSeeds.push_back(hullExtremeCorner(s, Vec3(x, y, z)));
+            std::sort(s.hullSeeds.begin(), s.hullSeeds.end());
+            s.hullSeeds.erase(std::unique(s.hullSeeds.begin(), s.hullSeeds.end()), s.hullSeeds.end());
+        }
+        if (!s.meshVertices.empty())
+        {
+            Vec3 lo = s.meshVertices.front(), hi = lo;
+            for (const Vec3& v : s.meshVertices)
+            {
+                lo = lo.cwiseMin(v);
+                hi = hi.cwiseMax(v);
+            }
+            s.meshBoxCentre = 0.5 * (lo + hi);
+            s.meshBoxHalf = 0.5 * (hi - lo);
+        }
         s.mergeDistance = 0.05 * s.boundingRadius;
         break;
     }
@@ -122,6 +155,36 @@ void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB)
 {
     s.R_WS = R_WB * s.R_BS;
     s.p_WS = p_WB + R_WB * s.p_BS;
+}
+
+int hullExtremeCorner(const ShapeInstance& s, const Vec3& u_S)
+{
+    int best = 0;
+    double bestValue = u_S.dot(s.meshVertices.front());
+    for (const int seed : s.hullSeeds)
+    {
+        const double value = u_S.dot(s.meshVertices[static_cast<std::size_t>(seed)]);
+        if (value > bestValue)
+        {
+            best = seed;
+            bestValue = value;
+        }
+    }
+    for (bool moved = true; moved;)
+    {
+        moved = false;
+        for (const int next : s.hullNeighbours[static_cast<std::size_t>(best)])
+        {
+            const double value = u_S.dot(s.meshVertices[static_cast<std::size_t>(next)]);
+            if (value > bestValue)
+            {
+                best = next;
+                bestValue = value;
+                moved = true;
+            }
+        }
+    }
+    return best;
 }
 
 } // namespace frontier::collision::detail

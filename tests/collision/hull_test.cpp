@@ -3,6 +3,7 @@
 // theorem over the hull's faces); FCL's dedicated box-box algorithm for cubes given as meshes;
 // the notch of an L, which only the hull fills.
 #include "collision/convex_hull.h"
+#include "collision/internal.h"
 #include "test_models.h"
 
 #include <algorithm>
@@ -107,6 +108,24 @@ TEST(ConvexHull, RockHullEnclosesEveryVertexAndIsConvex)
         edges += hull.faces[static_cast<std::size_t>(start)];
     EXPECT_EQ(static_cast<long>(hull.vertices.size()) - edges / 2 + static_cast<long>(hull.normals.size()),
               2);
+}
+
+TEST(ConvexHull, HillClimbFindsTheFurthestCornerInEveryDirection)
+{
+    // Brute force over every corner is the oracle; 2000 directions spread over the sphere.
+    const detail::ShapeInstance s = detail::makeShapeInstance(rockMesh(0.1, 16, 24, 0.25, 3), 0, true);
+    ASSERT_TRUE(s.convexHull);
+    for (int k = 0; k < 2000; ++k)
+    {
+        const double z = 1.0 - (k + 0.5) / 1000.0;
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        const Vec3 u(r * std::cos(2.39996 * k), r * std::sin(2.39996 * k), z);
+        double best = -std::numeric_limits<double>::infinity();
+        for (const Vec3& v : s.meshVertices)
+            best = std::max(best, u.dot(v));
+        EXPECT_EQ(u.dot(s.meshVertices[static_cast<std::size_t>(detail::hullExtremeCorner(s, u))]), best)
+            << k;
+    }
 }
 
 TEST(ConvexHull, DegenerateInputIsRefusedQuietly)
