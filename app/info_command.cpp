@@ -77,6 +77,16 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
         {
             entry["friction"] = joint.friction;
         }
+        if (joint.limits)
+        {
+            // In the file's own coordinate (a URDF joint may start at a limit: initial_position).
+            entry["limits"] = {(*joint.limits)[0] + joint.initialPosition,
+                               (*joint.limits)[1] + joint.initialPosition};
+        }
+        if (joint.initialPosition != 0.0)
+        {
+            entry["initial_position"] = joint.initialPosition;
+        }
         out["joints"].push_back(entry);
     }
     if (model.joints.empty())
@@ -146,6 +156,15 @@ void printText(const nlohmann::json& info)
         if (joint.contains("friction"))
         {
             std::cout << "  friction " << joint["friction"].get<double>() << (turns ? " N m" : " N");
+        }
+        if (joint.contains("limits"))
+        {
+            std::cout << "  limits [" << joint["limits"][0].get<double>() << ", "
+                      << joint["limits"][1].get<double>() << "]" << (turns ? " rad" : " m");
+        }
+        if (joint.contains("initial_position"))
+        {
+            std::cout << "  starts at " << joint["initial_position"].get<double>();
         }
         std::cout << "\n";
     }

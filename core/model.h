@@ -100,8 +100,13 @@ struct Joint
     Vec3 angleChildAxis = Vec3::UnitY();
     // Relative orientation q_A^-1 q_B at the initial pose (prismatic, fixed).
     Quat restRotation_AB = Quat::Identity();
-    // Joint limits (rad for revolute, m for prismatic); the contacts issue makes them one-sided rows.
+    // Joint limits (rad for revolute, m for prismatic), of the coordinate measured from the initial
+    // pose (0 there); one-sided rows near them.
     std::optional<std::array<double, 2>> limits;
+    // The coordinate of the initial pose in the model file's own convention (rad or m): a URDF
+    // joint whose zero lies outside its limits starts at the nearest limit, and its limits are
+    // shifted by this much. 0 for YAML joints (their initial pose is their zero).
+    double initialPosition = 0.0;
     // Revolute and prismatic joints (URDF <dynamics>): viscous damping of the joint coordinate
     // (N m s/rad or N s/m) and Coulomb friction (N m or N); 0 = none.
     double damping = 0.0;

@@ -217,6 +217,35 @@ class UrdfConverter
         return static_cast<int>(mGroups.size()) - 1;
     }
 
+    // The joint's own motion at its start position: a joint whose zero lies outside its limits
+    // starts at the nearest limit (robot files such as quadrupeds' knees do that), with a warning.
+    Pose startMotion(const urdf::Joint& joint)
+    {
+        const core::Vec3 axis(joint.axis.x, joint.axis.y, joint.axis.z);
+        if (!joint.limits || joint.type == urdf::Joint::CONTINUOUS || !(axis.norm() > 1e-12) ||
+            !axis.allFinite() || !(joint.limits->lower <= joint.limits->upper))
+        {
+            return {}; // no limits to start within (a bad axis or limit is reported with the joint)
+        }
+        const double start = std::clamp(0.0, joint.limits->lower, joint.limits->upper);
+        if (start == 0.0)
+        {
+            return {};
+        }
+        mStartPosition[joint.name] = start;
+        const bool slides = joint.type == urdf::Joint::PRISMATIC;
+        warn(mIndex.element("joint", joint.name, "limit"),
+             "joint '" + joint.name + "': its zero position lies outside its limits [" +
+                 formatNumber(joint.limits->lower) + ", " + formatNumber(joint.limits->upper) + "] " +
+                 (slides ? "m" : "rad") + "; it starts at " + formatNumber(start));
+        const core::Vec3 u = axis.normalized();
+        if (slides)
+        {
+            return {start * u, core::Quat::Identity()};
+        }
+        return {core::Vec3::Zero(), core::Quat(Eigen::AngleAxisd(start, u))};
+    }
+
     // World poses and link groups, walking the tree from the root (no recursion: a URDF may be
     // deep, and a joint from a link to itself must not loop).
     void placeLinks(const urdf::Link& root)
@@ -272,6 +301,7 @@ class UrdfConverter
                 case urdf::Joint::CONTINUOUS:
                 case urdf::Joint::PRISMATIC:
                     place.group = newGroup(childName, false, joint.get());
+                    place.world = place.world * startMotion(*joint);
                     break;
                 case urdf::Joint::PLANAR:
                     fail(mIndex.element("joint", joint->name),
@@ -663,7 +693,9 @@ class UrdfConverter
             warn(at, "joint '" + joint.name + "' has lower = upper = " + formatNumber(lower) +
                          " (a <limit> without lower and upper means 0 and 0): it is locked");
         }
-        j.limits = std::array<double, 2>{lower, upper};
+        const auto start = mStartPosition.find(joint.name);
+        j.initialPosition = start == mStartPosition.end() ? 0.0 : start->second;
+        j.limits = std::array<double, 2>{lower - j.initialPosition, upper - j.initialPosition};
     }
 
     void readDynamics(const urdf::Joint& joint, core::Joint& j) const
@@ -691,7 +723,8 @@ class UrdfConverter
     const PackagePaths& mPackages;
     std::map<std::string, LinkPlace> mPlaces; // by link name
     std::vector<LinkGroup> mGroups;
-    std::set<std::string> mNotedPackages; // last-resort package matches already warned about
+    std::set<std::string> mNotedPackages;         // last-resort package matches already warned about
+    std::map<std::string, double> mStartPosition; // joints that start at a limit (rad or m)
     UrdfFragment mOut;
 };
 

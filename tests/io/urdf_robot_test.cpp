@@ -437,6 +437,44 @@ TEST(UrdfJoints, LockedLimitAndMimicAreWarnings)
         << all;
 }
 
+TEST(UrdfJoints, AJointWhoseZeroIsOutsideItsLimitsStartsAtTheNearestLimit)
+{
+    TempDir dir;
+    // A knee about y with limits [-2.7, -0.9] rad (as quadrupeds' knees are written): the shin
+    // starts turned by -0.9 rad about y, its centre of mass (0, 0, -0.1) in its link frame at
+    // R_y(-0.9) (0, 0, -0.1) = (0.1 sin 0.9, 0, -0.1 cos 0.9) from the knee; limits measured from there are
+    // [-1.8, 0].
+    const std::string urdf = dir.write("leg.urdf", text(R"(
+<robot name="leg">
+  <link name="world"/>
+  <joint name="mount" type="fixed"><parent link="world"/><child link="thigh"/><origin xyz="0 0 1"/></joint>
+  <link name="thigh"/>
+  <joint name="knee" type="revolute"><parent link="thigh"/><child link="shin"/>
+    <axis xyz="0 1 0"/><limit lower="-2.7" upper="-0.9" effort="1" velocity="1"/></joint>
+  <link name="shin">
+    <inertial><origin xyz="0 0 -0.1"/><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/></inertial>
+  </link>
+</robot>
+)"));
+    LoadReport report;
+    const core::Model model = loadScene(urdf, {}, &report);
+    const int shin = model.findBody("shin");
+    ASSERT_GE(shin, 0);
+    const core::Vec3 expected(0.1 * std::sin(0.9), 0.0, 1.0 - 0.1 * std::cos(0.9));
+    EXPECT_LT((model.bodies[static_cast<std::size_t>(shin)].position_W - expected).norm(), 1e-15);
+    const core::Joint& knee = model.joints.at(0);
+    EXPECT_DOUBLE_EQ(knee.initialPosition, -0.9);
+    EXPECT_NEAR((*knee.limits)[0], -1.8, 1e-15);
+    EXPECT_EQ((*knee.limits)[1], 0.0);
+    ASSERT_FALSE(report.warnings.empty());
+    EXPECT_NE(report.warnings[0].find(urdf + ":6:24: warning"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(
+        report.warnings[0].find("joint 'knee': its zero position lies outside its limits [-2.7, -0.9] rad; "
+                                "it starts at -0.9"),
+        std::string::npos)
+        << report.warnings[0];
+}
+
 TEST(UrdfJoints, NegativeDampingIsAnError)
 {
     TempDir dir;
