@@ -187,7 +187,7 @@ int checkCommand(const CheckOptions& options)
     std::string firstDivergence;
     std::size_t recorded = 0;
     std::string misfit;
-    const Recorder compare = [&](const core::State& state)
+    const Recorder compare = [&](const core::State& state, const core::Simulator*)
     {
         if (state.step % recordEvery != 0 || !misfit.empty())
         {

@@ -26,8 +26,10 @@ struct RunOptions
     std::optional<std::string> integrator;
     std::string trajectory; // CSV path, empty: none
     int recordEvery = 1;
-    std::string stats;  // JSON path, empty: none
-    std::string frames; // PNG folder, empty: none
+    std::string stats;    // JSON path, empty: none
+    std::string joints;   // joints CSV path (io/joints_file.h), empty: none
+    std::string contacts; // contacts CSV path (io/contacts_file.h), empty: none
+    std::string frames;   // PNG folder, empty: none
     double fps = 30.0;
     int width = 640;
     int height = 480;

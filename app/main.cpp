@@ -68,9 +68,16 @@ void addRunOptions(CLI::App& run, RunOptions& o)
         ->check(CLI::PositiveNumber);
     run.add_option("--integrator", o.integrator, "euler | rattle")->check(CLI::IsMember({"euler", "rattle"}));
     run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here");
-    run.add_option("--record-every", o.recordEvery, "a trajectory row every K steps")
+    run.add_option("--record-every", o.recordEvery, "trajectory, joints and contacts rows every K steps")
         ->check(CLI::PositiveNumber);
     run.add_option("--stats", o.stats, "write the run statistics JSON here");
+    run.add_option("--joints", o.joints,
+                   "write the joints CSV here: per recorded step and joint coordinate, position, velocity, "
+                   "actuator effort, and the force and torque the joint passes to its child");
+    run.add_option(
+        "--contacts", o.contacts,
+        "write the contacts CSV here: per recorded step and contact, bodies, point, normal, depth, "
+        "normal and friction impulse");
     run.add_option("--frames", o.frames, "write PNG frames into this folder");
     run.add_option("--fps", o.fps, "frames per simulated second")->check(CLI::PositiveNumber);
     run.add_option("--width", o.width, "frame width (pixels)")->check(CLI::Range(16, 16384));

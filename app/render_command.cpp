@@ -140,7 +140,10 @@ int renderCommand(const RenderCommandOptions& options)
     std::vector<JobOutputs> outputs;
     try
     {
-        outputs = planOutputs(options.trajectories, {"", "", options.frames, options.video});
+        JobOutputs given;
+        given.frames = options.frames;
+        given.video = options.video;
+        outputs = planOutputs(options.trajectories, given);
     }
     catch (const io::InputError& e)
     {

@@ -7,6 +7,7 @@
 #include "app/progress.h"
 #include "app/run_loop.h"
 #include "app/scene_loading.h"
+#include "app/step_outputs.h"
 #include "core/impulse_solver.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
@@ -104,6 +105,10 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.extra["contact_steps_built"] =
         static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Built)]);
     stats.extra["contact_sweeps"] = static_cast<double>(s.contactSweeps);
+    // How often a limit held: joint limits that pushed, actuators at their effort limit (steps).
+    stats.extra["limit_steps"] = static_cast<double>(s.limitSteps);
+    stats.extra["max_actuator_effort"] = s.maxActuatorEffort;
+    stats.extra["actuator_limit_steps"] = static_cast<double>(s.actuatorLimitSteps);
     // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
     const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
                                                 "seconds_per_step_solve", "seconds_per_step_integrate"};
@@ -123,6 +128,13 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
 
 namespace
 {
+// The folder an output file goes into, made when missing.
+void makeFolderFor(const std::string& file)
+{
+    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+    std::filesystem::create_directories(parent.empty() ? std::filesystem::path(".") : parent);
+}
+
 // Ends one job's output; returns its exit code. Messages for the user go to `error`.
 int runOne(const RunOptions& options, const std::string& scene, const JobOutputs& out, int renderThreads,
            const std::function<void(const std::string&)>& status, std::string& summaryText,
@@ -131,6 +143,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     core::Model model;
     long steps = 0;
     std::unique_ptr<io::TrajectoryWriter> trajectory;
+    std::unique_ptr<StepOutputs> stepOutputs; // --joints, --contacts
     try
     {
         LoadedScene loaded = loadSceneWithRobots(scene, options.urdf);
@@ -140,15 +153,23 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         model = std::move(loaded.model);
         steps = applyOverrides(options, model);
+        io::TrajectoryMetadata metadata =
+            io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
+        addUrdfOptions(metadata, options.urdf);
+        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts})
+        {
+            if (!file->empty())
+            {
+                makeFolderFor(*file);
+            }
+        }
         if (!out.trajectory.empty())
         {
-            std::filesystem::create_directories(std::filesystem::path(out.trajectory).parent_path().empty()
-                                                    ? std::filesystem::path(".")
-                                                    : std::filesystem::path(out.trajectory).parent_path());
-            io::TrajectoryMetadata metadata =
-                io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
-            addUrdfOptions(metadata, options.urdf);
             trajectory = std::make_unique<io::TrajectoryWriter>(out.trajectory, metadata);
+        }
+        if (!out.joints.empty() || !out.contacts.empty())
+        {
+            stepOutputs = std::make_unique<StepOutputs>(out.joints, out.contacts, metadata);
         }
         if (!out.frames.empty())
         {
@@ -173,11 +194,16 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
 
     std::vector<core::State> frames;
     FrameSampler sampler(options.fps);
-    const Recorder record = [&](const core::State& state)
+    const Recorder record = [&](const core::State& state, const core::Simulator* lastStep)
     {
-        if (trajectory && state.step % options.recordEvery == 0)
+        const bool due = state.step % options.recordEvery == 0;
+        if (trajectory && due)
         {
             trajectory->writeState(model, state);
+        }
+        if (stepOutputs && due)
+        {
+            stepOutputs->record(model, state, lastStep);
         }
         if (!out.frames.empty() && sampler.due(state.time))
         {
@@ -216,12 +242,21 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         error = scene + ": " + e.what();
         return cExitFailed;
     }
+    catch (const io::OutputError& e) // an output file could not be written on (a full disk)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
 
     try
     {
         if (trajectory && summary.finite)
         {
             trajectory->commit();
+        }
+        if (stepOutputs && summary.finite)
+        {
+            stepOutputs->commit();
         }
         if (!out.stats.empty())
         {
@@ -264,8 +299,8 @@ int runCommand(const RunOptions& options)
     std::vector<JobOutputs> outputs;
     try
     {
-        outputs =
-            planOutputs(options.scenes, {options.trajectory, options.stats, options.frames, options.video});
+        outputs = planOutputs(options.scenes, {options.trajectory, options.stats, options.frames,
+                                               options.video, options.joints, options.contacts});
         if (!options.video.empty() && options.frames.empty())
         {
             throw io::InputError(options.video, 0, 0, "--video needs --frames (the frames it is made from)");

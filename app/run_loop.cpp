@@ -1,11 +1,13 @@
 // app/run_loop.cpp: the run loop with progress, statistics and recording.
 #include "app/run_loop.h"
 
+#include "app/actuator_efforts.h"
 #include "collision/contacts.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace frontier::app
 {
@@ -36,8 +38,9 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     summary.maxJointErrorRad = errorRad;
     if (record)
     {
-        record(state);
+        record(state, nullptr);
     }
+    std::vector<CoordinateEffort> efforts;
     const auto start = std::chrono::steady_clock::now();
     try
     {
@@ -52,6 +55,15 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.firstOrderSteps += stats.firstOrderFallback ? 1 : 0;
             ++summary.contactRoutes[core::routeIndex(stats.contactRoute)];
             summary.contactSweeps += stats.contactSweeps;
+            summary.limitSteps += simulator.pushingLimitRows() > 0 ? 1 : 0;
+            lastActuatorEfforts(model, simulator, efforts);
+            bool atLimit = false;
+            for (const CoordinateEffort& e : efforts)
+            {
+                summary.maxActuatorEffort = std::max(summary.maxActuatorEffort, std::abs(e.effort));
+                atLimit = atLimit || e.atLimit;
+            }
+            summary.actuatorLimitSteps += atLimit ? 1 : 0;
             for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
             {
                 summary.stageSeconds[stage] += stats.seconds[stage];
@@ -62,7 +74,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.steps = k + 1;
             if (record)
             {
-                record(state);
+                record(state, &simulator);
             }
             if (settings.progress)
             {

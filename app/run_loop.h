@@ -33,13 +33,17 @@ struct RunSummary
     int maxContacts = 0;
     long firstOrderSteps = 0; // rattle steps that stalled and were taken by euler instead
     std::array<long, core::cContactRoutes> contactRoutes{}; // steps by core::ContactRoute
-    long contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem, all steps
+    long contactSweeps = 0;         // Gauss-Seidel sweeps of the contact problem, all steps
+    long limitSteps = 0;            // steps in which some joint-limit row pushed
+    double maxActuatorEffort = 0.0; // largest |effort| of any actuator in any step (N or N m)
+    long actuatorLimitSteps = 0;    // steps in which some actuator sat at its effort limit
     bool finite = true;
     std::string failure; // the SimulationError message when the run blew up
 };
 
-// Called with the initial state and the state after every step.
-using Recorder = std::function<void(const core::State&)>;
+// Called with the initial state (`lastStep` null: no step yet) and with the state after every
+// step, with the simulator that took it (its impulses and contacts are then that step's).
+using Recorder = std::function<void(const core::State&, const core::Simulator* lastStep)>;
 
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);
 

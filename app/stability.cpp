@@ -328,7 +328,7 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     core::Vec3 momentum0 = core::Vec3::Zero();
     double momentumDrift = 0.0;
     bool first = true;
-    const Recorder record = [&](const core::State& state)
+    const Recorder record = [&](const core::State& state, const core::Simulator*)
     {
         const double energy = core::totalEnergy(model, state);
         const core::Vec3 momentum = core::totalMomentum(model, state).angular;

@@ -94,7 +94,7 @@ SampledRun runSampled(const core::Model& model, const SweepSchedule& schedule, c
         { fraction(static_cast<double>(step) / static_cast<double>(settings.steps)); };
     }
     std::size_t next = 0;
-    const Recorder record = [&](const core::State& state)
+    const Recorder record = [&](const core::State& state, const core::Simulator*)
     {
         if (next < schedule.sampleUnits.size() && state.step == schedule.sampleUnits[next] * perUnit)
         {

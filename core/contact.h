@@ -22,6 +22,18 @@ struct Contact
     double depth = 0.0;            // m, > 0 when penetrating
 };
 
+// A contact of a step with the impulse it passed over that step (N s, world frame): what body B
+// received from body A (A received the opposite). The normal part is >= 0 (contacts push, never
+// pull); the rest is friction, tangential to the contact.
+struct ContactImpulse
+{
+    Contact contact;
+    Vec3 impulse_W = Vec3::Zero(); // N s, on B
+
+    double normalImpulse() const { return contact.normal_W.dot(impulse_W); }
+    Vec3 frictionImpulse_W() const { return impulse_W - normalImpulse() * contact.normal_W; }
+};
+
 class ContactSource
 {
   public:

@@ -51,17 +51,23 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     system.rowCount = 0;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
-        const Joint& joint = model.joints[k];
-        const JointPose pose = jointPose(state, joint);
-        const detail::JointGeometry g = detail::jointGeometry(joint, pose);
-        const bool parentMoves = !jointToWorld(model, joint);
-        evaluateJoint(joint, pose, g, parentMoves, system.joints[k]);
-        writeDriveRows(joint, g, parentMoves, driveStep, system.joints[k]);
+        evaluateJointBlock(model, state, static_cast<int>(k), driveStep, system.joints[k]);
         if (layout.jointBlock[k] >= 0)
         {
             system.rowCount += system.joints[k].count;
         }
     }
+}
+
+void evaluateJointBlock(const Model& model, const State& state, int jointIndex, double driveStep,
+                        JointRows& out)
+{
+    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    const JointPose pose = jointPose(state, joint);
+    const detail::JointGeometry g = detail::jointGeometry(joint, pose);
+    const bool parentMoves = !jointToWorld(model, joint);
+    evaluateJoint(joint, pose, g, parentMoves, out);
+    writeDriveRows(joint, g, parentMoves, driveStep, out);
 }
 
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,

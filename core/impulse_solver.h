@@ -42,6 +42,11 @@ struct RowSystem
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
                   RowSystem& system);
 
+// The rows of one joint's block at a state (its conditions, then its drive rows for a solve of
+// duration driveStep), as assembleRows writes them.
+void evaluateJointBlock(const Model& model, const State& state, int jointIndex, double driveStep,
+                        JointRows& out);
+
 // Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
 struct BlockVector
 {

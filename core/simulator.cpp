@@ -1034,6 +1034,7 @@ bool Simulator::stabilizeJoints(State& state)
     constexpr double cRattleStall = 0.5;
     constexpr int cRattleIterations = 12;
     const bool rattle = mRattleStep;
+    mLoopCorrection.setZero(mLoopBlocks.empty() ? 0 : mLoopBlocks.back().offset + mLoopBlocks.back().count);
     for (int iteration = 0;; ++iteration)
     {
         assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
@@ -1129,6 +1130,7 @@ void Simulator::correctLoops()
     const Eigen::VectorXd residual = -mLoopError / mDt - mExtraVelocity;
     const Eigen::VectorXd mu = mLoopLdlt.solve(residual);
     mSolver->applyExtraImpulses(mLoopBlocks, mu, mCorrection);
+    mLoopCorrection += mu;
 }
 
 // Drive rows of loop joints are compliant in the projection too: G_loop gains E on their diagonal.

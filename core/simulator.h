@@ -149,6 +149,20 @@ class Simulator
     // the joint's conditions, then its drive rows (the damping impulse, core/joints/drive.h).
     const LargeVector<Vec6>& jointImpulses() const { return mSolution.joint; }
 
+    // What the last step passed through its joints and contacts, worked out when asked
+    // (core/step_report.cpp; nothing of it runs in step()).
+    // Per joint, the impulse it gave its child body over the step, world frame: [linear (N s);
+    // angular about the joint's anchor on the child (N m s)]. Every row of the joint counts: its
+    // conditions, drive rows, limit, friction and loop rows, and the drift correction; the parent
+    // received the opposite. The rows are taken at `state`, the state the step produced, so that a
+    // ball joint passes no torque and a hinge none about its axis but through its limit or drives.
+    void jointChildImpulses(const State& state, std::vector<Vec6>& out) const;
+    // The contacts the step detected (at its start) with the impulse each passed; 0 for those
+    // that got no row (a gap the bodies could not close within the step).
+    void contactImpulses(std::vector<ContactImpulse>& out) const;
+    // Joint-limit rows that pushed (impulse > 0) in the last step.
+    int pushingLimitRows() const;
+
   private:
     void stepEuler(State& state);
     bool stepRattle(State& state); // false: stalled, state partly stepped
@@ -182,6 +196,7 @@ class Simulator
     bool stabilizeJoints(State& state);  // false: a rattle step stalled
     void buildLoopRows(const RowSystem& rows);
     void correctLoops();
+    Eigen::VectorXd mLoopCorrection; // loop impulses of this step's drift correction (N s, N m s)
     void addLoopCompliance();
     // Duration of one impulse solve (s): the step, or half of it for rattle, whose two velocity
     // stages each take half of the joints' damping and friction (core/joints/drive.h).

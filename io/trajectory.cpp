@@ -1,7 +1,6 @@
 // io/trajectory.cpp: trajectory CSV writer (atomic) and reader (located errors).
 #include "io/trajectory.h"
 
-#include "io/atomic_file.h"
 #include "io/file_util.h"
 #include "io/scene.h"
 
@@ -15,78 +14,14 @@ namespace frontier::io
 namespace
 {
 
-constexpr const char* cMetadataPrefix = "# frontier trajectory:";
+const std::string cMetadataPrefix = metadataPrefix("trajectory");
 constexpr std::array<const char*, 15> cColumns = {"time", "body", "px", "py", "pz", "qw", "qx", "qy",
                                                   "qz",   "vx",   "vy", "vz", "wx", "wy", "wz"};
-
-// 17 significant digits: enough for every double to read back to the same bits.
-void appendNumber(std::string& out, double value)
-{
-    char buffer[32];
-    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value, std::chars_format::general, 17);
-    out.append(buffer, result.ptr);
-}
 
 std::string formatNumber(double value)
 {
     std::string out;
     appendNumber(out, value);
-    return out;
-}
-
-std::string encodeField(const std::string& text)
-{
-    static constexpr char hex[] = "0123456789ABCDEF";
-    std::string out;
-    for (const char c : text)
-    {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '%' || c == ' ' || c == '=' || c == ',' || u < 0x20 || u == 0x7f)
-        {
-            out += '%';
-            out += hex[u >> 4];
-            out += hex[u & 15];
-        }
-        else
-        {
-            out += c;
-        }
-    }
-    return out;
-}
-
-int hexDigit(char c)
-{
-    if (c >= '0' && c <= '9')
-    {
-        return c - '0';
-    }
-    if (c >= 'A' && c <= 'F')
-    {
-        return c - 'A' + 10;
-    }
-    if (c >= 'a' && c <= 'f')
-    {
-        return c - 'a' + 10;
-    }
-    return -1;
-}
-
-std::string decodeField(std::string_view text)
-{
-    std::string out;
-    for (std::size_t i = 0; i < text.size(); ++i)
-    {
-        if (text[i] == '%' && i + 2 < text.size() && hexDigit(text[i + 1]) >= 0 && hexDigit(text[i + 2]) >= 0)
-        {
-            out += static_cast<char>(hexDigit(text[i + 1]) * 16 + hexDigit(text[i + 2]));
-            i += 2;
-        }
-        else
-        {
-            out += text[i];
-        }
-    }
     return out;
 }
 
@@ -133,25 +68,13 @@ TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
 }
 
 TrajectoryWriter::TrajectoryWriter(const std::string& path, const TrajectoryMetadata& metadata)
-    : mFile(std::make_unique<AtomicFile>(path))
+    : CsvWriter(path, "trajectory", metadata, cTrajectoryHeader)
 {
-    std::string head = cMetadataPrefix;
-    for (const auto& [key, value] : metadata)
-    {
-        head += ' ' + encodeField(key) + '=' + encodeField(value);
-    }
-    head += '\n';
-    head += cTrajectoryHeader;
-    head += '\n';
-    mFile->write(head);
 }
-
-TrajectoryWriter::~TrajectoryWriter() = default;
 
 void TrajectoryWriter::writeState(const core::Model& model, const core::State& state)
 {
-    std::string buffer;
-    buffer.reserve(512);
+    std::string& buffer = mLine;
     for (std::size_t i = 0; i < model.bodies.size() && i < state.bodies.size(); ++i)
     {
         const core::Body& body = model.bodies[i];
@@ -174,15 +97,8 @@ void TrajectoryWriter::writeState(const core::Model& model, const core::State& s
             buffer += ',';
             appendNumber(buffer, v);
         }
-        buffer += '\n';
-        mFile->write(buffer);
-        ++mRows;
+        mFile.writeRow(buffer);
     }
-}
-
-void TrajectoryWriter::commit()
-{
-    mFile->commit();
 }
 
 core::BodyState TrajectoryRow::state() const
@@ -220,7 +136,7 @@ Trajectory readTrajectory(const std::string& path)
         {
             if (line.starts_with(cMetadataPrefix))
             {
-                const std::size_t offset = std::string_view(cMetadataPrefix).size();
+                const std::size_t offset = cMetadataPrefix.size();
                 for (const Field& pair : splitFields(line.substr(offset), ' '))
                 {
                     if (pair.text.empty())
@@ -234,8 +150,8 @@ Trajectory readTrajectory(const std::string& path)
                                          "expected key=value in the trajectory comment, got '" +
                                              std::string(pair.text) + "'");
                     }
-                    out.metadata[decodeField(pair.text.substr(0, eq))] =
-                        decodeField(pair.text.substr(eq + 1));
+                    out.metadata[decodeMetadataField(pair.text.substr(0, eq))] =
+                        decodeMetadataField(pair.text.substr(eq + 1));
                 }
             }
             continue;

@@ -5,11 +5,13 @@
 //   time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz
 //   0,pelvis,0,0,1,1,0,0,0,0,0,0,0,0,0
 // One row per moving body per recorded step; numbers with 17 significant digits, so they read back
-// bit for bit. In metadata values, '%', ' ', '=', ',' and control characters are written as %XX.
+// bit for bit. In metadata values, '%', ' ', '=', ',' and control characters are written as %XX
+// (io/csv_output.h: what the trajectory, joints and contacts files share).
 #pragma once
 
 #include "core/model.h"
 #include "core/state.h"
+#include "io/csv_output.h"
 
 #include <array>
 #include <map>
@@ -21,10 +23,8 @@
 namespace frontier::io
 {
 
-class AtomicFile;
-
-// Ordered key=value pairs of the comment line.
-using TrajectoryMetadata = std::vector<std::pair<std::string, std::string>>;
+// Ordered key=value pairs of the comment line (also of the joints and contacts files of a run).
+using TrajectoryMetadata = FileMetadata;
 
 // The standard pairs: scene dt solver pgs_iterations integrator steps record_every duration.
 TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
@@ -33,25 +33,16 @@ TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
 
 inline constexpr const char* cTrajectoryHeader = "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
 
-class TrajectoryWriter
+class TrajectoryWriter : public CsvWriter
 {
   public:
-    // Creates PATH.tmp-XXXXXX next to `path` and writes the comment and header lines.
-    // Throws OutputError (io/atomic_file.h) when the file cannot be created.
+    // Creates PATH.tmp-XXXXXX next to `path` and writes the comment and header lines; without
+    // commit() (io/csv_output.h) the temporary file is removed. Throws OutputError
+    // (io/atomic_file.h) when the file cannot be created.
     TrajectoryWriter(const std::string& path, const TrajectoryMetadata& metadata);
-    ~TrajectoryWriter(); // without commit(): removes the temporary file
-    TrajectoryWriter(const TrajectoryWriter&) = delete;
-    TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
 
     // One row per non-static body at state.time.
     void writeState(const core::Model& model, const core::State& state);
-    // Flushes and renames the file into place (atomic); throws OutputError.
-    void commit();
-    long rowsWritten() const { return mRows; }
-
-  private:
-    std::unique_ptr<AtomicFile> mFile;
-    long mRows = 0;
 };
 
 struct TrajectoryRow

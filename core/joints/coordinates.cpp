@@ -120,6 +120,25 @@ double jointCoordinate(const Model& model, const State& state, int jointIndex)
                            type == JointType::Revolute ? JointCoordinate::Rotation : JointCoordinate::Slide);
 }
 
+double jointCoordinateVelocity(const Model& model, const State& state, int jointIndex,
+                               JointCoordinate coordinate)
+{
+    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    const CoordinateRow row =
+        coordinateRow(joint, detail::jointGeometry(joint, jointPose(state, joint)), coordinate);
+    auto velocity = [&](int body)
+    {
+        const BodyState& s = state.bodies[static_cast<std::size_t>(body)];
+        return (Vec6() << s.velocity_W, s.angularVelocity_W).finished();
+    };
+    double rate = row.J_b.dot(velocity(joint.child));
+    if (isMovingBody(model, joint.parent))
+    {
+        rate += row.J_a.dot(velocity(joint.parent));
+    }
+    return rate;
+}
+
 void trackJointAngles(const Model& model, State& state)
 {
     // Every step, for every hinge: only the two rotations the angle needs (no JointGeometry).

@@ -59,6 +59,10 @@ double jointCoordinate(const Model& model, const State& state, int jointIndex, J
 // The coordinate a limit bounds: rotation of a revolute joint, slide of a prismatic one.
 double jointCoordinate(const Model& model, const State& state, int jointIndex);
 
+// The rate of a coordinate at a state, dq/dt from its velocity row (rad/s or m/s).
+double jointCoordinateVelocity(const Model& model, const State& state, int jointIndex,
+                               JointCoordinate coordinate);
+
 // Continues State::jointAngles to the state's pose (once per step, at its end); sizes the vector
 // for a state that was not made by initialState.
 void trackJointAngles(const Model& model, State& state);

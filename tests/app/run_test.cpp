@@ -207,7 +207,8 @@ INSTANTIATE_TEST_SUITE_P(Run, RowCount,
                                            RowCase{"--dt 0.002 --duration 1", 501, 1.0}));
 
 // A ball under 2e6 m/s^2 passes the simulator's runaway speed within ~50 steps: exit 1, the
-// message names the step and the body, and neither the trajectory nor a temporary file remains.
+// message names the step and the body, and neither the trajectory, the joints and contacts files
+// nor a temporary file remains.
 TEST(Run, FailedRunLeavesNoTrajectory)
 {
     const TestDir dir;
@@ -215,9 +216,13 @@ TEST(Run, FailedRunLeavesNoTrajectory)
 simulation: {dt: 0.001, duration: 1.0, gravity: [0, 0, -2.0e6]}
 bodies:
   - {name: cannonball, mass: 1, shape: {type: sphere, radius: 0.1}, position: [0, 0, 1]}
+  - {name: bob, mass: 1, shape: {type: sphere, radius: 0.1}, position: [1, 0, 1]}
+joints:
+  - {name: pivot, type: ball, parent: world, child: bob, anchor: [1, 0, 2]}
 )");
     const std::string traj = dir.out("runaway.csv");
-    const Result r = dir.run("run " + shellQuote(scene) + " --trajectory " + shellQuote(traj));
+    const Result r = dir.run("run " + shellQuote(scene) + " --trajectory " + shellQuote(traj) + " --joints " +
+                             shellQuote(dir.out("j.csv")) + " --contacts " + shellQuote(dir.out("c.csv")));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_TRUE(namesAStep(r.err)) << r.err;
     EXPECT_NE(r.err.find("'cannonball'"), std::string::npos) << r.err;

@@ -1,7 +1,8 @@
 // tests/core/coordinates_test.cpp: joint coordinates (core/joints/coordinates.cpp). The continued
 // angle picks the whole turn nearest its reference and leaves a wrapped angle alone when no turn is
 // needed; each coordinate's row is its time derivative (finite differences on random poses and
-// velocities, moving parents); trackJointAngles counts turns a child makes about its hinge.
+// velocities, moving parents); trackJointAngles counts turns a child makes about its hinge; a
+// coordinate's velocity at a state is the relative spin or slide along the axis (closed forms).
 #include "core/joints/coordinates.h"
 #include "random_model.h"
 
@@ -136,6 +137,38 @@ TEST(JointCoordinates, StateWithoutAnglesIsSizedAndOtherTypesStayZero)
     ASSERT_EQ(state.jointAngles.size(), 2u);
     EXPECT_EQ(state.jointAngles[0], 0.0);
     EXPECT_EQ(state.jointAngles[1], 0.0);
+}
+
+// A cylindrical joint between two moving bodies: the parent spins about the axis through the
+// anchor at 0.7 rad/s and the child, carried along, spins 1.5 rad/s faster about the axis and
+// slides along it at 0.4 m/s: the angle's rate is 1.5 rad/s, the slide's 0.4 m/s. The same
+// motion of both bodies together (the child at rest relative to the parent) gives 0 and 0.
+TEST(JointCoordinates, VelocityIsTheRelativeSpinAndSlideAlongTheAxis)
+{
+    core::Model model;
+    const Vec3 axis = Vec3(2.0, -1.0, 2.0) / 3.0;
+    const Vec3 anchor(0.3, -0.2, 1.0);
+    model.bodies.push_back(boxBody("a", 1.0, Vec3(0.3, 0.2, 0.1), anchor + Vec3(0.2, 0.1, 0.0)));
+    model.bodies.push_back(boxBody("b", 1.0, Vec3(0.3, 0.2, 0.1), anchor + Vec3(-0.1, 0.3, 0.2)));
+    addJoint(model, "j", core::JointType::Cylindrical, 0, 1, anchor, axis);
+    core::State state = core::initialState(model);
+    const double spin = 0.7; // rad/s of the parent about the axis through the anchor
+    for (int both = 0; both < 2; ++both)
+    {
+        const double relativeSpin = both == 0 ? 1.5 : 0.0; // rad/s
+        const double slide = both == 0 ? 0.4 : 0.0;        // m/s
+        for (std::size_t i = 0; i < 2; ++i)
+        {
+            const double w = spin + (i == 1 ? relativeSpin : 0.0);
+            core::BodyState& s = state.bodies[i];
+            s.angularVelocity_W = w * axis;
+            s.velocity_W = s.angularVelocity_W.cross(s.position_W - anchor) + (i == 1 ? slide : 0.0) * axis;
+        }
+        EXPECT_NEAR(core::jointCoordinateVelocity(model, state, 0, core::JointCoordinate::Rotation),
+                    relativeSpin, 1e-14);
+        EXPECT_NEAR(core::jointCoordinateVelocity(model, state, 0, core::JointCoordinate::Slide), slide,
+                    1e-14);
+    }
 }
 
 } // namespace

@@ -49,6 +49,17 @@ class TempDir
     std::filesystem::path mPath;
 };
 
+// Entries of a directory (the output files and any temporary file beside them).
+inline std::size_t filesIn(const std::filesystem::path& dir)
+{
+    std::size_t n = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir))
+    {
+        ++n;
+    }
+    return n;
+}
+
 inline std::string readTextOf(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);

@@ -31,16 +31,6 @@ core::Model twoBodyModel()
     return model;
 }
 
-std::size_t filesIn(const std::filesystem::path& dir)
-{
-    std::size_t n = 0;
-    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir))
-    {
-        ++n;
-    }
-    return n;
-}
-
 TEST(Trajectory, RoundTripIsBitExact)
 {
     TempDir dir;

@@ -1,0 +1,61 @@
+// app/step_outputs.cpp: joint loads and contact impulses of a step, to the joints and contacts files.
+#include "app/step_outputs.h"
+
+namespace frontier::app
+{
+
+StepOutputs::StepOutputs(const std::string& jointsPath, const std::string& contactsPath,
+                         const io::FileMetadata& metadata)
+{
+    if (!jointsPath.empty())
+    {
+        mJoints = std::make_unique<io::JointsWriter>(jointsPath, metadata);
+    }
+    if (!contactsPath.empty())
+    {
+        mContacts = std::make_unique<io::ContactsWriter>(contactsPath, metadata);
+    }
+}
+
+void StepOutputs::record(const core::Model& model, const core::State& state, const core::Simulator* lastStep)
+{
+    if (mJoints)
+    {
+        mLoads.clear();
+        if (lastStep != nullptr)
+        {
+            // Forces are the step's impulses over its duration: the mean force of the step.
+            const double dt = model.simulation.dt;
+            lastStep->jointChildImpulses(state, mChildImpulses);
+            lastActuatorEfforts(model, *lastStep, mEfforts);
+            effortsByCoordinate(model, mEfforts, mEffortsByCoordinate);
+            mLoads.resize(model.joints.size());
+            for (std::size_t k = 0; k < model.joints.size(); ++k)
+            {
+                mLoads[k].force_W = mChildImpulses[k].head<3>() / dt;
+                mLoads[k].torque_W = mChildImpulses[k].tail<3>() / dt;
+                mLoads[k].effort = mEffortsByCoordinate[k];
+            }
+        }
+        mJoints->writeState(model, state, mLoads);
+    }
+    if (mContacts && lastStep != nullptr)
+    {
+        lastStep->contactImpulses(mContactImpulses);
+        mContacts->writeStep(model, state.time, mContactImpulses);
+    }
+}
+
+void StepOutputs::commit()
+{
+    if (mJoints)
+    {
+        mJoints->commit();
+    }
+    if (mContacts)
+    {
+        mContacts->commit();
+    }
+}
+
+} // namespace frontier::app

@@ -1,0 +1,242 @@
+// tests/app/run_outputs_test.cpp: `frontier run --joints` and `--contacts` end to end: their
+// comment and header lines, rows per recorded step; a pendulum's joint columns against the angle,
+// spin and momentum computed from the trajectory CSV; a hanging chain's joints carrying the
+// weight below them; batch names and colliding paths; the stats' limit and actuator keys. (A
+// failed run leaves none of them: run_test.cpp.)
+#include "app_test_util.h"
+#include "csv_table.h"
+#include "io/stats.h"
+#include "io/trajectory.h"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <set>
+
+namespace frontier::app::test
+{
+namespace
+{
+
+using frontier::test::CsvTable;
+using frontier::test::readCsvTable;
+
+// The key=value pairs of a "# frontier KIND:" comment line.
+std::string metadataOf(const std::string& comment, const std::string& kind)
+{
+    const std::string prefix = "# frontier " + kind + ":";
+    EXPECT_EQ(comment.rfind(prefix, 0), 0u) << comment;
+    return comment.substr(std::min(prefix.size(), comment.size()));
+}
+
+// The doll (14 joints: 6 hinges, and 4 ball and 4 universal joints with no coordinate) and the
+// box stack (contacts from the first step), recorded every 10 steps for 50 steps.
+TEST(RunOutputs, FilesHaveTheTrajectoryCommentTheirHeaderAndARowPerCoordinateOrContact)
+{
+    const TestDir dir;
+    const std::string traj = dir.out("doll.csv");
+    const std::string joints = dir.out("doll.joints.csv");
+    Result r = dir.run("run scenes/falling_doll.yaml --quiet --steps 50 --record-every 10 --trajectory " +
+                       shellQuote(traj) + " --joints " + shellQuote(joints));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CsvTable table = readCsvTable(joints);
+    const CsvTable trajectory = readCsvTable(traj);
+    EXPECT_EQ(metadataOf(table.comment, "joints"), metadataOf(trajectory.comment, "trajectory"));
+    const std::vector<std::string> columns = {"time", "joint", "coordinate", "position", "velocity", "effort",
+                                              "fx",   "fy",    "fz",         "tx",       "ty",       "tz"};
+    EXPECT_EQ(table.columns, columns);
+    // 6 recorded states (steps 0, 10, ..., 50) x (6 joints with one coordinate + 8 with none).
+    ASSERT_EQ(table.rows.size(), 6u * 14u);
+    std::set<std::string> names;
+    int none = 0;
+    for (std::size_t k = 0; k < table.rows.size(); ++k)
+    {
+        ASSERT_EQ(table.rows[k].size(), columns.size()) << "row " << k;
+        EXPECT_NEAR(table.number(k, "time"), 0.01 * static_cast<double>(k / 14), 1e-12) << "row " << k;
+        names.insert(table.text(k, "joint"));
+        const bool coordinate = table.text(k, "coordinate") == "angle";
+        none += coordinate ? 0 : 1;
+        EXPECT_TRUE(coordinate || table.text(k, "coordinate") == "none") << table.text(k, "coordinate");
+        EXPECT_EQ(std::isfinite(table.number(k, "position")), coordinate) << "row " << k;
+        EXPECT_EQ(std::isfinite(table.number(k, "velocity")), coordinate) << "row " << k;
+        EXPECT_EQ(std::isfinite(table.number(k, "fz")), k >= 14) << "row " << k << ": no step before t = 0";
+        EXPECT_EQ(std::isfinite(table.number(k, "effort")), k >= 14) << "row " << k;
+    }
+    EXPECT_EQ(names.size(), 14u);
+    EXPECT_EQ(none, 6 * 8);
+
+    const std::string contacts = dir.out("stack.contacts.csv");
+    const std::string stackTrajectory = dir.out("stack.csv");
+    const std::string stats = dir.out("stack.json");
+    r = dir.run("run scenes/box_stack.yaml --quiet --steps 50 --record-every 10 --contacts " +
+                shellQuote(contacts) + " --stats " + shellQuote(stats) + " --trajectory " +
+                shellQuote(stackTrajectory));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CsvTable c = readCsvTable(contacts);
+    EXPECT_EQ(metadataOf(c.comment, "contacts"),
+              metadataOf(readCsvTable(stackTrajectory).comment, "trajectory"));
+    EXPECT_EQ(c.columns, (std::vector<std::string>{"time", "body_a", "body_b", "px", "py", "pz", "nx", "ny",
+                                                   "nz", "depth", "normal_impulse", "friction_impulse_x",
+                                                   "friction_impulse_y", "friction_impulse_z"}));
+    std::set<long> steps;
+    for (std::size_t k = 0; k < c.rows.size(); ++k)
+    {
+        ASSERT_EQ(c.rows[k].size(), c.columns.size()) << "row " << k;
+        steps.insert(std::lround(c.number(k, "time") / 0.001));
+        EXPECT_GE(c.number(k, "normal_impulse"), 0.0) << "row " << k;
+        EXPECT_NEAR(std::hypot(std::hypot(c.number(k, "nx"), c.number(k, "ny")), c.number(k, "nz")), 1.0,
+                    1e-12);
+    }
+    EXPECT_EQ(steps, (std::set<long>{10, 20, 30, 40, 50})) << "no rows at t = 0 (no step yet)";
+    // The stack's boxes touch the floor from the first step: at least its four corners each time.
+    EXPECT_GE(c.rows.size(), 5u * 4u);
+    EXPECT_LE(c.rows.size(), 5u * static_cast<std::size_t>(io::readStats(stats).maxContacts));
+}
+
+// scenes/pendulum.yaml: a 1 kg bob on a hinge about +y through (0, 0, 2), its body frame
+// unturned at the start. The joints file's angle and its rate are the bob's rotation about y
+// (2 atan2(q_y, q_w)) and its spin w_y from the trajectory, and the force the hinge passes is
+// the bob's momentum change less its weight: m (v_n - v_{n-1}) / h - m g.
+TEST(RunOutputs, PendulumJointColumnsAgreeWithTheTrajectory)
+{
+    const TestDir dir;
+    const std::string traj = dir.out("t.csv");
+    const std::string joints = dir.out("j.csv");
+    const Result r = dir.run("run scenes/pendulum.yaml --quiet --duration 2 --trajectory " +
+                             shellQuote(traj) + " --joints " + shellQuote(joints));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const io::Trajectory t = io::readTrajectory(traj);
+    const CsvTable table = readCsvTable(joints);
+    ASSERT_EQ(t.rows.size(), 2001u);
+    ASSERT_EQ(table.rows.size(), t.rows.size());
+    const double h = 0.001;
+    const double m = 1.0;
+    double swing = 0.0;
+    for (std::size_t k = 0; k < t.rows.size(); ++k)
+    {
+        const core::BodyState s = t.rows[k].state();
+        ASSERT_EQ(table.number(k, "time"), t.rows[k].time);
+        ASSERT_EQ(table.text(k, "joint"), "pivot");
+        ASSERT_EQ(table.text(k, "coordinate"), "angle");
+        const double angle = 2.0 * std::atan2(s.orientation_WB.y(), s.orientation_WB.w());
+        ASSERT_NEAR(table.number(k, "position"), angle, 1e-9) << "t = " << t.rows[k].time;
+        ASSERT_NEAR(table.number(k, "velocity"), s.angularVelocity_W.y(), 1e-9) << "t = " << t.rows[k].time;
+        swing = std::max(swing, std::abs(angle));
+        if (k == 0)
+        {
+            continue;
+        }
+        const core::Vec3 force =
+            m * (s.velocity_W - t.rows[k - 1].state().velocity_W) / h - m * core::Vec3(0.0, 0.0, -9.81);
+        ASSERT_NEAR(table.number(k, "fx"), force.x(), 1e-9 * 9.81) << "t = " << t.rows[k].time;
+        ASSERT_NEAR(table.number(k, "fy"), force.y(), 1e-9 * 9.81) << "t = " << t.rows[k].time;
+        ASSERT_NEAR(table.number(k, "fz"), force.z(), 1e-9 * 9.81) << "t = " << t.rows[k].time;
+        // A hinge with nothing along its axis passes no torque about it.
+        ASSERT_NEAR(table.number(k, "ty"), 0.0, 1e-12) << "t = " << t.rows[k].time;
+    }
+    EXPECT_GT(swing, 1.0) << "released at 60 degrees, it swings through 1 rad";
+}
+
+// Three boxes hanging straight down from a nail to the world, by a ball joint and a hinge, at
+// rest: each joint passes the weight below it straight up, to 1e-9, and no torque.
+TEST(RunOutputs, HangingChainJointsCarryTheWeightBelow)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("chain.yaml", R"(
+simulation: {dt: 0.001, gravity: [0, 0, -9.81]}
+bodies:
+  - {name: top, mass: 1.5, shape: {type: box, size: [0.1, 0.1, 0.3]}, position: [0, 0, 1.85]}
+  - {name: middle, mass: 0.6, shape: {type: box, size: [0.1, 0.1, 0.3]}, position: [0, 0, 1.55]}
+  - {name: bottom, mass: 2.4, shape: {type: box, size: [0.1, 0.1, 0.3]}, position: [0, 0, 1.25]}
+joints:
+  - {name: nail, type: nail, parent: world, child: top, anchor: [0, 0, 2.0]}
+  - {name: ball, type: ball, parent: top, child: middle, anchor: [0, 0, 1.7]}
+  - {name: hinge, type: revolute, parent: middle, child: bottom, anchor: [0, 0, 1.4], axis: [1, 0, 0]}
+)");
+    const std::string joints = dir.out("j.csv");
+    const Result r =
+        dir.run("run " + shellQuote(scene) + " --quiet --duration 0.2 --joints " + shellQuote(joints));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CsvTable table = readCsvTable(joints);
+    ASSERT_EQ(table.rows.size(), 201u * 3u);
+    const double g = 9.81;
+    const std::vector<std::pair<std::string, double>> below = {
+        {"nail", (1.5 + 0.6 + 2.4) * g}, {"ball", (0.6 + 2.4) * g}, {"hinge", 2.4 * g}};
+    for (std::size_t k = 3; k < table.rows.size(); ++k)
+    {
+        const auto& [name, weight] = below[k % 3];
+        ASSERT_EQ(table.text(k, "joint"), name);
+        EXPECT_EQ(table.text(k, "coordinate"), name == "hinge" ? "angle" : "none");
+        ASSERT_NEAR(table.number(k, "fz"), weight, 1e-9 * weight) << name << ", row " << k;
+        for (const char* column : {"fx", "fy", "tx", "ty", "tz"})
+        {
+            ASSERT_NEAR(table.number(k, column), 0.0, 1e-9 * weight)
+                << name << ", " << column << ", row " << k;
+        }
+    }
+}
+
+// A batch writes DIR/<scene>.joints.csv and DIR/<scene>.contacts.csv, each file of its own scene.
+TEST(RunOutputs, BatchWritesJointsAndContactsPerScene)
+{
+    const TestDir dir;
+    const Result r = dir.run("run scenes/pendulum.yaml scenes/box_stack.yaml --quiet --steps 5 --joints " +
+                             shellQuote(dir.out("joints")) + " --contacts " + shellQuote(dir.out("joints")) +
+                             " --trajectory " + shellQuote(dir.out("joints")));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* scene : {"pendulum", "box_stack"})
+    {
+        for (const char* kind : {"joints", "contacts"})
+        {
+            const std::string path = dir.out(std::string("joints/") + scene + "." + kind + ".csv");
+            ASSERT_TRUE(std::filesystem::exists(path)) << path;
+            EXPECT_NE(readCsvTable(path).comment.find(std::string("scene=scenes/") + scene + ".yaml"),
+                      std::string::npos)
+                << path;
+        }
+        EXPECT_TRUE(std::filesystem::exists(dir.out(std::string("joints/") + scene + ".csv")));
+    }
+    EXPECT_EQ(readCsvTable(dir.out("joints/pendulum.joints.csv")).rows.size(), 6u);
+    EXPECT_EQ(readCsvTable(dir.out("joints/box_stack.joints.csv")).rows.size(), 0u)
+        << "the stack has no joints";
+    EXPECT_TRUE(readCsvTable(dir.out("joints/pendulum.contacts.csv")).rows.empty());
+    EXPECT_FALSE(readCsvTable(dir.out("joints/box_stack.contacts.csv")).rows.empty());
+}
+
+// Two outputs of one run at one path would overwrite each other: refused before the run.
+TEST(RunOutputs, TwoOutputsAtOnePathAreRefused)
+{
+    const TestDir dir;
+    const std::string same = dir.out("same.csv");
+    const Result r = dir.run("run scenes/pendulum.yaml --steps 5 --trajectory " + shellQuote(same) +
+                             " --joints " + shellQuote(dir.out("./same.csv")));
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--trajectory and --joints would write the same file"), std::string::npos) << r.err;
+    EXPECT_TRUE(dir.outputs().empty());
+}
+
+// limit_steps: the limits scene's rod and slider rest on their limits from about 1 s on, pressed
+// by gravity, so every step after that pushes a limit, and the first steps (both start between
+// their limits) do not; the pendulum has no limits. No actuators: both actuator keys are 0.
+TEST(RunOutputs, StatsCountLimitStepsAndActuatorKeys)
+{
+    const TestDir dir;
+    const std::string limits = dir.out("limits.json");
+    const std::string pendulum = dir.out("pendulum.json");
+    Result r = dir.run("run scenes/limits.yaml --quiet --duration 2 --stats " + shellQuote(limits));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = dir.run("run scenes/pendulum.yaml --quiet --duration 0.5 --stats " + shellQuote(pendulum));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const io::RunStats a = io::readStats(limits);
+    const io::RunStats b = io::readStats(pendulum);
+    EXPECT_GE(a.extra.at("limit_steps"), 1000.0);
+    EXPECT_LT(a.extra.at("limit_steps"), static_cast<double>(a.steps));
+    EXPECT_EQ(b.extra.at("limit_steps"), 0.0);
+    for (const io::RunStats* s : {&a, &b})
+    {
+        EXPECT_EQ(s->extra.at("max_actuator_effort"), 0.0);
+        EXPECT_EQ(s->extra.at("actuator_limit_steps"), 0.0);
+    }
+}
+
+} // namespace
+} // namespace frontier::app::test

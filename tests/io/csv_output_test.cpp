@@ -1,0 +1,73 @@
+// tests/io/csv_output_test.cpp: what the run's CSV files share (io/csv_output.h): names quoted only
+// when they must be, and read back whole by an RFC 4180 reader; metadata fields encoded and
+// decoded back; a file appears with its comment and header lines on commit, and not at all
+// without it.
+#include "csv_table.h"
+#include "io/atomic_file.h"
+#include "io/csv_output.h"
+#include "io_test_util.h"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+
+namespace frontier::io::test
+{
+namespace
+{
+
+TEST(CsvOutput, NamesAreQuotedOnlyWhenTheyMustBe)
+{
+    for (const std::string name :
+         {"pelvis", "knee left", "elbow, left", "say \"hi\"", "link#3", "two\nlines"})
+    {
+        std::string line = "1,";
+        appendName(line, name);
+        line += ",2";
+        const std::vector<std::string> fields = frontier::test::splitCsvLine(line);
+        ASSERT_EQ(fields.size(), 3u) << line;
+        EXPECT_EQ(fields[1], name) << line;
+        const bool plain = name.find_first_of(",\"\n#") == std::string::npos;
+        EXPECT_EQ(line == "1," + name + ",2", plain) << line;
+    }
+}
+
+TEST(CsvOutput, MetadataFieldsRoundTrip)
+{
+    for (const std::string text : {"scenes/a.yaml", "my scene=1, 100%.yaml", "tab\there", ""})
+    {
+        const std::string encoded = encodeMetadataField(text);
+        EXPECT_EQ(encoded.find_first_of(" =,\t"), std::string::npos) << encoded;
+        EXPECT_EQ(decodeMetadataField(encoded), text);
+    }
+}
+
+TEST(CsvOutput, FileAppearsOnCommitWithCommentAndHeader)
+{
+    TempDir dir;
+    const std::string path = dir.file("out.csv");
+    {
+        CsvFile file(path, "things", {{"scene", "a b.yaml"}, {"dt", "0.001"}}, "time,value");
+        file.writeRow("0,1");
+        file.writeRow("0.5,2");
+        EXPECT_EQ(file.rowsWritten(), 2);
+        EXPECT_FALSE(std::filesystem::exists(path));
+        EXPECT_EQ(filesIn(dir.path()), 1u); // the temporary file
+        file.commit();
+    }
+    EXPECT_EQ(readTextOf(path), "# frontier things: scene=a%20b.yaml dt=0.001\ntime,value\n0,1\n0.5,2\n");
+    EXPECT_EQ(filesIn(dir.path()), 1u);
+}
+
+TEST(CsvOutput, UncommittedFileLeavesNothing)
+{
+    TempDir dir;
+    {
+        CsvFile file(dir.file("out.csv"), "things", {}, "time,value");
+        file.writeRow("0,1");
+    }
+    EXPECT_EQ(filesIn(dir.path()), 0u);
+    EXPECT_THROW(CsvFile("/nonexistent/dir/out.csv", "things", {}, "time"), OutputError);
+}
+
+} // namespace
+} // namespace frontier::io::test
