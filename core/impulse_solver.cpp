@@ -34,7 +34,7 @@ SingularJointError::SingularJointError(std::string jointName, const std::string&
 }
 
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
-                  RowSystem& system)
+                  RowSystem& system, std::span<const JointDriveGains> gains)
 {
     system.model = &model;
     system.layout = &layout;
@@ -56,8 +56,13 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
         const detail::JointGeometry g = detail::jointGeometry(joint, pose);
         const bool parentMoves = !jointToWorld(model, joint);
         evaluateJoint(joint, pose, g, parentMoves, system.joints[k]);
-        writeDriveRows(joint, g, parentMoves, driveStep, system.joints[k]);
-        if (layout.jointBlock[k] >= 0)
+        // A loop joint's actuators are extra rows (core/actuation.h): its drive rows damp only.
+        const int block = layout.jointBlock[k];
+        const int driveRows =
+            block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows : blockDriveRows(joint);
+        writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves,
+                       driveStep, system.joints[k]);
+        if (block >= 0)
         {
             system.rowCount += system.joints[k].count;
         }
