@@ -221,30 +221,33 @@ INSTANTIATE_TEST_SUITE_P(Cases, ActuatorYamlError, ::testing::ValuesIn(cBadInput
 // Errors inside a target CSV name the CSV file and its line.
 TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
 {
+    struct BadCsv
+    {
+        const char* column; // the actuator's `column:` ("": the joint's name, hinge)
+        const char* csv;
+        int line;
+        const char* message;
+    };
+    const BadCsv cases[] = {
+        {"hnge", "time,hinge\n0,0\n", 1,
+         "no column 'hnge' in the header (columns: time, hinge); did you mean 'hinge'?"},
+        {"", "time,hinge\n0,0\n1,x\n", 3, "expected a finite number in column 'hinge', got 'x'"},
+        {"", "time,hinge\n0,0\n1,1\n1,2\n", 4, "times must increase: time 1 after 1"},
+        {"", "hinge\n0\n", 1, "the header has no 'time' column"},
+        {"", "time,hinge\n0,1,2\n", 2, "expected 2 comma-separated values"},
+    };
     TempDir dir;
-    const std::string yaml = scene(R"(
-actuators:
-  - {joint: hinge, type: position, kp: 100, target: {csv: {file: t.csv, column: hnge}}}
-)");
-    const std::string scenePath = dir.write("scene.yaml", yaml);
-    const std::string csv = dir.write("t.csv", "time,hinge\n0,0\n1,x\n");
-    EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(yaml, scenePath); }), csv, 1, 1,
-                          "no column 'hnge' in the header (columns: time, hinge); did you mean 'hinge'?");
-    const std::string fixed = scene(R"(
-actuators:
-  - {joint: hinge, type: position, kp: 100, target: {csv: {file: t.csv}}}
-)");
-    EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(fixed, scenePath); }), csv, 3, 1,
-                          "expected a finite number in column 'hinge', got 'x'");
-    dir.write("t.csv", "time,hinge\n0,0\n1,1\n1,2\n");
-    EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(fixed, scenePath); }), csv, 4, 1,
-                          "times must increase: time 1 after 1");
-    dir.write("t.csv", "hinge\n0\n");
-    EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(fixed, scenePath); }), csv, 1, 1,
-                          "the header has no 'time' column");
-    dir.write("t.csv", "time,hinge\n0,1,2\n");
-    EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(fixed, scenePath); }), csv, 2, 1,
-                          "expected 2 comma-separated values");
+    for (const BadCsv& bad : cases)
+    {
+        const std::string column = *bad.column ? std::string(", column: ") + bad.column : "";
+        const std::string yaml =
+            scene("actuators:\n  - {joint: hinge, type: position, kp: 1, target: {csv: {file: t.csv") +
+            column + "}}}\n";
+        const std::string scenePath = dir.write("scene.yaml", yaml);
+        const std::string csv = dir.write("t.csv", bad.csv);
+        EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(yaml, scenePath); }), csv, bad.line, 1,
+                              bad.message);
+    }
 }
 
 } // namespace
