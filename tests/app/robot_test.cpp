@@ -139,6 +139,15 @@ TEST(Robot, HoldKeepsTheArmUpAndIsRecordedForCheck)
     EXPECT_GT((limpEnd - limpStart).norm(), 0.05); // m: without servos the arm folds down
     const Result check = dir.run("check " + shellQuote(urdf) + " --quiet --reference " + shellQuote(held));
     EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+    // `info` shows the servos --hold chose, with the URDF's effort limits.
+    const Result info = dir.run("info " + shellQuote(urdf) + " --fixed-base --hold --json");
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const nlohmann::json actuators = nlohmann::json::parse(info.out)["actuators"];
+    ASSERT_EQ(actuators.size(), 2u) << actuators.dump(2);
+    EXPECT_EQ(actuators[0]["joint"], "j1");
+    EXPECT_EQ(actuators[0]["type"], "position");
+    EXPECT_EQ(actuators[0]["effort_limit"].get<double>(), 1.0);
+    EXPECT_GT(actuators[0]["kp"].get<double>(), 0.0);
 }
 
 TEST(Robot, HeightInMetresPointsToDropHeight)
