@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace frontier::core
 {
@@ -37,6 +39,24 @@ void addImpulse(const Model& model, State& state, int body, const Vec3& linear, 
     s.angularVelocity_W += worldInertia(b, s).ldlt().solve(angular);
 }
 
+// A model built in code gets the checks io makes of a scene file.
+void checkActuator(const Model& model, const Actuator& actuator)
+{
+    if (actuator.joint < 0 || actuator.joint >= static_cast<int>(model.joints.size()))
+    {
+        throw std::invalid_argument("an actuator names joint index " + std::to_string(actuator.joint) +
+                                    ", which does not exist");
+    }
+    const Joint& joint = model.joints[static_cast<std::size_t>(actuator.joint)];
+    const bool gainsValid = actuator.kp >= 0.0 && actuator.kd >= 0.0 && std::isfinite(actuator.kp) &&
+                            std::isfinite(actuator.kd) && actuator.effortLimit > 0.0;
+    if (coordinateIndex(joint.type, actuator.coordinate) < 0 || !gainsValid)
+    {
+        throw std::invalid_argument("the actuator on joint '" + joint.name +
+                                    "' needs a coordinate its joint has, gains >= 0 and an effort limit > 0");
+    }
+}
+
 // The length of [t0, t1) n [from, to) (s), 0 when they do not meet.
 double overlap(double t0, double t1, double from, double to)
 {
@@ -53,6 +73,7 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
     for (std::size_t a = 0; a < n; ++a)
     {
         const Actuator& actuator = model.actuators[a];
+        checkActuator(model, actuator);
         const Joint& joint = model.joints[static_cast<std::size_t>(actuator.joint)];
         mRow[a] = jointRowCount(joint.type) + coordinateIndex(joint.type, actuator.coordinate);
         if (drivesRow(actuator))
@@ -60,6 +81,14 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
             ++mDriveActuators;
             mLoop[a] = layout.jointBlock[static_cast<std::size_t>(actuator.joint)] < 0 ? 1 : 0;
             mBounded[a] = mLoop[a];
+        }
+    }
+    for (const Load& load : model.loads)
+    {
+        if (!isMovingBody(model, load.body))
+        {
+            throw std::invalid_argument("a load acts on a moving body, not body index " +
+                                        std::to_string(load.body));
         }
     }
     mStepImpulse.assign(n, 0.0);

@@ -50,6 +50,8 @@ struct ActuatorEffort
 class Actuation
 {
   public:
+    // Throws std::invalid_argument for an actuator on a coordinate its joint lacks, negative gains,
+    // a limit <= 0, or a load on a static body (io refuses these in scene files with file:line).
     Actuation(const Model& model, const FrontierLayout& layout);
 
     // Per joint, the gains of its drive rows with the actuators now in the joints' blocks (for

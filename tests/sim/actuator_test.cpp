@@ -298,5 +298,19 @@ TEST(Actuators, LinearAndDenseSolversAgreeWithServos)
     }
 }
 
+TEST(Actuators, AModelBuiltInCodeIsCheckedLikeAScene)
+{
+    core::Model ball = emptyTestModel(core::Vec3::Zero(), IntegratorKind::Euler, 1e-3);
+    ball.bodies.push_back(jointTestBox("b", 1.0, core::Vec3(0.1, 0.1, 0.1), core::Vec3::Zero()));
+    addTestJoint(ball, core::JointType::Ball, core::cWorld, 0, core::Vec3::Zero(), core::Vec3::UnitZ());
+    ball.actuators.push_back(
+        actuatorOn(0, core::ActuatorKind::Effort, 1.0)); // a ball joint has no coordinate
+    EXPECT_THROW(core::Simulator{ball}, std::invalid_argument);
+    core::Model negative = spinningBox(0.0);
+    negative.actuators.push_back(actuatorOn(0, core::ActuatorKind::Position, 0.0));
+    negative.actuators.back().kd = -1.0;
+    EXPECT_THROW(core::Simulator{negative}, std::invalid_argument);
+}
+
 } // namespace
 } // namespace frontier::sim::test
