@@ -8,11 +8,12 @@ void lastActuatorEfforts(const core::Model& model, const core::Simulator& simula
                          std::vector<CoordinateEffort>& out)
 {
     out.clear();
-    // actuators: wired at merge. Fill `out` index by index from core::Model::actuators (joint,
-    // coordinate) and core::Simulator::actuatorEfforts() (effort, atLimit), which come with the
-    // actuators; until then a model has none.
-    static_cast<void>(model);
-    static_cast<void>(simulator);
+    const std::span<const core::ActuatorEffort> efforts = simulator.actuatorEfforts();
+    for (std::size_t a = 0; a < model.actuators.size() && a < efforts.size(); ++a)
+    {
+        const core::Actuator& actuator = model.actuators[a];
+        out.push_back({actuator.joint, actuator.coordinate, efforts[a].effort, efforts[a].atLimit});
+    }
 }
 
 void effortsByCoordinate(const core::Model& model, std::span<const CoordinateEffort> efforts,

@@ -5,6 +5,7 @@
 #include "core/frontier_order.h"
 #include "io/scene.h"
 
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,37 @@ namespace
 std::string bodyName(const core::Model& model, int body)
 {
     return body == core::cWorld ? "world" : model.bodies[static_cast<std::size_t>(body)].name;
+}
+
+// The actuators: type, joint and coordinate, gains (N m/rad, N m s/rad or N/m, N s/m) and effort
+// limit (N m or N) where they have them (a --hold servo's gains are shown as chosen).
+nlohmann::json describeActuators(const core::Model& model)
+{
+    nlohmann::json actuators = nlohmann::json::array();
+    for (const core::Actuator& actuator : model.actuators)
+    {
+        const bool position = actuator.kind == core::ActuatorKind::Position;
+        nlohmann::json entry = {
+            {"joint", model.joints[static_cast<std::size_t>(actuator.joint)].name},
+            {"type", position                                        ? "position"
+                     : actuator.kind == core::ActuatorKind::Velocity ? "velocity"
+                                                                     : "effort"},
+            {"coordinate", actuator.coordinate == core::JointCoordinate::Rotation ? "rotation" : "slide"}};
+        if (position)
+        {
+            entry["kp"] = actuator.kp;
+        }
+        if (actuator.kind != core::ActuatorKind::Effort)
+        {
+            entry["kd"] = actuator.kd;
+        }
+        if (std::isfinite(actuator.effortLimit))
+        {
+            entry["effort_limit"] = actuator.effortLimit;
+        }
+        actuators.push_back(entry);
+    }
+    return actuators;
 }
 
 // What loading did to each robot: welded links, repaired inertias, placement, excluded pairs.
@@ -87,12 +119,18 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
         {
             entry["initial_position"] = joint.initialPosition;
         }
+        if (std::isfinite(joint.effortLimit))
+        {
+            entry["effort_limit"] = joint.effortLimit; // N m or N
+        }
         out["joints"].push_back(entry);
     }
     if (model.joints.empty())
     {
         out["joints"] = nlohmann::json::array();
     }
+    out["actuators"] = describeActuators(model);
+    out["loads"] = model.loads.size();
     out["moving_bodies"] = moving;
     out["constraint_rows"] = rows;
     out["degrees_of_freedom"] = 6 * moving - rows;
@@ -165,6 +203,26 @@ void printText(const nlohmann::json& info)
         if (joint.contains("initial_position"))
         {
             std::cout << "  starts at " << joint["initial_position"].get<double>();
+        }
+        std::cout << "\n";
+    }
+    std::cout << "actuators: " << info["actuators"].size() << ", loads: " << info["loads"].get<int>() << "\n";
+    for (const auto& actuator : info["actuators"])
+    {
+        std::cout << "  " << actuator["type"].get<std::string>() << " on "
+                  << actuator["joint"].get<std::string>() << " (" << actuator["coordinate"].get<std::string>()
+                  << ")";
+        if (actuator.contains("kp"))
+        {
+            std::cout << "  kp " << actuator["kp"].get<double>();
+        }
+        if (actuator.contains("kd"))
+        {
+            std::cout << "  kd " << actuator["kd"].get<double>();
+        }
+        if (actuator.contains("effort_limit"))
+        {
+            std::cout << "  effort limit " << actuator["effort_limit"].get<double>();
         }
         std::cout << "\n";
     }

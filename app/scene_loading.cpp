@@ -46,6 +46,7 @@ constexpr const char* cFreeBase = "free_base";
 constexpr const char* cDropHeight = "drop_height";
 constexpr const char* cSelfCollision = "self_collision";
 constexpr const char* cPackagePath = "package_path"; // entries joined by ';'
+constexpr const char* cHold = "hold";
 } // namespace
 
 void addUrdfOptions(io::TrajectoryMetadata& metadata, const io::UrdfOptions& options)
@@ -69,6 +70,10 @@ void addUrdfOptions(io::TrajectoryMetadata& metadata, const io::UrdfOptions& opt
     {
         metadata.emplace_back(cSelfCollision, *options.selfCollision ? "on" : "off");
     }
+    if (options.hold)
+    {
+        metadata.emplace_back(cHold, "1");
+    }
     if (!options.packagePaths.empty())
     {
         std::string joined;
@@ -90,6 +95,7 @@ io::UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metada
     };
     options.fixedBase = value(cFixedBase) && *value(cFixedBase) == "1";
     options.freeBase = value(cFreeBase) && *value(cFreeBase) == "1";
+    options.hold = value(cHold) && *value(cHold) == "1";
     if (const std::string* height = value(cDropHeight))
     {
         char* end = nullptr;

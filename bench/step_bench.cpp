@@ -9,8 +9,9 @@
 // max_joint_error_m, the largest joint position error after any benchmarked step.
 // The target: `linear` us_per_body_step flat within 1.5x from 100 to 10 000 links.
 // Hinge cases: the same chain on revolute joints about y (it swings in the xz plane), `linear`,
-// plain, with damping on every hinge (a compliant row in each joint block) and with Coulomb
-// friction on every hinge (a bounded extra row per joint): what joint damping and friction cost.
+// plain, with damping on every hinge (a compliant row in each joint block), with a position servo
+// on every hinge (the same row with the servo's stiffness and target) and with Coulomb friction on
+// every hinge (a bounded extra row per joint): what joint damping, servos and friction cost.
 //
 //   step_bench --benchmark_min_time=0.5
 #include "core/model.h"
@@ -36,14 +37,17 @@ using core::Vec3;
 constexpr int cWarmUpSteps = 300;
 constexpr double cLinkLength = 0.1; // m, joint to joint
 constexpr double cLinkMass = 0.1;   // kg
+constexpr double cServoKp = 1.0;    // N m/rad
+constexpr double cServoKd = 0.05;   // N m s/rad
 
 // What the chain's joints are: ball joints, or hinges about y with damping (N m s/rad) and Coulomb
-// friction (N m) on each.
+// friction (N m) on each, and a position servo holding each hinge straight (cServoKp, cServoKd).
 struct ChainJoints
 {
     core::JointType type = core::JointType::Ball;
     double damping = 0.0;
     double friction = 0.0;
+    bool servo = false;
     auto operator<=>(const ChainJoints&) const = default;
 };
 
@@ -87,6 +91,14 @@ core::Model makeChain(int n, core::SolverKind solver, const ChainJoints& joints 
         const Vec3 axis = joints.type == core::JointType::Ball ? Vec3::UnitZ() : Vec3::UnitY();
         core::setJointFrames(model, joint, Vec3(i * cLinkLength, 0.0, 2.0), axis);
         model.joints.push_back(joint);
+        if (joints.servo)
+        {
+            core::Actuator servo; // a position servo on the hinge, target 0, no effort limit
+            servo.joint = i;
+            servo.kp = cServoKp;
+            servo.kd = cServoKd;
+            model.actuators.push_back(servo);
+        }
     }
     return model;
 }
@@ -183,6 +195,10 @@ void BM_StepHingesDamped(benchmark::State& st)
 {
     stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 1e-3, 0.0});
 }
+void BM_StepHingesServo(benchmark::State& st)
+{
+    stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 0.0, 0.0, true});
+}
 void BM_StepHingesFriction(benchmark::State& st)
 {
     stepChain(st, core::SolverKind::Linear, {core::JointType::Revolute, 0.0, 1e-3});
@@ -191,6 +207,8 @@ void BM_StepHingesFriction(benchmark::State& st)
 BENCHMARK(BM_StepLinear)->Arg(10)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepHinges)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StepHingesDamped)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
+// A servo below its effort limit shares its hinge's block: a drive row like damping, plus its target.
+BENCHMARK(BM_StepHingesServo)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 // Friction rows are extra rows: their Delassus matrix is dense within a tree (O(n^2) per step).
 BENCHMARK(BM_StepHingesFriction)->Arg(10)->Arg(100)->Unit(benchmark::kMicrosecond);
 // Dense LU is O(n^3) per factorization: ~0.05 s per step at 100 links, ~0.4 s at 200.

@@ -77,6 +77,27 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
     out.push_back(block);
 }
 
+ExtraBlock& appendDriveBlock(const Model& model, const State& state, int jointIndex,
+                             JointCoordinate coordinate, std::vector<ExtraBlock>& out)
+{
+    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    const bool parentMoves = !jointToWorld(model, joint);
+    const CoordinateRow row =
+        coordinateRow(joint, detail::jointGeometry(joint, jointPose(state, joint)), coordinate);
+    ExtraBlock& block = out.emplace_back();
+    block.kind = ExtraBlock::Kind::Drive;
+    block.count = 1;
+    block.bodyA = parentMoves ? joint.parent : -1;
+    block.bodyB = joint.child;
+    if (parentMoves)
+    {
+        block.J_A.row(0) = row.J_a.transpose();
+    }
+    block.J_B.row(0) = row.J_b.transpose();
+    block.source = jointIndex;
+    return block;
+}
+
 void appendFrictionBlocks(const Model& model, const State& state, int jointIndex, double h,
                           std::vector<ExtraBlock>& out)
 {
@@ -85,23 +106,10 @@ void appendFrictionBlocks(const Model& model, const State& state, int jointIndex
     {
         return;
     }
-    const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
-    const bool parentMoves = !jointToWorld(model, joint);
     for (const JointCoordinate coordinate : jointCoordinates(joint.type))
     {
-        const CoordinateRow row = coordinateRow(joint, g, coordinate);
-        ExtraBlock& block = out.emplace_back();
-        block.kind = ExtraBlock::Kind::Drive;
-        block.count = 1;
-        block.bodyA = parentMoves ? joint.parent : -1;
-        block.bodyB = joint.child;
-        if (parentMoves)
-        {
-            block.J_A.row(0) = row.J_a.transpose();
-        }
-        block.J_B.row(0) = row.J_b.transpose();
-        block.bound = joint.friction * h; // target 0: the joint sticks unless the bound gives
-        block.source = jointIndex;
+        // Target 0: the joint sticks unless the bound gives.
+        appendDriveBlock(model, state, jointIndex, coordinate, out).bound = joint.friction * h;
     }
 }
 

@@ -1,7 +1,7 @@
 // core/extra_rows.h: rows beyond the joint tree, solved in constraint space on top of the O(n)
 // tree factorization (PAPER.md §5): contacts (one-sided normal, Coulomb friction cone), joints
 // that close a loop (bilateral), joint limits (one-sided), and bounded drive rows (Coulomb joint
-// friction, core/joints/drive.h).
+// friction, core/joints/drive.h; actuators at their effort limit, core/actuation.h).
 //
 // Each block couples at most two moving bodies: rows J_A u_A + J_B u_B. After the tree solve
 // gives u_free, the block impulses lambda solve a small complementarity problem in
@@ -43,6 +43,7 @@ struct ExtraBlock
     double friction = 0.0; // mu (contacts)
     double bound = 0.0;    // drives: |lambda| <= bound (N s or N m s)
     int source = -1;       // contact index, or joint index (loops, limits, drives)
+    int actuator = -1;     // drives: the actuator at its effort limit (Model::actuators), -1 joint friction
     int offset = 0;        // first row of the block in G
 };
 
@@ -55,6 +56,12 @@ ExtraBlock& appendContactBlock(const Model& model, const State& state, const Con
 // axis, m) when the position is within `margin` of a limit; appends 0 or 1 block.
 void appendLimitBlocks(const Model& model, const State& state, int jointIndex, double margin,
                        std::vector<ExtraBlock>& out);
+
+// A drive row on one coordinate of a joint (the row of dq/dt between its bodies at the state's
+// pose), appended as a new block of kind Drive with target, compliance and bound 0 for the caller
+// to set; returns it.
+ExtraBlock& appendDriveBlock(const Model& model, const State& state, int jointIndex,
+                             JointCoordinate coordinate, std::vector<ExtraBlock>& out);
 
 // Coulomb friction f of a joint (N m or N; core::Joint::friction) over a solve of duration h (s):
 // one drive row per coordinate of the joint, J u = 0 with |lambda| <= f h (stick, or slip against

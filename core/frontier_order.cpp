@@ -46,6 +46,7 @@ FrontierLayout buildFrontierLayout(const Model& model)
     layout.bodyBlock.assign(nb, -1);
     layout.jointBlock.assign(model.joints.size(), -1);
     layout.treeOfBody.assign(nb, -1);
+    const std::vector<std::uint8_t> actuated = actuatedJoints(model); // drive rows for their servos
 
     // 1. Spanning forest over moving bodies: body-body joints first (a cycle is a loop), then the
     //    first joint to the world in each component roots it; any further one is a loop.
@@ -152,8 +153,8 @@ FrontierLayout buildFrontierLayout(const Model& model)
                     edge.kind = LayoutBlock::Kind::Edge;
                     edge.index = edgeJoint;
                     const Joint& joint = model.joints[static_cast<std::size_t>(edgeJoint)];
-                    edge.dim = jointBlockRows(joint);
-                    edge.driveRows = blockDriveRows(joint);
+                    edge.dim = jointBlockRows(joint, actuated[static_cast<std::size_t>(edgeJoint)]);
+                    edge.driveRows = blockDriveRows(joint, actuated[static_cast<std::size_t>(edgeJoint)]);
                     layout.jointBlock[static_cast<std::size_t>(edgeJoint)] =
                         static_cast<int>(layout.blocks.size());
                     layout.blocks.push_back(edge);

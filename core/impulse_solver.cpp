@@ -34,7 +34,7 @@ SingularJointError::SingularJointError(std::string jointName, const std::string&
 }
 
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
-                  RowSystem& system)
+                  RowSystem& system, std::span<const JointDriveGains> gains)
 {
     system.model = &model;
     system.layout = &layout;
@@ -51,7 +51,7 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     system.rowCount = 0;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
-        evaluateJointBlock(model, state, static_cast<int>(k), driveStep, system.joints[k]);
+        evaluateJointBlock(model, layout, state, static_cast<int>(k), driveStep, gains, system.joints[k]);
         if (layout.jointBlock[k] >= 0)
         {
             system.rowCount += system.joints[k].count;
@@ -59,15 +59,21 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     }
 }
 
-void evaluateJointBlock(const Model& model, const State& state, int jointIndex, double driveStep,
-                        JointRows& out)
+void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const State& state, int jointIndex,
+                        double driveStep, std::span<const JointDriveGains> gains, JointRows& out)
 {
-    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    const std::size_t k = static_cast<std::size_t>(jointIndex);
+    const Joint& joint = model.joints[k];
     const JointPose pose = jointPose(state, joint);
     const detail::JointGeometry g = detail::jointGeometry(joint, pose);
     const bool parentMoves = !jointToWorld(model, joint);
     evaluateJoint(joint, pose, g, parentMoves, out);
-    writeDriveRows(joint, g, parentMoves, driveStep, out);
+    // A loop joint's actuators are extra rows (core/actuation.h): its drive rows damp only.
+    const int block = layout.jointBlock[k];
+    const int driveRows =
+        block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows : blockDriveRows(joint);
+    writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves, driveStep,
+                   out);
 }
 
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,

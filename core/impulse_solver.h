@@ -13,11 +13,13 @@
 
 #include "core/extra_rows.h"
 #include "core/frontier_order.h"
+#include "core/joints/drive.h"
 #include "core/joints/joint_rows.h"
 #include "core/large_vector.h"
 #include "core/state.h"
 
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,14 +40,15 @@ struct RowSystem
 
 // Evaluates masses and joint rows at a state (PAPER.md §2, §4), with the drive rows of a solve of
 // duration driveStep (s; 0 for an instantaneous impulse: drives give none, core/joints/drive.h).
-// `system` keeps its storage.
+// `gains`: per joint, the gains of its drive rows (core::Actuation::gains(): damping and the
+// actuators in the joints' blocks); empty: the joints' damping alone. `system` keeps its storage.
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
-                  RowSystem& system);
+                  RowSystem& system, std::span<const JointDriveGains> gains = {});
 
 // The rows of one joint's block at a state (its conditions, then its drive rows for a solve of
-// duration driveStep), as assembleRows writes them.
-void evaluateJointBlock(const Model& model, const State& state, int jointIndex, double driveStep,
-                        JointRows& out);
+// duration driveStep with the joint's `gains`, empty as in assembleRows), as assembleRows writes them.
+void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const State& state, int jointIndex,
+                        double driveStep, std::span<const JointDriveGains> gains, JointRows& out);
 
 // Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
 struct BlockVector

@@ -6,9 +6,12 @@
 // centre of mass).
 #pragma once
 
+#include "core/time_function.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -111,7 +114,59 @@ struct Joint
     // (N m s/rad or N s/m) and Coulomb friction (N m or N); 0 = none.
     double damping = 0.0;
     double friction = 0.0;
+    // The largest force or torque an actuator may apply along the joint (N or N m; URDF <limit
+    // effort>), used when the actuator gives none; +infinity: none.
+    double effortLimit = std::numeric_limits<double>::infinity();
     bool collideConnected = false; // the two bodies may collide with each other
+};
+
+// A coordinate of a joint (core/joints/coordinates.h): what a limit bounds and an actuator drives.
+enum class JointCoordinate
+{
+    Rotation, // rad, about the joint axis (revolute, cylindrical)
+    Slide,    // m, along the joint axis (prismatic, cylindrical)
+};
+
+enum class ActuatorKind
+{
+    Position, // a servo: stiffness kp and damping kd towards a target coordinate (implicit)
+    Velocity, // a motor: the coordinate's speed to a target, within the effort limit
+    Effort,   // a commanded force or torque
+};
+
+// An actuator on one coordinate of a joint (core/actuation.h). Its target is in the model file's
+// coordinate: Joint::initialPosition + the coordinate measured from the initial pose (rad or m) for
+// a servo, rad/s or m/s for a motor, N m or N for an effort.
+struct Actuator
+{
+    int joint = 0; // index into Model::joints: revolute, prismatic or cylindrical
+    JointCoordinate coordinate = JointCoordinate::Rotation;
+    ActuatorKind kind = ActuatorKind::Position;
+    double kp = 0.0; // Position: stiffness (N m/rad or N/m)
+    // Position: damping towards the target's rate (N m s/rad or N s/m). Velocity: damping towards
+    // the target speed; 0 makes the motor rigid (it holds the speed exactly within its limit).
+    double kd = 0.0;
+    double effortLimit = std::numeric_limits<double>::infinity(); // N m or N; +infinity: none
+    TimeFunction target;
+};
+
+enum class LoadFrame
+{
+    World, // force and torque in world axes; `point` a world point
+    Body,  // force and torque in the body's axes; `point` in the body frame (from its centre of mass)
+};
+
+// An external load on a body: a force (and torque) over [from, to), or an impulse at one instant.
+struct Load
+{
+    int body = 0; // a moving body
+    LoadFrame frame = LoadFrame::World;
+    Vec3 force = Vec3::Zero();  // N (an impulse: N s)
+    Vec3 torque = Vec3::Zero(); // N m (an impulse: N m s)
+    std::optional<Vec3> point;  // where the force acts (m, see LoadFrame); none: the centre of mass
+    double from = 0.0;          // s
+    double to = std::numeric_limits<double>::infinity(); // s
+    std::optional<double> instant; // s: an impulse at this time instead of a force over [from, to)
 };
 
 struct Camera
@@ -172,6 +227,8 @@ struct Model
     std::vector<Body> bodies;
     std::vector<Joint> joints;
     std::vector<Robot> robots;
+    std::vector<Actuator> actuators; // at most one per joint coordinate
+    std::vector<Load> loads;
 
     int findBody(const std::string& bodyName) const;
 };

@@ -67,6 +67,7 @@ bool pushesApart(const ExtraBlock& block)
 
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
+      mActuation(model, mLayout),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)), mDt(model.simulation.dt)
 {
     const std::size_t nb = model.bodies.size();
@@ -103,6 +104,18 @@ Simulator::~Simulator() = default;
 
 void Simulator::step(State& state)
 {
+    takeStep(state);
+    if (mActuation.finishStep(mDt))
+    {
+        // Actuators returned to their joints' blocks: rows assembled for the next step before
+        // this are stale.
+        mEndRowsValid = false;
+        mFactoredPoseValid = false;
+    }
+}
+
+void Simulator::takeStep(State& state)
+{
     mRattleStep = mModel.simulation.integrator == IntegratorKind::Rattle;
     mStats.firstOrderFallback = false;
     if (!mRattleStep)
@@ -131,20 +144,25 @@ void Simulator::stepEuler(State& state)
 {
     StageClock clock(mStats.seconds);
     checkState(state, "start of step");
+    mActuation.beginStep();
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
-    rowsAtStart(state);
-    buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
-    recordStartDefects(state);
-    setMomentumRhs(state);
-    carryImpulses(); // the last step's impulses on those rows join the right-hand side
-    // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
-    // impulses of the free velocities and the carried extra impulses, fused into one pass.
-    mSolver->factorAndSolve(mRows, mRhs, mSolution);
-    clock.lap(StepStage::Factor);
-    solveContactImpulses(state); // the extra rows on top (§5)
-    clock.lap(StepStage::Solve);
+    keepFreeVelocities(state);
+    do
+    {
+        rowsAtStart(state);
+        buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
+        recordStartDefects(state);
+        setMomentumRhs(state, state.time + mDt);
+        carryImpulses(); // the last step's impulses on those rows join the right-hand side
+        // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
+        // impulses of the free velocities and the carried extra impulses, fused into one pass.
+        mSolver->factorAndSolve(mRows, mRhs, mSolution);
+        clock.lap(StepStage::Factor);
+        solveContactImpulses(state); // the extra rows on top (§5)
+        clock.lap(StepStage::Solve);
+    } while (!actuatorsWithinLimits(state));
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
@@ -168,7 +186,7 @@ void Simulator::rowsAtStart(const State& state)
     }
     else
     {
-        assembleRows(mModel, mLayout, state, driveStep(), mRows);
+        assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
     }
     mEndRowsValid = false;
 }
@@ -194,18 +212,23 @@ bool Simulator::stepRattle(State& state)
 {
     StageClock clock(mStats.seconds);
     checkState(state, "start of step");
+    mActuation.beginStep();
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, 0.5 * mDt);
-    factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
-    clock.lap(StepStage::Factor);
-    buildExtraRows(state);
-    recordStartDefects(state);
-    setMomentumRhs(state);
-    carryImpulses();
-    mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
-    solveContactImpulses(state);
-    clock.lap(StepStage::Solve);
+    keepFreeVelocities(state);
+    do
+    {
+        factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
+        clock.lap(StepStage::Factor);
+        buildExtraRows(state);
+        recordStartDefects(state);
+        setMomentumRhs(state, state.time + 0.5 * mDt);
+        carryImpulses();
+        mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
+        solveContactImpulses(state);
+        clock.lap(StepStage::Solve);
+    } while (!actuatorsWithinLimits(state));
     integratePositions(state); // drift: x += h v, R by the free rotation at constant L
     removePenetration(state);
     if (!stabilizeJoints(state)) // Newton on C(q_{n+1}) = 0, impulses along J(q_n)^T
@@ -214,6 +237,7 @@ bool Simulator::stepRattle(State& state)
     }
     carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
     kickByGravity(state, 0.5 * mDt);
+    mActuation.applyForces(state, state.time + 0.5 * mDt, state.time + mDt);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
     trackJointAngles(mModel, state);
     state.time += mDt;
@@ -229,7 +253,7 @@ void Simulator::factorAtStart(const State& state)
 {
     if (!(mFactoredPoseValid && samePose(state, mFactoredPose)))
     {
-        assembleRows(mModel, mLayout, state, driveStep(), mRows);
+        assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
         mSolver->factor(mRows);
     }
     mFactoredPoseValid = false;
@@ -242,39 +266,53 @@ void Simulator::factorAtStart(const State& state)
 void Simulator::projectVelocities(State& state)
 {
     std::swap(mRows, mRowsAfter);
-    mSolver->factor(mRows);
+    for (;;)
+    {
+        mSolver->factor(mRows);
+        buildLoopRows(mRows);
+        mEndBlocks = mLoopBlocks;
+        for (const ExtraBlock& block : mExtra)
+        {
+            if (block.kind == ExtraBlock::Kind::Drive)
+            {
+                if (block.actuator < 0)
+                {
+                    mEndBlocks.push_back(block); // joint friction acts in both halves of the step
+                }
+                continue;
+            }
+            if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
+            {
+                ExtraBlock normal = block;
+                normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
+                normal.target.setZero();
+                mEndBlocks.push_back(normal);
+            }
+        }
+        // Actuators at their limits act in the second half too, with their targets at its end.
+        mActuation.appendBoundedRows(state, state.time + mDt, driveStep(), mEndBlocks);
+        setMomentumRhs(state, state.time + mDt);
+        mSolver->solve(mRhs, mCorrection);
+        if (!mEndBlocks.empty())
+        {
+            const int rows = layoutExtraRows(mEndBlocks);
+            mSolver->delassus(mEndBlocks, rows, mEndG);
+            extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
+            mEndLambda.setZero(rows);
+            coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
+            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch,
+                           &mEndCoupling);
+            mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
+        }
+        if (mActuation.acceptSolve(mRows, mCorrection, mEndBlocks, mEndLambda, driveStep()))
+        {
+            break;
+        }
+        // An actuator went beyond its limit: out of its block, the projection again.
+        assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
+    }
     mFactoredPose = state.bodies;
     mFactoredPoseValid = true;
-    buildLoopRows(mRows);
-    mEndBlocks = mLoopBlocks;
-    for (const ExtraBlock& block : mExtra)
-    {
-        if (block.kind == ExtraBlock::Kind::Drive)
-        {
-            mEndBlocks.push_back(block); // joint friction acts in both halves of the step
-            continue;
-        }
-        if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
-        {
-            ExtraBlock normal = block;
-            normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
-            normal.target.setZero();
-            mEndBlocks.push_back(normal);
-        }
-    }
-    setMomentumRhs(state);
-    mSolver->solve(mRhs, mCorrection);
-    if (!mEndBlocks.empty())
-    {
-        const int rows = layoutExtraRows(mEndBlocks);
-        mSolver->delassus(mEndBlocks, rows, mEndG);
-        extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
-        mEndLambda.setZero(rows);
-        coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
-        solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch,
-                       &mEndCoupling);
-        mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
-    }
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         if (!mModel.bodies[i].isStatic)
@@ -376,6 +414,32 @@ void Simulator::computeFreeVelocities(State& state, double h)
         mStart[i] = state.bodies[i];
     }
     kickByGravity(state, h);
+    mActuation.applyForces(state, state.time, state.time + h); // effort actuators, loads
+}
+
+// The free velocities, kept when an actuator may make the step's first solve be taken again.
+void Simulator::keepFreeVelocities(const State& state)
+{
+    if (mActuation.hasDriveRows())
+    {
+        mFree = state.bodies;
+    }
+}
+
+// After the first velocity stage: true when every actuator in its joint's block stayed within its
+// effort limit. Otherwise that actuator is now a bounded extra row: the state goes back to the
+// free velocities and the stage is solved again, rows assembled anew (core/actuation.h).
+bool Simulator::actuatorsWithinLimits(State& state)
+{
+    if (!mActuation.hasDriveRows() ||
+        mActuation.acceptSolve(mRows, mSolution, mExtra, mExtraLambda, driveStep()))
+    {
+        return true;
+    }
+    state.bodies = mFree;
+    mEndRowsValid = false;
+    mFactoredPoseValid = false;
+    return false;
 }
 
 // v += h g for every moving body (h in s).
@@ -475,6 +539,7 @@ void Simulator::buildExtraRows(const State& state)
     {
         appendFrictionBlocks(mModel, state, joint, driveStep(), mExtra);
     }
+    mActuation.appendBoundedRows(state, state.time + driveStep(), driveStep(), mExtra);
     mStats.extraRows = layoutExtraRows(mExtra);
 }
 
@@ -502,8 +567,9 @@ void Simulator::buildLoopRows(const RowSystem& rows)
     layoutExtraRows(mLoopBlocks);
 }
 
-// p = M u* for the joint-impulse solve M u' - J^T lambda = M u*, J u' = 0 (joint rhs c = 0).
-void Simulator::setMomentumRhs(const State& state)
+// p = M u* for the joint-impulse solve M u' - J^T lambda = M u*, J u' + E lambda = c: c = 0 but
+// for the rows of servos and motors in their joints' blocks (targets at tEnd, s).
+void Simulator::setMomentumRhs(const State& state, double tEnd)
 {
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
@@ -519,6 +585,7 @@ void Simulator::setMomentumRhs(const State& state)
     {
         c.setZero();
     }
+    mActuation.setRowTargets(state, tEnd, driveStep(), mRhs); // servos and motors in their blocks
 }
 
 // The last step's impulses on this step's rows (warmStart), and their momentum J_x^T lambda in
@@ -625,7 +692,8 @@ void Simulator::buildDelassus()
 
 Simulator::RowKey Simulator::rowKey(const ExtraBlock& block) const
 {
-    RowKey key{block.kind, block.count, block.bodyA, block.bodyB, block.source, Vec3::Zero(), Vec6::Zero()};
+    RowKey key{block.kind,   block.count,    block.bodyA,  block.bodyB,
+               block.source, block.actuator, Vec3::Zero(), Vec6::Zero()};
     if (block.kind == ExtraBlock::Kind::Contact)
     {
         const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
@@ -675,7 +743,8 @@ bool Simulator::sameRowsAsLastDelassus() const
 
 bool Simulator::sameJointRows(const RowKey& now, const RowKey& then)
 {
-    return now.kind == then.kind && now.source == then.source && now.direction.dot(then.direction) > 0.0;
+    return now.kind == then.kind && now.source == then.source && now.actuator == then.actuator &&
+           now.direction.dot(then.direction) > 0.0;
 }
 
 // Resting contact whose carried-over impulses just miss the tolerance: the Delassus matrix G~ of
@@ -935,7 +1004,7 @@ void Simulator::removePenetration(State& state)
 void Simulator::restoreJoints(State& state)
 {
     constexpr int cRestoreIterations = 10;
-    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
     mJointErrorBefore.resize(mModel.joints.size());
     for (std::size_t k = 0; k < mModel.joints.size(); ++k)
     {
@@ -944,7 +1013,7 @@ void Simulator::restoreJoints(State& state)
     displacePositions(state, mCorrection);
     for (int iteration = 0; iteration < cRestoreIterations; ++iteration)
     {
-        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
         double worst = 0.0;
         for (std::size_t k = 0; k < mModel.joints.size(); ++k)
         {
@@ -1037,7 +1106,7 @@ bool Simulator::stabilizeJoints(State& state)
     mLoopCorrection.setZero(mLoopBlocks.empty() ? 0 : mLoopBlocks.back().offset + mLoopBlocks.back().count);
     for (int iteration = 0;; ++iteration)
     {
-        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
         measureJointErrors(mRowsAfter);
         const double error = std::max(mStats.maxJointErrorM, mStats.maxJointErrorRad);
         if (error <= mOptions.stabilizationTolerance)
@@ -1164,7 +1233,7 @@ void Simulator::carryAngularMomentum(State& state)
 std::pair<double, double> Simulator::jointErrors(const State& state)
 {
     mEndRowsValid = false; // mRowsAfter is about to hold other rows
-    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter);
+    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
     measureJointErrors(mRowsAfter);
     return {mStats.maxJointErrorM, mStats.maxJointErrorRad};
 }

@@ -11,8 +11,11 @@
 // restitution above cRestitutionSpeed; penetration beyond a slop is removed by a separate
 // position projection (no velocity bias, so no bodies jump).
 // Joint damping is a compliant drive row in the joint's block of the factorization (implicit, so
-// stable for any value), Coulomb joint friction a bounded extra row (core/joints/drive.h). Each step
-// ends by continuing the joints' angles across +-pi (State::jointAngles), which limits read.
+// stable for any value), Coulomb joint friction a bounded extra row (core/joints/drive.h). Position
+// servos and velocity motors share those rows below their effort limits and become bounded extra
+// rows at them (the step's first solve is then taken again); effort actuators and external loads
+// join gravity in the free velocities (core/actuation.h). Each step ends by continuing the joints'
+// angles across +-pi (State::jointAngles), which limits and servos read.
 // Velocity level (PAPER.md §5 "Time stepping"): u* = u + h M^-1 f, then the joint impulses
 // solve M u' = M u* + J^T lambda, J u' = 0 with the chosen solver. Positions: x += h v,
 // R = exp(h w) R (a rotation-vector update, so orientations stay unit).
@@ -32,9 +35,12 @@
 // with the factorization at q_{n+1}, which the next step reuses. Contacts, limits and impacts
 // are impulses of the first stage (first order across an impact, as any impulse method); contacts
 // and limits that pushed in the first stage keep pushing (one-sided) in the final projection.
-// Joint damping and friction act in both velocity stages, each over h/2.
+// Joint damping and friction, servos and motors act in both velocity stages, each over h/2 (a
+// servo's spring at the stage's start pose, its targets at the stage's end), as do effort actuators
+// and loads with gravity's half kicks.
 #pragma once
 
+#include "core/actuation.h"
 #include "core/contact.h"
 #include "core/failure_hint.h"
 #include "core/free_rotation.h"
@@ -44,6 +50,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -148,6 +155,10 @@ class Simulator
     // Joint impulses of the last step (per joint index; N s or N m s), row by row as in JointRows:
     // the joint's conditions, then its drive rows (the damping impulse, core/joints/drive.h).
     const LargeVector<Vec6>& jointImpulses() const { return mSolution.joint; }
+    // What each actuator did in the last step (Model::actuators order): its effort, the impulse it
+    // applied over the step divided by dt (N or N m, along its coordinate; drift corrections not
+    // counted), and whether it sat at its effort limit (core/actuation.h).
+    std::span<const ActuatorEffort> actuatorEfforts() const { return mActuation.efforts(); }
 
     // What the last step passed through its joints and contacts, worked out when asked
     // (core/step_report.cpp; nothing of it runs in step()).
@@ -164,6 +175,7 @@ class Simulator
     int pushingLimitRows() const;
 
   private:
+    void takeStep(State& state);
     void stepEuler(State& state);
     bool stepRattle(State& state); // false: stalled, state partly stepped
     bool mRattleStep = false;      // the step under way is a rattle step
@@ -175,13 +187,16 @@ class Simulator
     bool mStartRecorded = false;                       // mStartDefects is set
     void detectContacts(const State& state);
     void computeFreeVelocities(State& state, double h);
+    void keepFreeVelocities(const State& state);
+    bool actuatorsWithinLimits(State& state);
+    std::vector<BodyState> mFree; // the free velocities of the step (actuators may solve again)
     void kickByGravity(State& state, double h);
     void factorAtStart(const State& state);
     void rowsAtStart(const State& state);
     bool samePose(const State& state, const std::vector<BodyState>& pose) const;
     void projectVelocities(State& state);
     void buildExtraRows(const State& state);
-    void setMomentumRhs(const State& state);
+    void setMomentumRhs(const State& state, double tEnd);
     void solveContactImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
@@ -245,6 +260,7 @@ class Simulator
     {
         ExtraBlock::Kind kind;
         int count, bodyA, bodyB, source;
+        int actuator;   // drives: the actuator at its limit, -1 joint friction
         Vec3 point_W;   // contacts (m)
         Vec6 direction; // contacts: the normal; loops, limits: the first row of J
     };
@@ -264,6 +280,7 @@ class Simulator
     std::uint64_t mDelassusVersion = 0;        // counts the builds of mG (names it for solveExtraRowsFrom)
     void rememberImpulses();
     FrontierLayout mLayout;
+    Actuation mActuation; // servos, motors, effort actuators and loads
     std::unique_ptr<ImpulseSolver> mSolver;
     RowSystem mRows;           // rows at the start of the step (the factored ones)
     RowSystem mRowsAfter;      // rows re-evaluated after the position update (errors only)

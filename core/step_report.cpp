@@ -49,7 +49,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
     // A whole joint block (a tree joint's, a loop's): lambda row by row as in JointRows.
     auto addBlock = [&](int k, const auto& lambda)
     {
-        evaluateJointBlock(mModel, state, k, driveStep(), rows);
+        evaluateJointBlock(mModel, mLayout, state, k, driveStep(), mActuation.gains(), rows);
         out[static_cast<std::size_t>(k)] +=
             rows.J_b.topRows(rows.count).transpose() * lambda.head(rows.count);
     };
@@ -87,6 +87,20 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
     if (mRattleStep)
     {
         addExtra(mEndBlocks, mEndLambda); // the velocity projection at the end of a rattle step
+    }
+    // Effort actuators pass their commanded (clipped) impulse through the joint as applied forces.
+    const std::span<const ActuatorEffort> efforts = mActuation.efforts();
+    for (std::size_t a = 0; a < mModel.actuators.size() && a < efforts.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (actuator.kind != ActuatorKind::Effort)
+        {
+            continue;
+        }
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+        const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
+        out[static_cast<std::size_t>(actuator.joint)] +=
+            coordinateRow(joint, g, actuator.coordinate).J_b * (efforts[a].effort * mDt);
     }
     // About the anchor: the torque about the child's centre of mass less r_b x F.
     for (std::size_t k = 0; k < mModel.joints.size(); ++k)

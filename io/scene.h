@@ -43,6 +43,9 @@ struct UrdfOptions
     std::optional<double> dropHeight; // m: lowest collision point this high above the floor (default 0)
     // Every URDF: overrides the scene's self_collision (default on).
     std::optional<bool> selfCollision;
+    // Every URDF: a position servo on each joint coordinate without an actuator, holding it where
+    // it starts (--hold; a scene model's `hold: true`; io/hold_servos.h).
+    bool hold = false;
 };
 
 // What loading did to a scene's robots beyond reading them (`frontier info` shows it).

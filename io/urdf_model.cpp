@@ -663,6 +663,10 @@ class UrdfConverter
         {
             readLimits(joint, j);
         }
+        if (joint.limits && std::isfinite(joint.limits->effort) && joint.limits->effort > 0.0)
+        {
+            j.effortLimit = joint.limits->effort; // N m or N; 0 (a file that leaves it out) means none
+        }
         readDynamics(joint, j);
         if (joint.mimic)
         {

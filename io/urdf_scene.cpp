@@ -1,5 +1,6 @@
 // io/urdf_scene.cpp: a URDF alone as a scene: the robot, placed on a floor (README "Robots").
 #include "io/file_util.h"
+#include "io/hold_servos.h"
 #include "io/package_paths.h"
 #include "io/scene.h"
 #include "io/urdf_model.h"
@@ -125,6 +126,10 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     }
     model.robots.push_back(
         {robot.name, path, 0, static_cast<int>(model.bodies.size()), placement.selfCollision});
+    if (options.hold)
+    {
+        addHoldServos(model, 0, static_cast<int>(model.joints.size()));
+    }
     core::Body floor;
     floor.name = model.findBody("floor") < 0 ? "floor" : "floor_";
     floor.isStatic = true;

@@ -2,6 +2,7 @@
 #include "io/yaml_scene.h"
 
 #include "io/file_util.h"
+#include "io/hold_servos.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 #include "io/urdf_model.h"
@@ -14,15 +15,15 @@ namespace frontier::io::detail
 namespace
 {
 
-const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact", "bodies",
-                                             "joints", "models",     "camera"};
+const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact",   "bodies", "joints",
+                                             "models", "camera",     "actuators", "loads"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
 const std::vector<std::string> cContactKeys = {"friction", "restitution", "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
-    "urdf",   "position",       "orientation", "velocity", "angular_velocity",
-    "prefix", "self_collision", "fixed",       "free_base"};
+    "urdf",   "position",       "orientation", "velocity",  "angular_velocity",
+    "prefix", "self_collision", "fixed",       "free_base", "hold"};
 
 void readSimulation(const YamlSource& source, const YAML::Node& node, core::SimulationSettings& sim)
 {
@@ -229,6 +230,11 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
         }
         builder.model.robots.push_back({loaded.report.name, path, firstBody,
                                         static_cast<int>(fragment.bodies.size()), placement.selfCollision});
+        if (builder.urdf.hold || map.optBool("hold").value_or(false))
+        {
+            const int firstJoint = static_cast<int>(builder.model.joints.size());
+            builder.heldJoints.push_back({firstJoint, firstJoint + static_cast<int>(fragment.joints.size())});
+        }
         appendFragment(builder, map, std::move(fragment), path);
         if (builder.report)
         {
@@ -336,6 +342,18 @@ core::Model loadYamlScene(const std::string& text, const std::string& sourceName
         if (ignore.IsDefined() && !ignore.IsNull())
         {
             readIgnorePairs(builder, ignore, model.contact);
+        }
+        if (root.has("actuators"))
+        {
+            readActuators(builder, root.get("actuators"));
+        }
+        for (const auto& [first, end] : builder.heldJoints)
+        {
+            addHoldServos(model, first, end); // where the scene's actuators leave a joint free
+        }
+        if (root.has("loads"))
+        {
+            readLoads(builder, root.get("loads"));
         }
     }
     catch (const YAML::ParserException& e)

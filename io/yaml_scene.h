@@ -6,6 +6,7 @@
 #include "io/scene.h"
 #include "io/yaml_util.h"
 
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -24,6 +25,7 @@ struct SceneBuilder
     UrdfOptions urdf;                             // how `models:` are read
     std::optional<PackagePaths> packages;         // their mesh URIs, made on first use
     LoadReport* report = nullptr;                 // receives warnings and what loading did
+    std::vector<std::array<int, 2>> heldJoints;   // joints [first, end) of models held by servos
 };
 
 // Scene text to model (sourceName for messages and relative paths).
@@ -40,6 +42,15 @@ void readJoints(SceneBuilder& builder, const YAML::Node& joints);
 // Errors name `what` and suggest the closest body name.
 int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
                     bool allowWorld);
+
+// `actuators:` list, after all joints exist (core::Actuator).
+void readActuators(SceneBuilder& builder, const YAML::Node& actuators);
+// `loads:` list, after all bodies exist (core::Load).
+void readLoads(SceneBuilder& builder, const YAML::Node& loads);
+// An actuator's target (a number, or a map with sine, keyframes or csv), `what` naming it in
+// messages; a csv target's column defaults to defaultColumn.
+core::TimeFunction readTarget(const YamlSource& source, const YAML::Node& node, const std::string& what,
+                              const std::string& defaultColumn);
 
 // Checks a new body or joint name: valid, and not taken.
 void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const std::string& kind);

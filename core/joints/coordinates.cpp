@@ -31,6 +31,19 @@ std::span<const JointCoordinate> jointCoordinates(JointType type)
     return {};
 }
 
+int coordinateIndex(JointType type, JointCoordinate coordinate)
+{
+    const std::span<const JointCoordinate> all = jointCoordinates(type);
+    for (std::size_t k = 0; k < all.size(); ++k)
+    {
+        if (all[k] == coordinate)
+        {
+            return static_cast<int>(k);
+        }
+    }
+    return -1;
+}
+
 bool hasJointAngle(JointType type)
 {
     return type == JointType::Revolute || type == JointType::Cylindrical;

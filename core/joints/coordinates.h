@@ -21,15 +21,13 @@
 namespace frontier::core
 {
 
-enum class JointCoordinate
-{
-    Rotation, // rad
-    Slide,    // m
-};
-
 // The coordinates of a joint type, in the order of its drive rows: revolute {Rotation}, prismatic
 // {Slide}, cylindrical {Slide, Rotation}; none for the other types.
 std::span<const JointCoordinate> jointCoordinates(JointType type);
+
+// The position of a coordinate in jointCoordinates(type) (its drive row after the joint's
+// conditions), or -1 when the type has no such coordinate.
+int coordinateIndex(JointType type, JointCoordinate coordinate);
 
 // True for the types with a rotation coordinate (State::jointAngles is kept for them).
 bool hasJointAngle(JointType type);

@@ -1,12 +1,15 @@
 // tests/app/robot_test.cpp: the robot flags end to end: links overlapping at the start excluded
-// from collision, --self-collision, --fixed-base recorded in the trajectory so that `check` and
-// `render` load the robot as the run did, and --height pointing to --drop-height.
+// from collision, --self-collision, --fixed-base and --hold recorded in the trajectory so that
+// `check` and `render` load the robot as the run did, and --height pointing to --drop-height.
 #include "app_test_util.h"
 #include "info_test_util.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
 
 namespace frontier::app::test
 {
@@ -94,6 +97,57 @@ TEST(Robot, FixedBaseIsRecordedSoCheckAndRenderLoadTheSameRobot)
                   .exitCode,
               0);
     EXPECT_NE(readText(free), text);
+}
+
+// Position (m) of `body` in the first and the last row of a trajectory CSV.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> firstAndLast(const std::string& csv, const std::string& body)
+{
+    std::istringstream in(csv);
+    std::string line;
+    std::vector<Eigen::Vector3d> rows;
+    while (std::getline(in, line))
+    {
+        std::vector<std::string> fields;
+        std::istringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');)
+        {
+            fields.push_back(cell);
+        }
+        if (fields.size() > 4 && fields[1] == body)
+        {
+            rows.emplace_back(std::stod(fields[2]), std::stod(fields[3]), std::stod(fields[4]));
+        }
+    }
+    return rows.empty() ? std::pair<Eigen::Vector3d, Eigen::Vector3d>{}
+                        : std::pair{rows.front(), rows.back()};
+}
+
+TEST(Robot, HoldKeepsTheArmUpAndIsRecordedForCheck)
+{
+    const TestDir dir;
+    const std::string urdf = dir.write("folded.urdf", cFoldedArm);
+    const std::string held = dir.out("held.csv");
+    const std::string limp = dir.out("limp.csv");
+    const std::string flags = " --fixed-base --self-collision off --duration 1 --quiet --trajectory ";
+    ASSERT_EQ(dir.run("run " + shellQuote(urdf) + " --hold" + flags + shellQuote(held)).exitCode, 0);
+    ASSERT_EQ(dir.run("run " + shellQuote(urdf) + flags + shellQuote(limp)).exitCode, 0);
+    const std::string text = readText(held);
+    EXPECT_NE(text.substr(0, text.find('\n')).find(" hold=1"), std::string::npos) << text.substr(0, 300);
+    const auto [start, end] = firstAndLast(text, "tip");
+    const auto [limpStart, limpEnd] = firstAndLast(readText(limp), "tip");
+    EXPECT_LT((end - start).norm(), 0.01);         // m: held (its effort limits of 1 N m suffice)
+    EXPECT_GT((limpEnd - limpStart).norm(), 0.05); // m: without servos the arm folds down
+    const Result check = dir.run("check " + shellQuote(urdf) + " --quiet --reference " + shellQuote(held));
+    EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+    // `info` shows the servos --hold chose, with the URDF's effort limits.
+    const Result info = dir.run("info " + shellQuote(urdf) + " --fixed-base --hold --json");
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    const nlohmann::json actuators = nlohmann::json::parse(info.out)["actuators"];
+    ASSERT_EQ(actuators.size(), 2u) << actuators.dump(2);
+    EXPECT_EQ(actuators[0]["joint"], "j1");
+    EXPECT_EQ(actuators[0]["type"], "position");
+    EXPECT_EQ(actuators[0]["effort_limit"].get<double>(), 1.0);
+    EXPECT_GT(actuators[0]["kp"].get<double>(), 0.0);
 }
 
 TEST(Robot, HeightInMetresPointsToDropHeight)

@@ -238,5 +238,45 @@ TEST(RunOutputs, StatsCountLimitStepsAndActuatorKeys)
     }
 }
 
+
+// A 2 kg bob on a 1 m rod, hinged about +y at (0, 0, 2) in zero gravity, driven by a commanded
+// torque of 5 N m clipped to its limit of 3 N m: the joints file's effort is 3 N m at every step
+// after the first, the hinge passes that torque about its axis (ty = 3, so the bob's spin rises
+// by tau / I per second, I = m r^2 = 2 kg m^2 about the hinge, to 1e-6 relative: the rod's
+// drift correction moves the bob by round-off each step), and the stats say the actuator
+// sat at its limit in every step. A velocity motor asked for more than its limit allows against
+// a clamped load does the same through its bounded row.
+TEST(RunOutputs, ActuatorEffortsReachTheJointsFileAndTheStats)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("driven.yaml", R"(
+simulation: {dt: 0.001, gravity: [0, 0, 0]}
+bodies:
+  - {name: bob, mass: 2.0, inertia: [1.0e-6, 1.0e-6, 1.0e-6], shape: {type: sphere, radius: 0.01}, position: [1, 0, 2]}
+joints:
+  - {name: pivot, type: revolute, parent: world, child: bob, anchor: [0, 0, 2], axis: [0, 1, 0]}
+actuators:
+  - {joint: pivot, type: effort, target: 5.0, effort_limit: 3.0}
+)");
+    const std::string joints = dir.out("j.csv");
+    const std::string stats = dir.out("s.json");
+    const Result r = dir.run("run " + shellQuote(scene) + " --quiet --duration 0.5 --joints " +
+                             shellQuote(joints) + " --stats " + shellQuote(stats));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CsvTable table = readCsvTable(joints);
+    ASSERT_EQ(table.rows.size(), 501u);
+    const double inertia = 2.0 * 1.0 + 1.0e-6; // kg m^2 about the hinge
+    for (std::size_t k = 1; k < table.rows.size(); ++k)
+    {
+        const double t = table.number(k, "time");
+        ASSERT_NEAR(table.number(k, "effort"), 3.0, 1e-12) << "t = " << t;
+        ASSERT_NEAR(table.number(k, "ty"), 3.0, 1e-9) << "t = " << t;
+        ASSERT_NEAR(std::abs(table.number(k, "velocity")), 3.0 / inertia * t, 1e-6 * t) << "t = " << t;
+    }
+    const io::RunStats s = io::readStats(stats);
+    EXPECT_NEAR(s.extra.at("max_actuator_effort"), 3.0, 1e-12);
+    EXPECT_EQ(s.extra.at("actuator_limit_steps"), static_cast<double>(s.steps));
+}
+
 } // namespace
 } // namespace frontier::app::test

@@ -20,7 +20,6 @@ namespace
 
 using core::IntegratorKind;
 
-constexpr IntegratorKind cIntegrators[] = {IntegratorKind::Euler, IntegratorKind::Rattle};
 constexpr double cGravity = 9.81; // m/s^2
 
 // The box's inertia about its hinge (kg m^2).

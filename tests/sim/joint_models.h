@@ -12,6 +12,10 @@
 namespace frontier::sim::test
 {
 
+// Both integrators, for tests that hold for each.
+inline constexpr core::IntegratorKind cIntegrators[] = {core::IntegratorKind::Euler,
+                                                        core::IntegratorKind::Rattle};
+
 // A box body of full extents `size` (m) and mass (kg), its solid-box inertia, at `position`.
 inline core::Body jointTestBox(const std::string& name, double mass, const core::Vec3& size,
                                const core::Vec3& position)

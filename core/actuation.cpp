@@ -1,0 +1,319 @@
+// core/actuation.cpp: servos and motors as drive rows (in their joints' blocks or bounded extra
+// rows), effort actuators and loads as applied forces.
+#include "core/actuation.h"
+
+#include "core/impulse_solver.h"
+#include "core/joints/coordinates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace frontier::core
+{
+
+namespace
+{
+bool drivesRow(const Actuator& actuator)
+{
+    return actuator.kind != ActuatorKind::Effort;
+}
+
+// The actuator's own spring and damper (without the joint's damping).
+DriveGains actuatorGains(const Actuator& actuator)
+{
+    DriveGains gains;
+    gains.stiffness = actuator.kind == ActuatorKind::Position ? actuator.kp : 0.0;
+    gains.damping = actuator.kd;
+    gains.rigid = actuator.kind == ActuatorKind::Velocity && actuator.kd == 0.0;
+    return gains;
+}
+
+// u += M^-1 [p; L] for a moving body at its pose in `state` (p in N s, L in N m s, world frame).
+void addImpulse(const Model& model, State& state, int body, const Vec3& linear, const Vec3& angular)
+{
+    const Body& b = model.bodies[static_cast<std::size_t>(body)];
+    BodyState& s = state.bodies[static_cast<std::size_t>(body)];
+    s.velocity_W += linear / b.mass;
+    s.angularVelocity_W += worldInertia(b, s).ldlt().solve(angular);
+}
+
+// A model built in code gets the checks io makes of a scene file.
+void checkActuator(const Model& model, const Actuator& actuator)
+{
+    if (actuator.joint < 0 || actuator.joint >= static_cast<int>(model.joints.size()))
+    {
+        throw std::invalid_argument("an actuator names joint index " + std::to_string(actuator.joint) +
+                                    ", which does not exist");
+    }
+    const Joint& joint = model.joints[static_cast<std::size_t>(actuator.joint)];
+    const bool gainsValid = actuator.kp >= 0.0 && actuator.kd >= 0.0 && std::isfinite(actuator.kp) &&
+                            std::isfinite(actuator.kd) && actuator.effortLimit > 0.0;
+    if (coordinateIndex(joint.type, actuator.coordinate) < 0 || !gainsValid)
+    {
+        throw std::invalid_argument("the actuator on joint '" + joint.name +
+                                    "' needs a coordinate its joint has, gains >= 0 and an effort limit > 0");
+    }
+}
+
+// The length of [t0, t1) n [from, to) (s), 0 when they do not meet.
+double overlap(double t0, double t1, double from, double to)
+{
+    return std::max(0.0, std::min(t1, to) - std::max(t0, from));
+}
+} // namespace
+
+Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(model)
+{
+    const std::size_t n = model.actuators.size();
+    mRow.resize(n);
+    mLoop.assign(n, 0);
+    mBounded.assign(n, 0);
+    for (std::size_t a = 0; a < n; ++a)
+    {
+        const Actuator& actuator = model.actuators[a];
+        checkActuator(model, actuator);
+        const Joint& joint = model.joints[static_cast<std::size_t>(actuator.joint)];
+        mRow[a] = jointRowCount(joint.type) + coordinateIndex(joint.type, actuator.coordinate);
+        if (drivesRow(actuator))
+        {
+            ++mDriveActuators;
+            mLoop[a] = layout.jointBlock[static_cast<std::size_t>(actuator.joint)] < 0 ? 1 : 0;
+            mBounded[a] = mLoop[a];
+        }
+    }
+    for (const Load& load : model.loads)
+    {
+        if (!isMovingBody(model, load.body))
+        {
+            throw std::invalid_argument("a load acts on a moving body, not body index " +
+                                        std::to_string(load.body));
+        }
+    }
+    mStepImpulse.assign(n, 0.0);
+    mStepAtLimit.assign(n, 0);
+    mLastFraction.assign(n, 0.0);
+    mEfforts.assign(n, ActuatorEffort{});
+    updateGains();
+}
+
+void Actuation::updateGains()
+{
+    if (mDriveActuators == 0)
+    {
+        return;
+    }
+    mGains.resize(mModel.joints.size());
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        mGains[k] = dampingGains(mModel.joints[k]);
+    }
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (!drivesRow(actuator) || mBounded[a])
+        {
+            continue;
+        }
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+        DriveGains& row = mGains[static_cast<std::size_t>(actuator.joint)]
+                                [static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
+        const DriveGains own = actuatorGains(actuator);
+        row.stiffness += own.stiffness;
+        row.damping += own.damping;
+        row.rigid = own.rigid;
+    }
+}
+
+void Actuation::beginStep()
+{
+    std::fill(mStepImpulse.begin(), mStepImpulse.end(), 0.0);
+    std::fill(mStepAtLimit.begin(), mStepAtLimit.end(), 0);
+}
+
+void Actuation::applyForces(State& state, double t0, double t1)
+{
+    for (const Load& load : mModel.loads)
+    {
+        const double duration = load.instant ? 0.0 : overlap(t0, t1, load.from, load.to);
+        const bool now = load.instant && *load.instant >= t0 && *load.instant < t1;
+        if (!(duration > 0.0) && !now)
+        {
+            continue;
+        }
+        const double scale = now ? 1.0 : duration; // an impulse as it is, a force times its time
+        const BodyState& s = state.bodies[static_cast<std::size_t>(load.body)];
+        const bool bodyFrame = load.frame == LoadFrame::Body;
+        const Vec3 force = bodyFrame ? Vec3(s.orientation_WB * load.force) : load.force;
+        const Vec3 torque = bodyFrame ? Vec3(s.orientation_WB * load.torque) : load.torque;
+        Vec3 lever = Vec3::Zero(); // from the centre of mass to the point of application (m)
+        if (load.point)
+        {
+            lever = bodyFrame ? Vec3(s.orientation_WB * *load.point) : Vec3(*load.point - s.position_W);
+        }
+        addImpulse(mModel, state, load.body, scale * force, scale * (torque + lever.cross(force)));
+    }
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (actuator.kind != ActuatorKind::Effort)
+        {
+            continue;
+        }
+        const double commanded = valueAt(actuator.target, t0); // N m or N
+        const double effort = std::clamp(commanded, -actuator.effortLimit, actuator.effortLimit);
+        mStepAtLimit[a] = mStepAtLimit[a] || std::abs(commanded) > actuator.effortLimit;
+        const double impulse = effort * (t1 - t0);
+        mStepImpulse[a] += impulse;
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+        const CoordinateRow row =
+            coordinateRow(joint, detail::jointGeometry(joint, jointPose(state, joint)), actuator.coordinate);
+        addImpulse(mModel, state, joint.child, impulse * row.J_b.head<3>(), impulse * row.J_b.tail<3>());
+        if (isMovingBody(mModel, joint.parent))
+        {
+            addImpulse(mModel, state, joint.parent, impulse * row.J_a.head<3>(), impulse * row.J_a.tail<3>());
+        }
+    }
+}
+
+Actuation::Command Actuation::command(std::size_t a, const State& state, double tEnd) const
+{
+    const Actuator& actuator = mModel.actuators[a];
+    Command c;
+    if (actuator.kind == ActuatorKind::Velocity)
+    {
+        c.speed = valueAt(actuator.target, tEnd);
+        c.force = actuator.kd * c.speed;
+        return c;
+    }
+    const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+    const double target = valueAt(actuator.target, tEnd) - joint.initialPosition; // from the initial pose
+    const double q = jointCoordinate(mModel, state, actuator.joint, actuator.coordinate);
+    c.speed = rateAt(actuator.target, tEnd);
+    c.force = actuator.kd * c.speed - actuator.kp * (q - target);
+    return c;
+}
+
+void Actuation::setRowTargets(const State& state, double tEnd, double h, BlockVector& rhs) const
+{
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (!drivesRow(actuator) || mBounded[a])
+        {
+            continue;
+        }
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+        const std::size_t k = static_cast<std::size_t>(actuator.joint);
+        const Command c = command(a, state, tEnd);
+        const DriveGains& gains = mGains[k][static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
+        rhs.joint[k](mRow[a]) = driveRow(gains, h, c.force, c.speed).target;
+    }
+}
+
+void Actuation::appendBoundedRows(const State& state, double tEnd, double h,
+                                  std::vector<ExtraBlock>& out) const
+{
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (!drivesRow(actuator) || !mBounded[a])
+        {
+            continue;
+        }
+        const Command c = command(a, state, tEnd);
+        const DriveRow drive = driveRow(actuatorGains(actuator), h, c.force, c.speed);
+        if (!drive.active)
+        {
+            continue;
+        }
+        ExtraBlock& block = appendDriveBlock(mModel, state, actuator.joint, actuator.coordinate, out);
+        block.compliance(0) = drive.compliance;
+        block.target(0) = drive.target;
+        block.bound = actuator.effortLimit * h;
+        block.actuator = static_cast<int>(a);
+    }
+}
+
+bool Actuation::acceptSolve(const RowSystem& rows, const BlockVector& solution,
+                            const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda, double h)
+{
+    mSolveImpulse.assign(mModel.actuators.size(), 0.0);
+    bool beyond = false;
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (!drivesRow(actuator) || mBounded[a])
+        {
+            continue;
+        }
+        // The row's impulse less the joint damping's share of it, -d h (J u').
+        const std::size_t k = static_cast<std::size_t>(actuator.joint);
+        const Joint& joint = mModel.joints[k];
+        const JointRows& r = rows.joints[k];
+        double speed = r.J_b.row(mRow[a]).dot(solution.body[static_cast<std::size_t>(joint.child)]);
+        if (isMovingBody(mModel, joint.parent))
+        {
+            speed += r.J_a.row(mRow[a]).dot(solution.body[static_cast<std::size_t>(joint.parent)]);
+        }
+        const double impulse = solution.joint[k](mRow[a]) + joint.damping * h * speed;
+        if (std::abs(impulse) > actuator.effortLimit * h)
+        {
+            mBounded[a] = 1; // out of the block: a bounded extra row from now on
+            beyond = true;
+        }
+        mSolveImpulse[a] = impulse;
+    }
+    if (beyond)
+    {
+        updateGains();
+        return false;
+    }
+    for (const ExtraBlock& block : blocks)
+    {
+        if (block.kind == ExtraBlock::Kind::Drive && block.actuator >= 0)
+        {
+            mSolveImpulse[static_cast<std::size_t>(block.actuator)] = lambda(block.offset);
+        }
+    }
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (!drivesRow(actuator))
+        {
+            continue;
+        }
+        const double bound = actuator.effortLimit * h;
+        const double fraction = std::abs(mSolveImpulse[a]) / bound; // 0 without a limit
+        mLastFraction[a] = fraction;
+        mStepAtLimit[a] = mStepAtLimit[a] || fraction >= 1.0;
+        mStepImpulse[a] += mSolveImpulse[a];
+    }
+    return true;
+}
+
+bool Actuation::finishStep(double dt)
+{
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        mEfforts[a] = {mStepImpulse[a] / dt, mStepAtLimit[a] != 0};
+    }
+    bool changed = false;
+    for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
+    {
+        if (mBounded[a] && !mLoop[a] && mLastFraction[a] < cReleaseFraction)
+        {
+            mBounded[a] = 0;
+            changed = true;
+        }
+    }
+    if (changed)
+    {
+        updateGains();
+    }
+    beginStep();
+    return changed;
+}
+
+} // namespace frontier::core

@@ -1,0 +1,137 @@
+// io/target_table.cpp: the time column and one value column of a target CSV file.
+#include "io/target_table.h"
+
+#include "io/file_util.h"
+#include "io/scene.h"
+#include "io/suggest.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+std::string trimmed(const std::string& text)
+{
+    const std::size_t begin = text.find_first_not_of(" \t\r");
+    if (begin == std::string::npos)
+    {
+        return {};
+    }
+    const std::size_t end = text.find_last_not_of(" \t\r");
+    return text.substr(begin, end - begin + 1);
+}
+
+std::vector<std::string> fields(const std::string& line)
+{
+    std::vector<std::string> out;
+    std::stringstream in(line);
+    std::string field;
+    while (std::getline(in, field, ','))
+    {
+        out.push_back(trimmed(field));
+    }
+    if (!line.empty() && line.back() == ',')
+    {
+        out.emplace_back(); // a trailing comma leaves an empty last field
+    }
+    return out;
+}
+
+int indexOf(const std::vector<std::string>& names, const std::string& name)
+{
+    for (std::size_t k = 0; k < names.size(); ++k)
+    {
+        if (names[k] == name)
+        {
+            return static_cast<int>(k);
+        }
+    }
+    return -1;
+}
+} // namespace
+
+TargetColumn readTargetColumn(const std::string& path, const std::string& column)
+{
+    const std::string text = readTextFile(path);
+    std::stringstream in(text);
+    std::string line;
+    int lineNumber = 0;
+    std::vector<std::string> header;
+    int timeIndex = -1;
+    int valueIndex = -1;
+    int headerLine = 0;
+    TargetColumn out;
+    while (std::getline(in, line))
+    {
+        ++lineNumber;
+        const std::string content = trimmed(line);
+        if (content.empty() || content.front() == '#')
+        {
+            continue;
+        }
+        const std::vector<std::string> row = fields(content);
+        if (header.empty())
+        {
+            header = row;
+            headerLine = lineNumber;
+            timeIndex = indexOf(header, "time");
+            valueIndex = indexOf(header, column);
+            if (timeIndex < 0)
+            {
+                throw InputError(path, lineNumber, 1,
+                                 "the header has no 'time' column (columns: " + joinNames(header) + ")");
+            }
+            if (valueIndex < 0)
+            {
+                throw InputError(path, lineNumber, 1,
+                                 "no column '" + column + "' in the header (columns: " + joinNames(header) +
+                                     ")" + suggestionSuffix(column, header, false));
+            }
+            continue;
+        }
+        if (row.size() != header.size())
+        {
+            throw InputError(path, lineNumber, 1,
+                             "expected " + std::to_string(header.size()) +
+                                 " comma-separated values (as the header on line " +
+                                 std::to_string(headerLine) + "), got " + std::to_string(row.size()));
+        }
+        double numbers[2] = {0.0, 0.0};
+        const int indices[2] = {timeIndex, valueIndex};
+        for (int k = 0; k < 2; ++k)
+        {
+            const std::string& field = row[static_cast<std::size_t>(indices[k])];
+            char* end = nullptr;
+            numbers[k] = std::strtod(field.c_str(), &end);
+            if (field.empty() || *end != '\0' || !std::isfinite(numbers[k]))
+            {
+                throw InputError(path, lineNumber, 1,
+                                 "expected a finite number in column '" +
+                                     header[static_cast<std::size_t>(indices[k])] + "', got '" + field + "'");
+            }
+        }
+        if (!out.times.empty() && !(numbers[0] > out.times.back()))
+        {
+            std::ostringstream message;
+            message << "times must increase: time " << numbers[0] << " after " << out.times.back();
+            throw InputError(path, lineNumber, 1, message.str());
+        }
+        out.times.push_back(numbers[0]);
+        out.values.push_back(numbers[1]);
+    }
+    if (header.empty())
+    {
+        throw InputError(path, 0, 0, "no header line; expected column names, one of them 'time'");
+    }
+    if (out.times.empty())
+    {
+        throw InputError(path, headerLine, 1, "no rows of values after the header");
+    }
+    return out;
+}
+
+} // namespace frontier::io::detail

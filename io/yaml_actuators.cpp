@@ -1,0 +1,161 @@
+// io/yaml_actuators.cpp: the `actuators:` list of a YAML scene (core::Actuator): servos, motors and
+// efforts on joint coordinates, named by joint (a URDF model's joints with its prefix).
+#include "core/joints/coordinates.h"
+#include "io/scene.h"
+#include "io/suggest.h"
+#include "io/yaml_scene.h"
+
+#include <map>
+
+namespace frontier::io::detail
+{
+
+namespace
+{
+
+const std::vector<std::string> cActuatorKeys = {"joint", "type",   "coordinate",  "kp",
+                                                "kd",    "target", "effort_limit"};
+const std::vector<std::string> cActuatorTypes = {"position", "velocity", "effort"};
+const std::vector<std::string> cCoordinates = {"rotation", "slide"};
+
+const char* coordinateName(core::JointCoordinate coordinate)
+{
+    return coordinate == core::JointCoordinate::Rotation ? "rotation" : "slide";
+}
+
+int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what)
+{
+    const std::string name = toString(builder.source, node, what);
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < builder.model.joints.size(); ++k)
+    {
+        if (builder.model.joints[k].name == name)
+        {
+            return static_cast<int>(k);
+        }
+        names.push_back(builder.model.joints[k].name);
+    }
+    failAt(builder.source, node,
+           "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));
+}
+
+core::ActuatorKind readKind(const MapNode& map)
+{
+    const YAML::Node node = map.require("type");
+    const std::string name = toString(map.source(), node, map.what("type"));
+    if (name == "position")
+    {
+        return core::ActuatorKind::Position;
+    }
+    if (name == "velocity")
+    {
+        return core::ActuatorKind::Velocity;
+    }
+    if (name != "effort")
+    {
+        failAt(map.source(), node,
+               "unknown actuator type '" + name + "' for " + map.what("type") +
+                   suggestionSuffix(name, cActuatorTypes, true));
+    }
+    return core::ActuatorKind::Effort;
+}
+
+// The coordinate the actuator drives: the joint's one, or for a cylindrical joint the one
+// `coordinate:` names.
+core::JointCoordinate readCoordinate(const MapNode& map, const core::Joint& joint)
+{
+    const std::span<const core::JointCoordinate> coordinates = core::jointCoordinates(joint.type);
+    if (!map.has("coordinate"))
+    {
+        if (coordinates.size() > 1)
+        {
+            map.fail(map.context() + " drives cylindrical joint '" + joint.name +
+                     "', which has two coordinates; give 'coordinate: slide' or 'coordinate: rotation'");
+        }
+        return coordinates.front();
+    }
+    const std::string name = map.string("coordinate");
+    for (const core::JointCoordinate coordinate : coordinates)
+    {
+        if (name == coordinateName(coordinate))
+        {
+            return coordinate;
+        }
+    }
+    std::vector<std::string> known;
+    for (const core::JointCoordinate coordinate : coordinates)
+    {
+        known.emplace_back(coordinateName(coordinate));
+    }
+    map.failAtValue("coordinate", "joint '" + joint.name + "' (" + core::jointTypeName(joint.type) +
+                                      ") has no coordinate '" + name + "'; expected " + joinNames(known));
+}
+
+// Keys that only some types take.
+void checkGainKeys(const MapNode& map, core::ActuatorKind kind)
+{
+    if (map.has("kp") && kind != core::ActuatorKind::Position)
+    {
+        map.failAtKey("kp", "'kp' (stiffness) is for position actuators only");
+    }
+    if (map.has("kd") && kind == core::ActuatorKind::Effort)
+    {
+        map.failAtKey("kd", "'kd' (damping) is for position and velocity actuators only");
+    }
+}
+
+void readActuator(SceneBuilder& builder, const YAML::Node& node, std::size_t index,
+                  std::map<std::pair<int, int>, YAML::Mark>& taken)
+{
+    const YamlSource& source = builder.source;
+    MapNode map(source, node, "actuator #" + std::to_string(index + 1));
+    map.checkKeys(cActuatorKeys);
+    const YAML::Node jointNode = map.require("joint");
+    core::Actuator actuator;
+    actuator.joint = resolveJointName(builder, jointNode, map.what("joint"));
+    const core::Joint& joint = builder.model.joints[static_cast<std::size_t>(actuator.joint)];
+    map.setContext("the actuator on joint '" + joint.name + "'");
+    if (core::jointCoordinates(joint.type).empty())
+    {
+        failAt(source, jointNode,
+               "joint '" + joint.name + "' is a " + core::jointTypeName(joint.type) +
+                   " joint; an actuator drives a revolute, prismatic or cylindrical joint (continuous in a "
+                   "URDF)");
+    }
+    actuator.kind = readKind(map);
+    actuator.coordinate = readCoordinate(map, joint);
+    checkGainKeys(map, actuator.kind);
+    const bool turns = actuator.coordinate == core::JointCoordinate::Rotation;
+    if (actuator.kind == core::ActuatorKind::Position)
+    {
+        map.require("kp");
+        actuator.kp = *map.optPositive("kp");
+    }
+    actuator.kd = map.optNonNegative("kd", turns ? "(N m s/rad)" : "(N s/m)").value_or(0.0);
+    actuator.effortLimit = map.optPositive("effort_limit").value_or(joint.effortLimit);
+    actuator.target = readTarget(source, map.require("target"), map.what("target"), joint.name);
+    const std::pair<int, int> coordinate(actuator.joint, static_cast<int>(actuator.coordinate));
+    if (const auto first = taken.find(coordinate); first != taken.end())
+    {
+        failAt(source, jointNode,
+               "a second actuator on the " + std::string(coordinateName(actuator.coordinate)) +
+                   " of joint '" + joint.name + "' (the first is on line " +
+                   std::to_string(first->second.line + 1) + "); one actuator per joint coordinate");
+    }
+    taken[coordinate] = jointNode.Mark();
+    builder.model.actuators.push_back(std::move(actuator));
+}
+
+} // namespace
+
+void readActuators(SceneBuilder& builder, const YAML::Node& actuators)
+{
+    requireSequence(builder.source, actuators, "'actuators'");
+    std::map<std::pair<int, int>, YAML::Mark> taken; // (joint, coordinate) -> where
+    for (std::size_t i = 0; i < actuators.size(); ++i)
+    {
+        readActuator(builder, actuators[i], i, taken);
+    }
+}
+
+} // namespace frontier::io::detail
