@@ -72,8 +72,8 @@ void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const 
     const int block = layout.jointBlock[k];
     const int driveRows =
         block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows : blockDriveRows(joint);
-    writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves, driveStep,
-                   out);
+    writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves,
+                   driveStep, out);
 }
 
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,

@@ -238,7 +238,6 @@ TEST(RunOutputs, StatsCountLimitStepsAndActuatorKeys)
     }
 }
 
-
 // A 2 kg bob on a 1 m rod, hinged about +y at (0, 0, 2) in zero gravity, driven by a commanded
 // torque of 5 N m clipped to its limit of 3 N m: the joints file's effort is 3 N m at every step
 // after the first, the hinge passes that torque about its axis (ty = 3, so the bob's spin rises
