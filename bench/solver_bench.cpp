@@ -1,4 +1,4 @@
-// bench/solver_bench.cpp: factor + solve of one impulse problem (PAPER.md §3, §6) with the
+// bench/solver_bench.cpp: factor + solve of one impulse problem (docs/method.md §3) with the
 // `linear` (frontier-order elimination, O(n)), `dense` (Moore's dense solve, O(n^3)) and `pgs`
 // (20 projected Gauss-Seidel sweeps) solvers, on chains (ball or revolute joints) and random
 // trees (every joint type) of n bodies. The rows are assembled once, outside the timed loop

@@ -3,7 +3,7 @@
 // Pipeline of detect():
 //   1. Pose every shape of a moving body (body frame at the centre of mass, shape pose in it).
 //   2. Ground: each moving shape against each static plane, directly (planes never enter the
-//      broadphase: FCL crashes on infinite AABBs in bulk registration, DEPS.md §3). These
+//      broadphase: FCL crashes on infinite AABBs in bulk registration). These
 //      contacts are made here (plane_manifold.cpp), not by FCL, which returns one point for a
 //      box, capsule or cylinder on a half-space; we return every box vertex, both capsule end
 //      spheres, the cylinder rim points and the mesh vertices within the margin.
@@ -300,7 +300,7 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
     {
         if (!objects[s] || !inBroadphase[static_cast<std::size_t>(shapes[s].body)])
             continue;
-        manager.registerObject(objects[s].get()); // one at a time (DEPS.md §3)
+        manager.registerObject(objects[s].get()); // one at a time
         if (!filter.isStatic(shapes[s].body))
         {
             movingRegistered.push_back(objects[s].get());

@@ -1,6 +1,6 @@
 // collision/feature_manifold.cpp: extra contact points for the pairs where FCL (libccd GJK/EPA)
 // returns a single point although the shapes can touch along a line or a patch: a capsule or a
-// cylinder against a box, a capsule or a cylinder (DEPS.md §3). The features of one shape (box
+// cylinder against a box, a capsule or a cylinder. The features of one shape (box
 // vertices, capsule end spheres, cylinder rim points) are tested against the exact signed
 // distance of the other, which is cheap and closed-form for these four primitives. A capsule
 // lying on a box gets both end spheres, a cylinder standing on a box its rim, a box on a

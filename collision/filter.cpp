@@ -1,4 +1,4 @@
-// collision/filter.cpp: which body pairs may collide (PRODUCT.md, "Bodies joined by a joint ...").
+// collision/filter.cpp: which body pairs may collide (docs/method.md §10).
 #include "collision/internal.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // instances in world pose (a moving mesh as its convex hull), raw contacts between two shapes,
 // and the helpers that build contact manifolds without FCL: the plane manifolds, the
 // feature-point manifolds of capsules, cylinders and meshes, the clipped faces of polytopes,
-// and the merge/reduce step. FCL stays out of this header (DEPS.md §2).
+// and the merge/reduce step. FCL stays out of this header.
 #pragma once
 
 #include "collision/convex_hull.h"
@@ -162,7 +162,7 @@ void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double merg
                     std::size_t maxPoints = 4);
 
 // --- filter.cpp -----------------------------------------------------------------------------
-// Which body pairs may collide (PRODUCT.md): not two static bodies, not two bodies of one
+// Which body pairs may collide (docs/method.md §10): not two static bodies, not two bodies of one
 // non-empty group, not the pairs in contact.ignore, not bodies joined by a joint unless the
 // joint says collideConnected. Memory O(bodies + joints + ignore pairs).
 class PairFilter

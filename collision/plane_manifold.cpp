@@ -1,6 +1,6 @@
 // collision/plane_manifold.cpp: contacts of a shape against the ground half-space, made here
 // rather than by FCL, which returns a single point for box, capsule and cylinder against a
-// half-space (DEPS.md §3) and so cannot hold a body at rest. Every candidate point on the
+// half-space and so cannot hold a body at rest. Every candidate point on the
 // shape's surface (box vertices, the deepest points of the capsule end spheres, cylinder rim
 // points, mesh vertices) whose signed distance to the plane is below the margin becomes a
 // contact; mergeAndReduce() then keeps at most four of them.

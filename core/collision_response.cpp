@@ -1,4 +1,4 @@
-// core/collision_response.cpp: sticking/sliding collision response (PAPER.md §2) on the joint
+// core/collision_response.cpp: sticking/sliding collision response (docs/method.md §1) on the joint
 // solver of choice, by Schur complement of the three collision rows.
 #include "core/collision_response.h"
 

@@ -1,4 +1,4 @@
-// core/collision_response.h: the paper's collision response (PAPER.md §2): one collision of
+// core/collision_response.h: the paper's collision response (docs/method.md §1): one collision of
 // articulated bodies, Moore and Wilhelms' impulse model with restitution and Coulomb friction.
 //
 // The collision is three rows (normal n, tangents t1, t2) at the contact point between body A
@@ -8,7 +8,7 @@
 // sliding direction (or, with no pre-impact sliding, against the sticking impulse's tangential
 // part), and only the normal condition is kept. The rows are solved together with every joint,
 // exactly: the joint system is factored once and the 3x3 collision system (its Schur complement
-// G = J_c A^-1 J_c^T, PAPER.md §5) takes three more O(n) solves.
+// G = J_c A^-1 J_c^T, docs/method.md §5) takes three more O(n) solves.
 #pragma once
 
 #include "core/impulse_solver.h"

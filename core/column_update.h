@@ -1,7 +1,7 @@
 // core/column_update.h: the innermost loop of the contact Gauss-Seidel (core/extra_rows_solve.cpp),
 // v += G(:, c0) d0 + G(:, c1) d1 + G(:, c2) d2 over a run of rows.
 //
-// The build has no -march flags (Eigen's alignment must match Debian's libfcl, DEPS.md), so
+// The build has no -march flags (Eigen's alignment must match Debian's libfcl), so
 // Eigen runs this loop two doubles wide (SSE2). Where the processor has AVX2 a four-wide copy
 // runs instead, chosen once at run time. Both compute each element as v + ((c0 d0 + c1 d1) + c2 d2)
 // with separate multiplies and adds (no fused multiply-add), so they give bit-identical results:

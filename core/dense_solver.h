@@ -1,4 +1,4 @@
-// core/dense_solver.h: the `dense` baseline, Moore's solve (PAPER.md §6): the whole impulse
+// core/dense_solver.h: the `dense` baseline, Moore's solve (docs/method.md §3): the whole impulse
 // system as one dense matrix, Gaussian elimination with partial pivoting, O(n^3) time and
 // O(n^2) memory. The correctness oracle for the linear solver: same equations, same layout.
 #pragma once

@@ -1,5 +1,5 @@
 // core/extra_rows.h: rows beyond the joint tree, solved in constraint space on top of the O(n)
-// tree factorization (PAPER.md §5): contacts (one-sided normal, Coulomb friction cone), joints
+// tree factorization (docs/method.md §5): contacts (one-sided normal, Coulomb friction cone), joints
 // that close a loop (bilateral), joint limits (one-sided), and bounded drive rows (Coulomb joint
 // friction, core/joints/drive.h; actuators at their effort limit, core/actuation.h).
 //
@@ -47,7 +47,7 @@ struct ExtraBlock
     int offset = 0;        // first row of the block in G
 };
 
-// Rows for one contact (normal, and two tangents when mu > 0), PAPER.md §2 collision conditions,
+// Rows for one contact (normal, and two tangents when mu > 0), docs/method.md §1, "One collision",
 // appended to `out` as a new block; returns it.
 ExtraBlock& appendContactBlock(const Model& model, const State& state, const Contact& contact,
                                double friction, int source, std::vector<ExtraBlock>& out);

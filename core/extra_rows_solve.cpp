@@ -1,5 +1,5 @@
 // core/extra_rows_solve.cpp: block projected Gauss-Seidel on the Delassus system of the extra
-// rows (PAPER.md §5): v = v_free + G lambda with the complementarity conditions of each block.
+// rows (docs/method.md §5): v = v_free + G lambda with the complementarity conditions of each block.
 //
 // G couples two rows only when their bodies share a tree (rows of different trees are exact
 // zeros, see TreeSolver::delassus), so each block keeps the runs of rows where its columns are
@@ -64,7 +64,7 @@ void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, con
 // points at the block's row velocities.
 Eigen::Vector3d updateContact(const ContactPivots& p, const double* v, const Eigen::Vector3d& old)
 {
-    // Sticking first (PAPER.md §2): the whole block's velocity to its target; kept when the
+    // Sticking first (docs/method.md §1): the whole block's velocity to its target; kept when the
     // normal impulse pushes and the friction stays inside the cone.
     const Eigen::Vector3d gap(p.target - v[0], -v[1], -v[2]);
     const Eigen::Vector3d trial = old + p.whole * gap;

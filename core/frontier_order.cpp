@@ -1,4 +1,4 @@
-// core/frontier_order.cpp: spanning forest, leaf-peeling numbering, block layout (PAPER.md §3).
+// core/frontier_order.cpp: spanning forest, leaf-peeling numbering, block layout (docs/method.md §3).
 #include "core/frontier_order.h"
 
 #include "core/joints/drive.h"
@@ -93,7 +93,7 @@ FrontierLayout buildFrontierLayout(const Model& model)
 
     // 2. Per tree: root = the body with the world joint, else the lowest body index. Orient by a
     //    breadth-first walk, then number by leaf peeling: each round removes every node whose
-    //    children are all removed, by body index (PAPER.md §3, "left to right").
+    //    children are all removed, by body index (docs/method.md §3, "Order").
     std::vector<int> treeParent(nb, -1), treeParentJoint(nb, -1), pendingChildren(nb, 0);
     std::vector<bool> visited(nb, false);
     for (std::size_t start = 0; start < nb; ++start)

@@ -1,4 +1,4 @@
-// core/frontier_order.h: the frontier order of PAPER.md §3 and the block layout it gives.
+// core/frontier_order.h: the frontier order of docs/method.md §3 and the block layout it gives.
 //
 // Why this order: bodies are nodes, joints edges. In each tree of the spanning forest, leaves are
 // removed round by round (left to right = by body index) and numbered as they go; the root comes
@@ -6,7 +6,7 @@
 // is larger. Laying the block rows out as node 1, edge 1, node 2, edge 2, ..., root (and the
 // root's edge to the world, if any), each block's only later neighbour is its parent-side block,
 // so Gaussian elimination in layout order touches only that block's diagonal: no fill-in, O(n)
-// (PAPER.md §3, Lemma 1 and step 2). Joints to the world (or to a static body) are the roots'
+// (docs/method.md §3, "No fill-in"). Joints to the world (or to a static body) are the roots'
 // edges; a second path to the world or a cycle among bodies closes a loop: those joints are
 // listed in loopJoints and are not part of the tree.
 #pragma once

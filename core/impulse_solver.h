@@ -1,12 +1,12 @@
-// core/impulse_solver.h: the impulse problem of PAPER.md §2-3 and the three ways to solve it.
+// core/impulse_solver.h: the impulse problem of docs/method.md §1-3 and the three ways to solve it.
 //
 // Unknowns: post-impulse velocities u_i = [v_i; w_i] of every moving body and the multipliers
-// lambda_k of every tree joint. Equations (PAPER.md eqs. (1)-(3), joint rows of §4):
+// lambda_k of every tree joint. Equations (docs/method.md eqs. (1)-(4)):
 //     M_i u_i - sum_k J_ki^T lambda_k = p_i      (momentum: p = M u* + external impulses)
 //     J_ka u_a + J_kb u_b + E_k lambda_k = c_k   (joint velocity conditions; c = 0 in a plain solve;
 //                                              compliance E_k = 0 but on drive rows, core/joints/drive.h)
 // In KKT form [M J^T; J -E][u; -lambda] = [p; c], symmetric and quasi-definite when the joint rows
-// are independent. `linear` eliminates it in frontier order in O(n) (PAPER.md §3); `dense` is
+// are independent. `linear` eliminates it in frontier order in O(n) (docs/method.md §3); `dense` is
 // Moore's dense Gaussian elimination of the same matrix, O(n^3); `pgs` is projected Gauss-Seidel
 // over the same rows with a fixed iteration count (what game engines do: O(n) per sweep, inexact).
 #pragma once
@@ -38,7 +38,7 @@ struct RowSystem
     int rowCount = 0;              // tree joint rows in all
 };
 
-// Evaluates masses and joint rows at a state (PAPER.md §2, §4), with the drive rows of a solve of
+// Evaluates masses and joint rows at a state (docs/method.md §1-2), with the drive rows of a solve of
 // duration driveStep (s; 0 for an instantaneous impulse: drives give none, core/joints/drive.h).
 // `gains`: per joint, the gains of its drive rows (core::Actuation::gains(): damping and the
 // actuators in the joints' blocks); empty: the joints' damping alone. `system` keeps its storage.
@@ -87,7 +87,7 @@ class ImpulseSolver
     }
     virtual const char* name() const = 0;
 
-    // Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; PAPER.md §5),
+    // Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; docs/method.md §5),
     // rows x rows, after factor(). The default takes one solve per row; the tree solver overrides
     // it with forward sweeps that touch only each body's path to its root.
     virtual void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G);

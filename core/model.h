@@ -51,7 +51,7 @@ struct Shape
 struct Body
 {
     std::string name;
-    bool isStatic = false;         // static bodies do not move and are not nodes of the solver (PAPER.md §5)
+    bool isStatic = false;         // static bodies do not move and are not nodes of the solver (docs/method.md §5)
     double mass = 0.0;             // kg (> 0 for moving bodies)
     Mat3 inertia_B = Mat3::Zero(); // kg m^2, about the centre of mass, in the body frame
     std::vector<Shape> shapes;     // collision geometry, also drawn when `visuals` is empty (may be empty)
@@ -65,7 +65,7 @@ struct Body
     Vec3 angularVelocity_W = Vec3::Zero();  // rad/s
 };
 
-// PAPER.md §4. Rows: Ball 3, Nail 3, Revolute 5, Angle 4, Cylindrical 4, Prismatic 5, Fixed 6.
+// docs/method.md §2. Rows: Ball 3, Nail 3, Revolute 5, Angle 4, Cylindrical 4, Prismatic 5, Fixed 6.
 enum class JointType
 {
     Ball,
@@ -99,7 +99,7 @@ struct Joint
     Vec3 axisChild = Vec3::UnitZ();
     Vec3 perpChild1 = Vec3::UnitX(); // d_i in the child frame at the initial pose (angles, limits)
     // Angle (universal) joint: a1 = perpParent1 fixed in the parent, b2 fixed in the child,
-    // with d_k = a1 x b2 (PAPER.md §4, the holonomic form).
+    // with d_k = a1 x b2 (docs/method.md §2, the holonomic form).
     Vec3 angleChildAxis = Vec3::UnitY();
     // Relative orientation q_A^-1 q_B at the initial pose (prismatic, fixed).
     Quat restRotation_AB = Quat::Identity();

@@ -1,6 +1,6 @@
 // core/pgs_solver.h: the `pgs` baseline, projected Gauss-Seidel over the same joint rows, one
 // scalar row at a time, a fixed number of sweeps (ODE QuickStep, sequential impulses). O(n) per
-// sweep but inexact: error remains on long chains and large mass ratios (PAPER.md §6).
+// sweep but inexact: error remains on long chains and large mass ratios (docs/method.md §3).
 // Starts from lambda = 0 (no warm start), so a solve depends only on its right-hand side.
 #pragma once
 

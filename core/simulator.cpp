@@ -156,7 +156,7 @@ void Simulator::stepEuler(State& state)
         recordStartDefects(state);
         setMomentumRhs(state, state.time + mDt);
         carryImpulses(); // the last step's impulses on those rows join the right-hand side
-        // PAPER.md §3 step 2 (eliminate), once per step, and step 3 (substitute) for the joint
+        // docs/method.md §3, eq. (5) (eliminate), once per step, and eq. (6) (substitute) for the joint
         // impulses of the free velocities and the carried extra impulses, fused into one pass.
         mSolver->factorAndSolve(mRows, mRhs, mSolution);
         clock.lap(StepStage::Factor);
@@ -219,7 +219,7 @@ bool Simulator::stepRattle(State& state)
     keepFreeVelocities(state);
     do
     {
-        factorAtStart(state); // PAPER.md §3 step 2, shared with the last step's projection
+        factorAtStart(state); // docs/method.md §3, eq. (5), shared with the last step's projection
         clock.lap(StepStage::Factor);
         buildExtraRows(state);
         recordStartDefects(state);

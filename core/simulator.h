@@ -7,7 +7,7 @@
 //   -> solveContactImpulses -> integratePositions -> removePenetration
 //   -> stabilizeJoints -> carryAngularMomentum -> checkState
 // Contacts, loop-closing joints and joint limits are extra rows on top of the tree factorization
-// (PAPER.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
+// (docs/method.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
 // restitution above cRestitutionSpeed; penetration beyond a slop is removed by a separate
 // position projection (no velocity bias, so no bodies jump).
 // Joint damping is a compliant drive row in the joint's block of the factorization (implicit, so
@@ -16,10 +16,10 @@
 // rows at them (the step's first solve is then taken again); effort actuators and external loads
 // join gravity in the free velocities (core/actuation.h). Each step ends by continuing the joints'
 // angles across +-pi (State::jointAngles), which limits and servos read.
-// Velocity level (PAPER.md §5 "Time stepping"): u* = u + h M^-1 f, then the joint impulses
+// Velocity level (docs/method.md §4): u* = u + h M^-1 f, then the joint impulses
 // solve M u' = M u* + J^T lambda, J u' = 0 with the chosen solver. Positions: x += h v,
 // R = exp(h w) R (a rotation-vector update, so orientations stay unit).
-// Drift (PAPER.md §5 "Drift"): the joint position conditions C(q) are driven back to zero by a
+// Drift (docs/method.md §7): the joint position conditions C(q) are driven back to zero by a
 // further impulse along J^T, solved with the same factorization (a quasi-Newton iteration: J at
 // the start of the step stands for J at the end; re-factored once when that is slow); the impulse changes
 // velocities and positions together (SHAKE), so it is internal: momentum is conserved and no

@@ -1,4 +1,4 @@
-// core/tree_delassus.cpp: the Delassus matrix G = J_x H^-1 J_x^T of the extra rows (PAPER.md §5)
+// core/tree_delassus.cpp: the Delassus matrix G = J_x H^-1 J_x^T of the extra rows (docs/method.md §5)
 // from the tree factorization H = L D L^T of core/tree_solver.cpp, without one O(n) solve per row.
 //
 // With z_x = L^-1 e_x (the forward sweep of a unit impulse on body x: nonzero only on x's path

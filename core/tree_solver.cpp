@@ -1,4 +1,4 @@
-// core/tree_solver.cpp: O(n) factor and solve in frontier order (PAPER.md §3 steps 2 and 3).
+// core/tree_solver.cpp: O(n) factor and solve in frontier order (docs/method.md §3, eqs. (5)-(6)).
 //
 // The per-block work is a handful of small dense operations whose sizes follow from the block
 // kind: a node has 6 rows, an edge r = 1..6, an edge's parent is a node. The kernels below are

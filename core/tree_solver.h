@@ -1,13 +1,13 @@
-// core/tree_solver.h: the `linear` solver, block elimination in frontier order (PAPER.md §3).
+// core/tree_solver.h: the `linear` solver, block elimination in frontier order (docs/method.md §3).
 //
-// Glossary (PAPER.md §2-3): block b in layout order, p(b) its one later neighbour (a node's edge
+// Glossary (docs/method.md §1-3): block b in layout order, p(b) its one later neighbour (a node's edge
 // to its parent, or an edge's parent node); D_b the block's pivot after its earlier neighbours
 // were eliminated; H_bp the coupling (a joint's Jacobian block for that body, or its transpose).
 //   §3 step 2 (eliminate):  D_p -= H_bp^T D_b^-1 H_bp,  keeping L_b = D_b^-1 H_bp
 //   §3 step 3 (back substitute): forward z_p -= L_b^T z_b; x_b = D_b^-1 z_b; backward x_b -= L_b x_p
 // Node pivots stay positive definite (M plus J^T S^-1 J terms), edge pivots negative definite
 // (-J D^-1 J^T, minus the compliance of drive rows, core/joints/drive.h), so no pivoting is needed; a pivot
-// that vanishes means dependent or degenerate joint rows and is reported with the joint's name (PAPER.md §3
+// that vanishes means dependent or degenerate joint rows and is reported with the joint's name (docs/method.md §3
 // "Pivots").
 //
 // Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (a packed

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds Frontier (Release), and runs the falling doll (PAPER.md figure 8):
+# Installs what is missing, builds Frontier (Release), and runs the falling doll (the paper's figure 8):
 # trajectory, stats and PNG frames land in out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,5 +1,5 @@
 // core/joints/angle.cpp: angle joint as the holonomic universal (Hooke) joint, 4 rows
-// (PAPER.md §4, eq. (8)): ball rows plus no relative twist about d_k = a1 x b2.
+// (docs/method.md §2): ball rows plus no relative twist about d_k = a1 x b2.
 //   rows 0-2: C = p_b - p_a
 //   row 3:    C = a1 . b2,  J = (w_b - w_a) . (b2 x a1)
 #include "core/joints/joint_rows.h"

@@ -1,5 +1,5 @@
 // core/joints/ball.cpp: point-to-point (ball) joint, 3 rows; the nail joint is the same rows
-// with the world as parent (PAPER.md §4, eq. (6)).
+// with the world as parent (docs/method.md §2).
 //   C = p_b - p_a,  J_a = [-1, [r_a]x],  J_b = [1, -[r_b]x]
 #include "core/joints/joint_rows.h"
 

@@ -5,7 +5,7 @@
 //   rotation  theta = atan2(i_c . d_j, i_c . d_i), i_c the child's copy of d_i (0 at the model's
 //             initial pose); d theta/dt = (w_b - w_a) . k with k = d_k fixed in the parent.
 //   slide     s = k . (p_b - p_a); d s/dt = k . (v_b + w_b x r_b - v_a - w_a x (p_b - x_a)), the
-//             lever arm of a at p_b (PAPER.md §4 notes), exact also while k turns with a.
+//             lever arm of a at p_b (docs/method.md §2), exact also while k turns with a.
 //
 // atan2 gives theta only up to whole turns. A joint that turns past +-pi (a limit at 4.5 rad, a
 // wheel) needs the continuous angle: State::jointAngles keeps it, continued at the end of every

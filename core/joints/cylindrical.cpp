@@ -1,4 +1,4 @@
-// core/joints/cylindrical.cpp: cylindrical joint, 4 rows (PAPER.md §4, eq. (9)): slides along
+// core/joints/cylindrical.cpp: cylindrical joint, 4 rows (docs/method.md §2): slides along
 // and turns about the parent's axis d_k.
 //   rows 0-1: C = [d_i . (p_b - p_a), d_j . (p_b - p_a)], lever arm of a at p_b - x_a
 //   rows 2-3: C = [d_i . k_b, d_j . k_b]

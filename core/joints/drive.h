@@ -8,7 +8,7 @@
 //                             c: a velocity target (m/s or rad/s)
 // Being between the same two bodies as the joint, it sits in the joint's block of the tree
 // factorization, after the condition rows: eliminating the block's child node leaves the pivot
-// -D = J D_child^-1 J^T + diag(0, E), which stays positive definite (PAPER.md §3 "Pivots"), so the
+// -D = J D_child^-1 J^T + diag(0, E), which stays positive definite (docs/method.md §3, "Pivots"), so the
 // solve stays exact and O(n). In KKT form the row's diagonal entry is -E. A loop-closing joint
 // takes its drive rows into its loop block (ExtraBlock::compliance).
 //

@@ -38,7 +38,7 @@ JointGeometry jointGeometry(const Joint& joint, const JointPose& pose)
     return g;
 }
 
-// Point-to-point, PAPER.md eq. (3) corrected (l_ji on the right):
+// Point-to-point, docs/method.md §2 (l_ji on the right):
 //   C = p_b - p_a,  J_a = [-1, [r_a]x],  J_b = [1, -[r_b]x]   (w x r = -[r]x w)
 int writeBallRows(const JointGeometry& g, JointRows& out, int row)
 {
@@ -50,7 +50,7 @@ int writeBallRows(const JointGeometry& g, JointRows& out, int row)
     return row + 3;
 }
 
-// Keeps the child's axis k_b on the parent's axis: C = [d_i . k_b, d_j . k_b] (PAPER.md eq. (7)
+// Keeps the child's axis k_b on the parent's axis: C = [d_i . k_b, d_j . k_b] (docs/method.md §2
 // in holonomic form). d/dt (d_i . k_b) = (w_b - w_a) . (k_b x d_i), exactly.
 int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
 {
@@ -65,8 +65,8 @@ int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, JointRows
 }
 
 // Child anchor stays on the parent's axis line: C = [d_i . (p_b - p_a), d_j . (p_b - p_a)]
-// (PAPER.md eqs. (9), (10)). The exact derivative puts the lever arm of body a at p_b - x_a,
-// the material point of a that coincides with p_b (PAPER.md §4 notes).
+// (docs/method.md §2). The exact derivative puts the lever arm of body a at p_b - x_a,
+// the material point of a that coincides with p_b (docs/method.md §2).
 int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
 {
     const Vec3 gap = g.p_b - g.p_a;
@@ -103,7 +103,7 @@ int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& 
     return row + 3;
 }
 
-// Universal (Hooke) joint, PAPER.md eq. (8) in holonomic form: a1 fixed in a, b2 fixed in b stay
+// Universal (Hooke) joint, docs/method.md §2, in holonomic form: a1 fixed in a, b2 fixed in b stay
 // perpendicular, C = a1 . b2, d/dt C = (w_b - w_a) . (b2 x a1).
 int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
 {

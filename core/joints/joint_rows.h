@@ -1,4 +1,4 @@
-// core/joints/joint_rows.h: a joint as rows of a Jacobian between two bodies (PAPER.md §4).
+// core/joints/joint_rows.h: a joint as rows of a Jacobian between two bodies (docs/method.md §2).
 //
 // Every joint k between body a (the joint's parent, possibly the world) and body b (its child)
 // is r_k scalar velocity conditions
@@ -26,7 +26,7 @@ using JacobianRows = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 struct JointRows
 {
     int count = 0;          // rows of the joint's block, 3..6: its conditions, then its drive rows
-    int constraintRows = 0; // rows 0..constraintRows-1 are the conditions C(q) = 0 (PAPER.md §4)
+    int constraintRows = 0; // rows 0..constraintRows-1 are the conditions C(q) = 0 (docs/method.md §2)
     int positionRows = 0;   // rows 0..positionRows-1 are positions (m), the rest angles (rad)
     JacobianRows J_a = JacobianRows::Zero(); // rows 0..count-1 used; zero for a world parent
     JacobianRows J_b = JacobianRows::Zero();

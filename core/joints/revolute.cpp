@@ -1,4 +1,4 @@
-// core/joints/revolute.cpp: revolute (hinge) joint, 5 rows (PAPER.md §4, eq. (7)).
+// core/joints/revolute.cpp: revolute (hinge) joint, 5 rows (docs/method.md §2).
 //   rows 0-2: ball, C = p_b - p_a
 //   rows 3-4: the child's axis k_b stays on the parent's: C = [d_i . k_b, d_j . k_b],
 //             J = (w_b - w_a) . (k_b x d_i), (w_b - w_a) . (k_b x d_j)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the doll scenes: a 15-body jointed doll (PAPER.md figure 8), T-pose, z up.
+"""Writes the doll scenes: a 15-body jointed doll (the paper's figure 8), T-pose, z up.
 
   python3 scenes/tools/make_doll.py zero_g  > scenes/doll_zero_g.yaml   # floating, tumbling
   python3 scenes/tools/make_doll.py falling > scenes/falling_doll.yaml  # dropped on the floor

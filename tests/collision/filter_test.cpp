@@ -1,4 +1,4 @@
-// tests/collision/filter_test.cpp: which pairs may collide (PRODUCT.md filtering rules).
+// tests/collision/filter_test.cpp: which pairs may collide (docs/method.md §10).
 #include "test_models.h"
 
 #include <algorithm>

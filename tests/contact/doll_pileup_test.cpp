@@ -1,5 +1,5 @@
 // tests/contact/doll_pileup_test.cpp: articulated bodies falling onto the floor and onto each
-// other: scenes/falling_doll.yaml (PAPER.md figure 8), scenes/pileup44.yaml (figure 7) and
+// other: scenes/falling_doll.yaml (the paper's figure 8), scenes/pileup44.yaml (figure 7) and
 // scenes/doll_urdf_scene.yaml (two URDF dolls). Run to the end, each step checked.
 #include "contact_harness.h"
 

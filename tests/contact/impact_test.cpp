@@ -1,7 +1,7 @@
 // tests/contact/impact_test.cpp: one impact of a chain on the floor, stepped by core::Simulator
 // (contact rows with restitution and a friction cone on top of the tree factorization), against
 // the paper's direct collision response core::respondToCollision (Moore and Wilhelms' sticking /
-// sliding impulse, PAPER.md §2). Both must give the same impulses.
+// sliding impulse, docs/method.md §1). Both must give the same impulses.
 //
 // What makes one step comparable with one collision response:
 // * zero gravity, so the free velocities are the pre-impact velocities;

@@ -1,4 +1,4 @@
-// tests/core/collision_response_test.cpp: the paper's one-collision response (PAPER.md §2):
+// tests/core/collision_response_test.cpp: the paper's one-collision response (docs/method.md §1):
 // a sphere hitting the floor (closed forms for sticking and sliding), a chain struck at its end
 // (linear against dense, and against one dense KKT system with the three collision rows).
 #include "core/collision_response.h"

@@ -1,4 +1,4 @@
-// tests/core/dense_solver_test.cpp: the `dense` baseline (Moore's solve, PAPER.md §6): its
+// tests/core/dense_solver_test.cpp: the `dense` baseline (Moore's solve, docs/method.md §3): its
 // assembled KKT matrix, its solution against a KKT system the test builds itself in body order,
 // and degenerate joints.
 #include "core/dense_solver.h"

@@ -148,7 +148,7 @@ TEST(ExtraRowsSolve, SparseSweepsEqualDenseSweeps)
     EXPECT_LE((sparse - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
 }
 
-// One contact that can stick (mu large) is solved by its sticking trial (PAPER.md §2: try
+// One contact that can stick (mu large) is solved by its sticking trial (docs/method.md §1: try
 // sticking first): all three rows reach their targets. The trial's pivot carries the solve's
 // 1e-9 relative regularization, so the first sweep is exact to about 1e-8 and the second, an
 // iterative refinement, to round-off.

@@ -1,4 +1,4 @@
-// tests/core/frontier_order_test.cpp: the frontier order of PAPER.md §3 on random forests, and
+// tests/core/frontier_order_test.cpp: the frontier order of docs/method.md §3 on random forests, and
 // loop detection.
 #include "core/dense_solver.h"
 #include "core/frontier_order.h"

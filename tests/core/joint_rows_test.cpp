@@ -1,5 +1,5 @@
 // tests/core/joint_rows_test.cpp: each joint type's rows are the exact time derivative of its
-// position error (PAPER.md §4), checked by central finite differences of C along a random motion;
+// position error (docs/method.md §2), checked by central finite differences of C along a random motion;
 // row counts, satisfaction at the initial pose, world parents.
 #include "core/joints/joint_rows.h"
 #include "core/state.h"
@@ -238,7 +238,7 @@ TEST(JointRows, RowsAreTheDerivativeOfTheErrorAwayFromTheSatisfiedPose)
 }
 
 // The check itself can fail: a wrong lever arm (a's own anchor instead of the material point of
-// a at p_b, PAPER.md §4 notes) is caught for a sliding joint pulled apart along its axis.
+// a at p_b, docs/method.md §2) is caught for a sliding joint pulled apart along its axis.
 TEST(JointRows, FiniteDifferenceCheckDetectsAWrongLeverArm)
 {
     Rng rng(6);

@@ -1,4 +1,4 @@
-// tests/core/pgs_solver_test.cpp: the `pgs` baseline (PAPER.md §6): converges to the exact
+// tests/core/pgs_solver_test.cpp: the `pgs` baseline (docs/method.md §3): converges to the exact
 // answer on an easy chain; documents how far it stays on a long chain with a large mass ratio.
 #include "core/pgs_solver.h"
 #include "core/tree_solver.h"

@@ -1,4 +1,4 @@
-// tests/core/tree_solver_test.cpp: the `linear` solver (PAPER.md §3) against the dense oracle,
+// tests/core/tree_solver_test.cpp: the `linear` solver (docs/method.md §3) against the dense oracle,
 // the joint conditions it enforces, momentum conservation, a closed-form impact, degenerate
 // joints, and the partial forward sweep used for Delassus entries.
 #include "core/dense_solver.h"
@@ -306,7 +306,7 @@ TEST(TreeSolver, TwoRodsStruckAtTheEndMatchTheClosedForm)
     EXPECT_NEAR(k, 3.0, 3.0 * (t * t) / (L * L) * 1.01);
 }
 
-// The Delassus matrix G = J_x H^-1 J_x^T of extra rows (PAPER.md §5) from the tree solver's
+// The Delassus matrix G = J_x H^-1 J_x^T of extra rows (docs/method.md §5) from the tree solver's
 // partial forward sweeps equals the one built from one full solve per row (the base-class
 // default, here through the dense solver), for blocks between bodies of one tree, of different
 // trees, and with the world.
