@@ -17,17 +17,10 @@ long stepsFor(double duration, double dt)
     return static_cast<long>(std::llround(duration / dt));
 }
 
-// Contacts are reported while shapes are closer than this (m): far enough that a body at 5 m/s
-// cannot cross it in one step unseen (speculative contacts, core/simulator.cpp), at least 2 mm.
-double contactMargin(double dt)
-{
-    return std::clamp(5.0 * dt, 2e-3, 0.05);
-}
-
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record)
 {
     RunSummary summary;
-    collision::ContactDetector detector(model, contactMargin(model.simulation.dt));
+    collision::ContactDetector detector(model, collision::contactMargin(model.simulation.dt));
     core::Simulator simulator(model, {}, &detector);
     core::State state = core::initialState(model);
     summary.energyInitialJ = core::totalEnergy(model, state);

@@ -48,6 +48,5 @@ using Recorder = std::function<void(const core::State&, const core::Simulator* l
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);
 
 long stepsFor(double duration, double dt);
-double contactMargin(double dt);
 
 } // namespace frontier::app

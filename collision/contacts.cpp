@@ -623,6 +623,11 @@ const std::vector<std::pair<int, int>>& ContactDetector::candidatePairs() const
     return m.candidates;
 }
 
+double contactMargin(double dt)
+{
+    return std::clamp(5.0 * dt, 2e-3, 0.05);
+}
+
 double ContactDetector::margin() const
 {
     return mImpl->margin;

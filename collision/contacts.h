@@ -68,6 +68,11 @@ class ContactDetector final : public core::ContactSource
     std::unique_ptr<Impl> mImpl;
 };
 
+// The margin the simulator's detector uses at time step dt (s): contacts are reported while
+// shapes are closer than this (m), far enough that a body at 5 m/s cannot cross it in one step
+// unseen (speculative contacts, docs/method.md §10), and at least 2 mm, at most 5 cm.
+double contactMargin(double dt);
+
 // Pairs of bodies of one robot (core::Model::robots with self-collision on) whose collision shapes
 // overlap in the model's initial pose, as (i, j) with i < j, sorted. Loaders add them to
 // contact.ignore: such a pair never collides (collision/starting_overlaps.cpp says why).

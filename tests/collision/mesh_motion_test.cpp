@@ -25,7 +25,7 @@ constexpr double cDt = 0.001; // s
 struct MeshRun
 {
     explicit MeshRun(core::Model m)
-        : model(std::move(m)), detector(model, std::max(5.0 * model.simulation.dt, 2e-3)),
+        : model(std::move(m)), detector(model, contactMargin(model.simulation.dt)),
           simulator(model, {}, &detector), state(core::initialState(model))
     {
     }

@@ -15,12 +15,6 @@
 namespace frontier::test
 {
 
-// The app's detector margin (app/run_loop.cpp contactMargin()): clamp(5 dt, 2 mm, 50 mm).
-inline double appContactMargin(double dt)
-{
-    return std::clamp(5.0 * dt, 2e-3, 0.05);
-}
-
 inline std::string scenePath(const std::string& file)
 {
     return std::string(FRONTIER_SOURCE_DIR) + "/scenes/" + file;
@@ -31,7 +25,7 @@ inline std::string scenePath(const std::string& file)
 struct SceneRun
 {
     explicit SceneRun(core::Model m, const core::StepOptions& options = {})
-        : model(std::move(m)), detector(model, appContactMargin(model.simulation.dt)),
+        : model(std::move(m)), detector(model, collision::contactMargin(model.simulation.dt)),
           simulator(model, options, &detector), state(core::initialState(model))
     {
     }

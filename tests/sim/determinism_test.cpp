@@ -22,7 +22,7 @@ struct Recording
 };
 
 // Runs `file` for `duration` seconds, with FCL contacts when asked (the margin `frontier run`
-// uses: 5 dt, at least 2 mm).
+// uses: collision::contactMargin).
 Recording simulate(const std::string& file, double duration, bool contacts)
 {
     const core::Model model = loadBundled(file);
@@ -30,7 +30,7 @@ Recording simulate(const std::string& file, double duration, bool contacts)
     if (contacts)
     {
         detector = std::make_unique<collision::ContactDetector>(
-            model, std::clamp(5.0 * model.simulation.dt, 2e-3, 0.05));
+            model, collision::contactMargin(model.simulation.dt));
     }
     core::Simulator simulator(model, {}, detector.get());
     core::State state = core::initialState(model);

@@ -137,7 +137,7 @@ TEST(StabilitySuite, HeavyTip1e6)
 // The doll at dt = 1/30 s, 3 s. The bound: it survives with joints held to 1e-6 m and 1e-5 rad,
 // energy never rising (less than 0.1% of E_ref above the start), contacts overlapping less than
 // 10 cm: a limb falling at 6 m/s moves 20 cm per step, and a contact is seen only within the 5 cm
-// margin (app/run_loop.cpp), so an impact can overlap by up to a step's travel minus the margin
+// margin (collision::contactMargin), so an impact can overlap by up to a step's travel minus the margin
 // before the position projection removes it (measured 7.1 cm, at the left hand's impact, 0.5 s).
 // The joint correction needs up to 40 iterations at that impact (StepOptions); with 8 the wrist
 // was left 0.033 rad apart and the run stopped.
