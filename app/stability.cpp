@@ -3,6 +3,7 @@
 
 #include "app/run_loop.h"
 #include "app/solver_choice.h"
+#include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
 
@@ -103,32 +104,6 @@ struct Barrier
     core::Quat rotation_WS = core::Quat::Identity();
     core::Vec3 halfSize = core::Vec3::Zero(); // m
 };
-
-bool pairCanCollide(const core::Model& model, int a, int b)
-{
-    const core::Body& ba = model.bodies[static_cast<std::size_t>(a)];
-    const core::Body& bb = model.bodies[static_cast<std::size_t>(b)];
-    if (!ba.group.empty() && ba.group == bb.group)
-    {
-        return false;
-    }
-    for (const auto& pair : model.contact.ignore)
-    {
-        if ((pair[0] == a && pair[1] == b) || (pair[0] == b && pair[1] == a))
-        {
-            return false;
-        }
-    }
-    for (const core::Joint& joint : model.joints)
-    {
-        if (!joint.collideConnected &&
-            ((joint.parent == a && joint.child == b) || (joint.parent == b && joint.child == a)))
-        {
-            return false;
-        }
-    }
-    return true;
-}
 
 std::vector<Barrier> barriers(const core::Model& model)
 {
@@ -317,12 +292,13 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     std::vector<char> watched(walls.size() * bodies, 0); // moving body i can collide with wall w
     std::vector<char> seenOutside(walls.size() * bodies, 0);
     std::vector<core::Vec3> lastOutside(walls.size() * bodies, core::Vec3::Zero());
+    const collision::PairFilter pairs(model);
     for (std::size_t w = 0; w < walls.size(); ++w)
     {
         for (std::size_t i = 0; i < bodies; ++i)
         {
             watched[w * bodies + i] =
-                !model.bodies[i].isStatic && pairCanCollide(model, static_cast<int>(i), walls[w].body);
+                !model.bodies[i].isStatic && pairs.allowed(static_cast<int>(i), walls[w].body);
         }
     }
     core::Vec3 momentum0 = core::Vec3::Zero();

@@ -1,10 +1,11 @@
 // collision/filter.cpp: which body pairs may collide (docs/method.md §10).
-#include "collision/internal.h"
+#include "collision/filter.h"
 
 #include <algorithm>
 #include <map>
+#include <string>
 
-namespace frontier::collision::detail
+namespace frontier::collision
 {
 
 std::uint64_t PairFilter::key(int a, int b)
@@ -82,4 +83,4 @@ int PairFilter::excludedBound(int body) const
     return bound;
 }
 
-} // namespace frontier::collision::detail
+} // namespace frontier::collision

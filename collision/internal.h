@@ -6,6 +6,7 @@
 #pragma once
 
 #include "collision/convex_hull.h"
+#include "collision/filter.h"
 #include "core/model.h"
 
 #include <array>
@@ -162,30 +163,7 @@ void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double merg
                     std::size_t maxPoints = 4);
 
 // --- filter.cpp -----------------------------------------------------------------------------
-// Which body pairs may collide (docs/method.md §10): not two static bodies, not two bodies of one
-// non-empty group, not the pairs in contact.ignore, not bodies joined by a joint unless the
-// joint says collideConnected. Memory O(bodies + joints + ignore pairs).
-class PairFilter
-{
-  public:
-    explicit PairFilter(const core::Model& model);
-
-    bool allowed(int a, int b) const;
-    bool isStatic(int body) const { return mStatic[static_cast<std::size_t>(body)] != 0; }
-    int bodyCount() const { return static_cast<int>(mStatic.size()); }
-
-    // An upper bound on the number of bodies that body b may not collide with.
-    int excludedBound(int body) const;
-
-  private:
-    static std::uint64_t key(int a, int b);
-
-    std::vector<char> mStatic;        // per body
-    std::vector<int> mGroup;          // per body, -1 for none
-    std::vector<int> mGroupSize;      // per group id
-    std::vector<int> mExcludedDegree; // per body: joints and ignore entries it is part of
-    int mStaticCount = 0;
-    std::vector<std::uint64_t> mExcluded; // sorted keys of (min, max) pairs
-};
+// The pair rule is public (collision/filter.h).
+using collision::PairFilter;
 
 } // namespace frontier::collision::detail
