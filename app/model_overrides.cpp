@@ -1,6 +1,7 @@
 // app/model_overrides.cpp: flags over scene settings.
 #include "app/model_overrides.h"
 
+#include "app/method.h"
 #include "app/run_loop.h"
 
 namespace frontier::app
@@ -13,18 +14,20 @@ long applyOverrides(const RunOptions& options, core::Model& model)
     {
         sim.dt = *options.dt;
     }
+    Method method = Method::of(sim);
     if (options.solver)
     {
-        sim.solver = *core::solverFromName(*options.solver);
+        method.solver = *core::solverFromName(*options.solver);
     }
     if (options.pgsIterations)
     {
-        sim.pgsIterations = *options.pgsIterations;
+        method.pgsIterations = *options.pgsIterations;
     }
     if (options.integrator)
     {
-        sim.integrator = *core::integratorFromName(*options.integrator);
+        method.integrator = *core::integratorFromName(*options.integrator);
     }
+    method.applyTo(sim);
     if (options.steps)
     {
         sim.duration = static_cast<double>(*options.steps) * sim.dt;

@@ -2,7 +2,6 @@
 #include "app/stability.h"
 
 #include "app/run_loop.h"
-#include "app/solver_choice.h"
 #include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
@@ -20,42 +19,7 @@
 namespace frontier::app
 {
 
-std::string StabilityMethod::label() const
-{
-    std::string text = core::solverName(solver);
-    if (solver == core::SolverKind::Pgs)
-    {
-        text += ":" + std::to_string(pgsIterations);
-    }
-    return text + "/" + core::integratorName(integrator);
-}
-
-std::optional<StabilityMethod> parseStabilityMethod(const std::string& text)
-{
-    StabilityMethod method;
-    std::string solver = text;
-    const std::size_t slash = text.find('/');
-    if (slash != std::string::npos)
-    {
-        solver = text.substr(0, slash);
-        const auto integrator = core::integratorFromName(text.substr(slash + 1));
-        if (!integrator)
-        {
-            return std::nullopt;
-        }
-        method.integrator = *integrator;
-    }
-    const std::optional<SolverChoice> choice = parseSolverChoice(solver, method.pgsIterations);
-    if (!choice)
-    {
-        return std::nullopt;
-    }
-    method.solver = choice->solver;
-    method.pgsIterations = choice->pgsIterations;
-    return method;
-}
-
-std::vector<StabilityMethod> defaultStabilityMethods()
+std::vector<Method> defaultStabilityMethods()
 {
     using core::IntegratorKind;
     using core::SolverKind;
@@ -251,13 +215,11 @@ int denseRows(const core::Model& model)
     return rows;
 }
 
-StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName,
-                               const StabilityMethod& method, const StabilityLimits& limits)
+StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const Method& method,
+                               const StabilityLimits& limits)
 {
     core::Model model = scene;
-    model.simulation.solver = method.solver;
-    model.simulation.pgsIterations = method.pgsIterations;
-    model.simulation.integrator = method.integrator;
+    method.applyTo(model.simulation);
     if (limits.duration)
     {
         model.simulation.duration = *limits.duration;
@@ -443,8 +405,7 @@ std::string overviewText(const StabilityCell& cell)
 } // namespace
 
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames,
-                              const std::vector<StabilityMethod>& methods,
+                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine)
 {
@@ -463,7 +424,7 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
         << machine << ", one run at a time.\n\n";
 
     out << "| scene |";
-    for (const StabilityMethod& method : methods)
+    for (const Method& method : methods)
     {
         out << " " << method.label() << " |";
     }
@@ -476,7 +437,7 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
     for (const std::string& scene : sceneNames)
     {
         out << "| " << scene << " |";
-        for (const StabilityMethod& method : methods)
+        for (const Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
             out << " " << (it == byKey.end() ? std::string("") : overviewText(*it->second)) << " |";
@@ -510,7 +471,7 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
            "L drift | penetration (m) | wall (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& scene : sceneNames)
     {
-        for (const StabilityMethod& method : methods)
+        for (const Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
             if (it == byKey.end())

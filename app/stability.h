@@ -3,6 +3,7 @@
 // drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
 #pragma once
 
+#include "app/method.h"
 #include "core/model.h"
 
 #include <optional>
@@ -12,22 +13,8 @@
 namespace frontier::app
 {
 
-// A solver with its iteration count and an integrator, written `solver[:iterations]/integrator`
-// (`linear/euler`, `pgs:100/euler`); the integrator may be left out (`dense` = `dense/euler`).
-struct StabilityMethod
-{
-    core::SolverKind solver = core::SolverKind::Linear;
-    int pgsIterations = 20; // sweeps of pgs (ignored by the other solvers)
-    core::IntegratorKind integrator = core::IntegratorKind::Euler;
-
-    std::string label() const;
-};
-
-// nullopt for anything else than `solver[:iterations][/integrator]` (iterations only for pgs, >= 1).
-std::optional<StabilityMethod> parseStabilityMethod(const std::string& text);
-
 // linear/euler, linear/rattle, dense/euler, pgs:20/euler, pgs:100/euler.
-std::vector<StabilityMethod> defaultStabilityMethods();
+std::vector<Method> defaultStabilityMethods();
 
 struct StabilityLimits
 {
@@ -50,7 +37,7 @@ enum class StabilityOutcome
 struct StabilityCell
 {
     std::string scene;  // file name without folder and extension
-    std::string method; // StabilityMethod::label()
+    std::string method; // Method::label()
     StabilityOutcome outcome = StabilityOutcome::Survived;
     std::string note;    // why it failed, was skipped or is unavailable (empty when it survived)
     std::string failure; // the simulator's message when the run stopped
@@ -87,14 +74,13 @@ int denseRows(const core::Model& model);
 
 // Runs `model` (its settings but the method's solver and integrator, and limits.dt and
 // limits.duration when given). Never throws for a failed run: the cell says what happened.
-StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName,
-                               const StabilityMethod& method, const StabilityLimits& limits);
+StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName, const Method& method,
+                               const StabilityLimits& limits);
 
 // The markdown report: an overview (scene by method, survived or why not) and the details, one
 // row per cell; `machine` names the computer the wall times were measured on.
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames,
-                              const std::vector<StabilityMethod>& methods,
+                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine);
 

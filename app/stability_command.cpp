@@ -13,10 +13,10 @@ namespace frontier::app
 
 int stabilityCommand(const StabilityOptions& options)
 {
-    std::vector<StabilityMethod> methods;
+    std::vector<Method> methods;
     for (const std::string& text : options.methods)
     {
-        const auto method = parseStabilityMethod(text);
+        const auto method = parseMethod(text);
         if (!method)
         {
             std::cerr << "frontier: bad method '" << text
@@ -53,7 +53,7 @@ int stabilityCommand(const StabilityOptions& options)
     std::vector<StabilityCell> cells;
     for (std::size_t s = 0; s < scenes.size(); ++s)
     {
-        for (const StabilityMethod& method : methods)
+        for (const Method& method : methods)
         {
             if (!options.quiet)
             {

@@ -135,20 +135,6 @@ bool allFinite(const Samples& samples)
 }
 } // namespace
 
-std::string SweepMethod::solverLabel() const
-{
-    if (solver == core::SolverKind::Pgs)
-    {
-        return "pgs:" + std::to_string(pgsIterations);
-    }
-    return core::solverName(solver);
-}
-
-std::string SweepMethod::label() const
-{
-    return std::string(core::integratorName(integrator)) + " " + solverLabel();
-}
-
 std::vector<double> parseTimeSteps(const std::vector<std::string>& entries)
 {
     std::vector<double> dts;
@@ -175,35 +161,30 @@ std::vector<double> parseTimeSteps(const std::vector<std::string>& entries)
     return dts;
 }
 
-std::vector<SolverChoice> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations)
+std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations)
 {
-    std::vector<SolverChoice> solvers;
+    std::vector<Method> solvers;
     for (const std::string& raw : entries)
     {
         const std::string entry = trim(raw);
-        const std::optional<SolverChoice> parsed = parseSolverChoice(entry, scenePgsIterations);
+        bool hasIntegrator = false;
+        const std::optional<Method> parsed = parseMethod(entry, scenePgsIterations, &hasIntegrator);
         if (!parsed && entry.rfind("pgs:", 0) == 0)
         {
             throw SweepInputError("--solver: '" + raw +
                                   "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
                                   std::to_string(cMaxPgsIterations));
         }
-        if (!parsed)
+        if (!parsed || hasIntegrator)
         {
             throw SweepInputError("--solver: unknown solver '" + raw +
                                   "' (expected linear, dense, pgs or pgs:K with K sweeps)");
         }
-        const SolverChoice choice = *parsed;
-        const bool seen =
-            std::any_of(solvers.begin(), solvers.end(),
-                        [&](const SolverChoice& s)
-                        {
-                            return s.solver == choice.solver && (s.solver != core::SolverKind::Pgs ||
-                                                                 s.pgsIterations == choice.pgsIterations);
-                        });
+        const bool seen = std::any_of(solvers.begin(), solvers.end(),
+                                      [&](const Method& s) { return s.sameSolver(*parsed); });
         if (!seen)
         {
-            solvers.push_back(choice);
+            solvers.push_back(*parsed);
         }
     }
     if (solvers.empty())
@@ -323,7 +304,7 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     Samples referenceSamples;
     for (core::IntegratorKind integrator : {core::IntegratorKind::Rattle, core::IntegratorKind::Euler})
     {
-        reference.method = {integrator, core::SolverKind::Linear, work.simulation.pgsIterations};
+        reference.method = {core::SolverKind::Linear, work.simulation.pgsIterations, integrator};
         work.simulation.integrator = integrator;
         const bool last = integrator == core::IntegratorKind::Euler;
         std::string failure;
@@ -367,13 +348,13 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     int index = 0;
     for (core::IntegratorKind integrator : grid.integrators)
     {
-        for (const SolverChoice& solver : grid.solvers)
+        for (const Method& solver : grid.solvers)
         {
             for (double dt : grid.dts)
             {
                 ++index;
                 SweepCell cell;
-                cell.method = {integrator, solver.solver, solver.pgsIterations};
+                cell.method = {solver.solver, solver.pgsIterations, integrator};
                 cell.dt = dt;
                 cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
                 cell.bodies = result.bodies;

@@ -10,7 +10,7 @@
 // cell and the reference hit them exactly.
 #pragma once
 
-#include "app/solver_choice.h"
+#include "app/method.h"
 #include "core/model.h"
 
 #include <functional>
@@ -41,23 +41,12 @@ class SweepReferenceError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
-struct SweepMethod
-{
-    core::IntegratorKind integrator = core::IntegratorKind::Euler;
-    core::SolverKind solver = core::SolverKind::Linear;
-    int pgsIterations = 20; // sweeps of pgs (used by pgs only)
-
-    // "euler linear", "rattle pgs:20".
-    std::string label() const;
-    // "linear", "dense", "pgs:20".
-    std::string solverLabel() const;
-};
-
 // List parsing (entries as given on the command line, split at commas). Throw SweepInputError.
 // Time steps (s): positive finite numbers; duplicates removed; sorted coarse to fine.
 std::vector<double> parseTimeSteps(const std::vector<std::string>& entries);
-// Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps).
-std::vector<SolverChoice> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
+// Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps), no integrator
+// (the methods' integrator is left euler).
+std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
 // Integrators: euler, rattle.
 std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries);
 
@@ -81,7 +70,7 @@ SweepSchedule planSchedule(const std::vector<double>& dts, double durationS);
 
 struct SweepCell
 {
-    SweepMethod method;
+    Method method;
     double dt = 0.0;   // s
     long steps = 0;    // steps of the whole run
     long stepsRun = 0; // steps completed (less than steps when the run failed)
@@ -103,8 +92,8 @@ struct SweepCell
 
 struct SweepReference
 {
-    SweepMethod method; // rattle linear, or euler linear when rattle failed
-    double dt = 0.0;    // s
+    Method method;   // rattle linear, or euler linear when rattle failed
+    double dt = 0.0; // s
     long steps = 0;
     double wallSeconds = 0.0;
     std::string fallback; // why rattle was not used (empty when it was)
@@ -124,8 +113,8 @@ using SweepProgress = std::function<void(const std::string& run, int index, int 
 
 struct SweepGrid
 {
-    std::vector<double> dts; // s, coarse to fine
-    std::vector<SolverChoice> solvers;
+    std::vector<double> dts;     // s, coarse to fine
+    std::vector<Method> solvers; // solver and options (the integrator is taken from integrators)
     std::vector<core::IntegratorKind> integrators;
 };
 

@@ -80,7 +80,7 @@ TEST(SweepCli, DoublePendulumCsvChartAndEulerConverges)
                              shellQuote(out));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("Pareto front"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("euler linear"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("linear/euler"), std::string::npos) << r.out;
 
     const std::vector<std::string> csv = lines(readText(out + "/sweep.csv"));
     ASSERT_EQ(csv.size(), 2u + 6u) << "a comment line, the header, 2 integrators x 3 time steps";
