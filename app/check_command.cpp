@@ -1,6 +1,7 @@
 // app/check_command.cpp: `frontier check`: re-simulate a scene with the settings its reference
 // trajectory was recorded with (the header line of the CSV) and compare, quantity by quantity.
 #include "app/commands.h"
+#include "app/method.h"
 #include "app/progress.h"
 #include "app/run_loop.h"
 #include "app/scene_loading.h"
@@ -27,30 +28,6 @@ struct Quantity
     double largestTime = 0.0;
     std::string largestBody;
 };
-
-std::string requireKey(const io::Trajectory& reference, const std::string& path, const std::string& key)
-{
-    const auto found = reference.metadata.find(key);
-    if (found == reference.metadata.end())
-    {
-        throw io::InputError(
-            path, 1, 0,
-            "the reference's header line has no '" + key +
-                "': record references with `frontier run --trajectory` (it writes the settings)");
-    }
-    return found->second;
-}
-
-double parseNumber(const std::string& text, const std::string& path, const std::string& key)
-{
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
-    {
-        throw io::InputError(path, 1, 0, "'" + key + "' in the header line is not a number: '" + text + "'");
-    }
-    return value;
-}
 
 // Angle of the rotation between two orientations (rad), accurate near zero (no acos of ~1).
 double orientationError(const core::Quat& a, const core::Quat& b)
@@ -86,33 +63,16 @@ int checkCommand(const CheckOptions& options)
     try
     {
         reference = io::readTrajectory(options.reference);
-        io::UrdfOptions urdf = urdfOptionsFrom(reference.metadata, options.reference);
+        io::UrdfOptions urdf = io::urdfOptionsFrom(reference.metadata, options.reference);
         urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
                                  options.packagePaths.end());
         model = loadSceneWithRobots(options.scene, urdf).model;
         const std::string& ref = options.reference;
-        model.simulation.dt = parseNumber(requireKey(reference, ref, "dt"), ref, "dt");
-        const std::string solver = requireKey(reference, ref, "solver");
-        if (!core::solverFromName(solver))
-        {
-            throw io::InputError(ref, 1, 0, "unknown solver '" + solver + "' in the header line");
-        }
-        model.simulation.solver = *core::solverFromName(solver);
-        model.simulation.pgsIterations = static_cast<int>(
-            parseNumber(requireKey(reference, ref, "pgs_iterations"), ref, "pgs_iterations"));
-        const std::string integrator = requireKey(reference, ref, "integrator");
-        if (!core::integratorFromName(integrator))
-        {
-            throw io::InputError(ref, 1, 0, "unknown integrator '" + integrator + "' in the header line");
-        }
-        model.simulation.integrator = *core::integratorFromName(integrator);
-        steps = static_cast<long>(parseNumber(requireKey(reference, ref, "steps"), ref, "steps"));
-        recordEvery =
-            static_cast<int>(parseNumber(requireKey(reference, ref, "record_every"), ref, "record_every"));
-        if (steps < 0 || recordEvery < 1)
-        {
-            throw io::InputError(ref, 1, 0, "'steps' or 'record_every' in the header line is out of range");
-        }
+        const io::TrajectorySettings header = io::readTrajectorySettings(reference, ref);
+        model.simulation.dt = header.simulation.dt;
+        Method::of(header.simulation).applyTo(model.simulation);
+        steps = header.steps;
+        recordEvery = header.recordEvery;
 
         // The reference must fit the scene: the same moving bodies at every recorded time.
         std::set<std::string> sceneBodies;

@@ -95,7 +95,7 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
             }
             scenePath = found->second;
         }
-        io::UrdfOptions urdf = urdfOptionsFrom(trajectory.metadata, path);
+        io::UrdfOptions urdf = io::urdfOptionsFrom(trajectory.metadata, path);
         urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
                                  options.packagePaths.end());
         const core::Model model = loadSceneWithRobots(scenePath, urdf).model;

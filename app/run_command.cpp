@@ -155,7 +155,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         steps = applyOverrides(options, model);
         io::TrajectoryMetadata metadata =
             io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
-        addUrdfOptions(metadata, options.urdf);
+        io::addUrdfOptions(metadata, options.urdf);
         for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts})
         {
             if (!file->empty())

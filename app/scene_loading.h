@@ -23,10 +23,4 @@ LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& 
 // Warnings of the load to stderr ("frontier: FILE:LINE: warning: ...").
 void printLoadWarnings(const io::LoadReport& report);
 
-// The robot flags as key=value pairs of a trajectory's header (only those given), and back, so
-// `check` and `render` load the scene as the run did.
-void addUrdfOptions(io::TrajectoryMetadata& metadata, const io::UrdfOptions& options);
-// Throws io::InputError naming `file` when a value cannot be read.
-io::UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, const std::string& file);
-
 } // namespace frontier::app

@@ -5,7 +5,10 @@
 #include "io/scene.h"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 #include <string_view>
 
 namespace frontier::io
@@ -223,6 +226,149 @@ Trajectory readTrajectory(const std::string& path)
     {
         throw InputError(path, lineNumber, 0,
                          std::string("no header line; expected '") + cTrajectoryHeader + "'");
+    }
+    return out;
+}
+
+namespace
+{
+constexpr const char* cFixedBase = "fixed_base";
+constexpr const char* cFreeBase = "free_base";
+constexpr const char* cDropHeight = "drop_height";
+constexpr const char* cSelfCollision = "self_collision";
+constexpr const char* cPackagePath = "package_path"; // entries joined by ';'
+constexpr const char* cHold = "hold";
+} // namespace
+
+void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options)
+{
+    if (options.fixedBase)
+    {
+        metadata.emplace_back(cFixedBase, "1");
+    }
+    if (options.freeBase)
+    {
+        metadata.emplace_back(cFreeBase, "1");
+    }
+    if (options.dropHeight)
+    {
+        std::ostringstream value;
+        value.precision(17);
+        value << *options.dropHeight;
+        metadata.emplace_back(cDropHeight, value.str());
+    }
+    if (options.selfCollision)
+    {
+        metadata.emplace_back(cSelfCollision, *options.selfCollision ? "on" : "off");
+    }
+    if (options.hold)
+    {
+        metadata.emplace_back(cHold, "1");
+    }
+    if (!options.packagePaths.empty())
+    {
+        std::string joined;
+        for (const std::string& entry : options.packagePaths)
+        {
+            joined += (joined.empty() ? "" : ";") + entry;
+        }
+        metadata.emplace_back(cPackagePath, joined);
+    }
+}
+
+UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, const std::string& path)
+{
+    UrdfOptions options;
+    const auto value = [&](const char* key) -> const std::string*
+    {
+        const auto it = metadata.find(key);
+        return it == metadata.end() ? nullptr : &it->second;
+    };
+    options.fixedBase = value(cFixedBase) && *value(cFixedBase) == "1";
+    options.freeBase = value(cFreeBase) && *value(cFreeBase) == "1";
+    options.hold = value(cHold) && *value(cHold) == "1";
+    if (const std::string* height = value(cDropHeight))
+    {
+        char* end = nullptr;
+        options.dropHeight = std::strtod(height->c_str(), &end);
+        if (height->empty() || *end != '\0')
+        {
+            throw InputError(path, 1, 0, "the header's drop_height=" + *height + " is not a number");
+        }
+    }
+    if (const std::string* self = value(cSelfCollision))
+    {
+        options.selfCollision = *self == "on";
+    }
+    if (const std::string* paths = value(cPackagePath))
+    {
+        std::stringstream in(*paths);
+        std::string entry;
+        while (std::getline(in, entry, ';'))
+        {
+            if (!entry.empty())
+            {
+                options.packagePaths.push_back(entry);
+            }
+        }
+    }
+    return options;
+}
+
+namespace
+{
+const std::string& requireKey(const std::map<std::string, std::string>& metadata, const std::string& path,
+                              const std::string& key)
+{
+    const auto found = metadata.find(key);
+    if (found == metadata.end())
+    {
+        throw InputError(
+            path, 1, 0,
+            "the reference's header line has no '" + key +
+                "': record references with `frontier run --trajectory` (it writes the settings)");
+    }
+    return found->second;
+}
+
+double parseNumber(const std::string& text, const std::string& path, const std::string& key)
+{
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
+    {
+        throw InputError(path, 1, 0, "'" + key + "' in the header line is not a number: '" + text + "'");
+    }
+    return value;
+}
+} // namespace
+
+TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const std::string& path)
+{
+    const std::map<std::string, std::string>& metadata = trajectory.metadata;
+    TrajectorySettings out;
+    core::SimulationSettings& sim = out.simulation;
+    sim.dt = parseNumber(requireKey(metadata, path, "dt"), path, "dt");
+    const std::string& solver = requireKey(metadata, path, "solver");
+    if (!core::solverFromName(solver))
+    {
+        throw InputError(path, 1, 0, "unknown solver '" + solver + "' in the header line");
+    }
+    sim.solver = *core::solverFromName(solver);
+    sim.pgsIterations =
+        static_cast<int>(parseNumber(requireKey(metadata, path, "pgs_iterations"), path, "pgs_iterations"));
+    const std::string& integrator = requireKey(metadata, path, "integrator");
+    if (!core::integratorFromName(integrator))
+    {
+        throw InputError(path, 1, 0, "unknown integrator '" + integrator + "' in the header line");
+    }
+    sim.integrator = *core::integratorFromName(integrator);
+    out.steps = static_cast<long>(parseNumber(requireKey(metadata, path, "steps"), path, "steps"));
+    out.recordEvery =
+        static_cast<int>(parseNumber(requireKey(metadata, path, "record_every"), path, "record_every"));
+    if (out.steps < 0 || out.recordEvery < 1)
+    {
+        throw InputError(path, 1, 0, "'steps' or 'record_every' in the header line is out of range");
     }
     return out;
 }

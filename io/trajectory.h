@@ -12,6 +12,7 @@
 #include "core/model.h"
 #include "core/state.h"
 #include "io/csv_output.h"
+#include "io/scene.h"
 
 #include <array>
 #include <map>
@@ -30,6 +31,10 @@ using TrajectoryMetadata = FileMetadata;
 TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
                                           const core::SimulationSettings& settings, long steps,
                                           int recordEvery);
+
+// The robot flags as key=value pairs of the header (only those given), so `check` and `render`
+// load the scene as the run did (urdfOptionsFrom reads them back).
+void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options);
 
 inline constexpr const char* cTrajectoryHeader = "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz";
 
@@ -64,5 +69,21 @@ struct Trajectory
 // Throws InputError (file, line, column of the offending field) on malformed content: a missing
 // or misnamed header column, a wrong number of fields, an unreadable number.
 Trajectory readTrajectory(const std::string& path);
+
+// The settings a trajectory was recorded with, read back from its header line (the pairs
+// makeTrajectoryMetadata writes).
+struct TrajectorySettings
+{
+    core::SimulationSettings simulation; // dt, solver, pgsIterations, integrator; the rest default
+    long steps = 0;                      // steps of the run
+    int recordEvery = 1;                 // a row block every recordEvery steps
+};
+
+// Throws InputError (path, line 1) when a pair is missing or its value cannot be read.
+TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const std::string& path);
+
+// The robot flags addUrdfOptions wrote (absent ones keep UrdfOptions' defaults). Throws InputError
+// naming path when a value cannot be read.
+UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, const std::string& path);
 
 } // namespace frontier::io

@@ -99,6 +99,55 @@ TEST(Trajectory, RoundTripIsBitExact)
     }
 }
 
+// The settings and robot flags the header carries read back as written; a missing pair or an
+// unreadable value is an error on line 1.
+TEST(Trajectory, HeaderSettingsReadBack)
+{
+    TempDir dir;
+    const core::Model model = twoBodyModel();
+    core::SimulationSettings settings;
+    settings.dt = 1.0 / 3.0;
+    settings.solver = core::SolverKind::Pgs;
+    settings.pgsIterations = 37;
+    settings.integrator = core::IntegratorKind::Rattle;
+    UrdfOptions urdf;
+    urdf.fixedBase = true;
+    urdf.dropHeight = 0.25;
+    urdf.selfCollision = false;
+    urdf.packagePaths = {"/a", "b=/c"};
+    TrajectoryMetadata metadata = makeTrajectoryMetadata("s.yaml", settings, 12, 3);
+    addUrdfOptions(metadata, urdf);
+    const std::string path = dir.file("run.csv");
+    TrajectoryWriter writer(path, metadata);
+    writer.writeState(model, core::initialState(model));
+    writer.commit();
+
+    Trajectory t = readTrajectory(path);
+    const TrajectorySettings read = readTrajectorySettings(t, path);
+    EXPECT_EQ(read.simulation.dt, settings.dt);
+    EXPECT_EQ(read.simulation.solver, core::SolverKind::Pgs);
+    EXPECT_EQ(read.simulation.pgsIterations, 37);
+    EXPECT_EQ(read.simulation.integrator, core::IntegratorKind::Rattle);
+    EXPECT_EQ(read.steps, 12);
+    EXPECT_EQ(read.recordEvery, 3);
+    const UrdfOptions back = urdfOptionsFrom(t.metadata, path);
+    EXPECT_TRUE(back.fixedBase);
+    EXPECT_FALSE(back.freeBase);
+    EXPECT_EQ(back.dropHeight, 0.25);
+    EXPECT_EQ(back.selfCollision, false);
+    EXPECT_EQ(back.packagePaths, urdf.packagePaths);
+
+    t.metadata.erase("integrator");
+    EXPECT_THROW(readTrajectorySettings(t, path), InputError);
+    t.metadata["integrator"] = "verlet";
+    EXPECT_THROW(readTrajectorySettings(t, path), InputError);
+    t.metadata["integrator"] = "euler";
+    t.metadata["record_every"] = "0";
+    EXPECT_THROW(readTrajectorySettings(t, path), InputError);
+    t.metadata["drop_height"] = "high";
+    EXPECT_THROW(urdfOptionsFrom(t.metadata, path), InputError);
+}
+
 TEST(Trajectory, FileStartsWithCommentAndHeader)
 {
     TempDir dir;
