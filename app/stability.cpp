@@ -215,8 +215,102 @@ int denseRows(const core::Model& model)
     return rows;
 }
 
-StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const Method& method,
-                               const StabilityLimits& limits)
+namespace
+{
+// Centres tunnelling through static barriers, watched on every recorded state. A centre tunnels
+// when it ends below a static plane, or leaves a static box on the other side from where it
+// came: lastOutside keeps, per body and box, its last position outside the box, and the segment
+// from there to the next position outside must not cross the box (a centre that sinks into a box
+// and is pushed back out the way it came stays on one side of the face it entered by, so that
+// segment misses the box).
+class TunnelWatch
+{
+  public:
+    explicit TunnelWatch(const core::Model& model)
+        : mModel(model), mWalls(barriers(model)), mBodies(model.bodies.size()),
+          mWatched(mWalls.size() * mBodies, 0), mSeenOutside(mWalls.size() * mBodies, 0),
+          mLastOutside(mWalls.size() * mBodies, core::Vec3::Zero())
+    {
+        const collision::PairFilter pairs(model);
+        for (std::size_t w = 0; w < mWalls.size(); ++w)
+        {
+            for (std::size_t i = 0; i < mBodies; ++i)
+            {
+                mWatched[w * mBodies + i] =
+                    !model.bodies[i].isStatic && pairs.allowed(static_cast<int>(i), mWalls[w].body);
+            }
+        }
+    }
+
+    // Sets tunnelled ("'body' through 'static' at t = ... s") at the first centre through.
+    void observe(const core::State& state, std::string& tunnelled)
+    {
+        for (std::size_t w = 0; w < mWalls.size(); ++w)
+        {
+            const Barrier& wall = mWalls[w];
+            for (std::size_t i = 0; i < mBodies; ++i)
+            {
+                const std::size_t k = w * mBodies + i;
+                if (!mWatched[k])
+                {
+                    continue;
+                }
+                const core::Vec3& p = state.bodies[i].position_W;
+                bool through = false;
+                if (wall.plane)
+                {
+                    through = wall.normal.dot(p) < wall.offset;
+                }
+                else if (!insideBox(wall, p))
+                {
+                    through = mSeenOutside[k] && segmentCrossesBox(wall, mLastOutside[k], p);
+                    mSeenOutside[k] = 1;
+                    mLastOutside[k] = p;
+                }
+                if (through && tunnelled.empty())
+                {
+                    tunnelled = "'" + mModel.bodies[i].name + "' through '" +
+                                mModel.bodies[static_cast<std::size_t>(wall.body)].name +
+                                "' at t = " + format("%.4g", state.time) + " s";
+                }
+            }
+        }
+    }
+
+  private:
+    const core::Model& mModel;
+    std::vector<Barrier> mWalls;
+    std::size_t mBodies;
+    std::vector<char> mWatched; // moving body i can collide with wall w
+    std::vector<char> mSeenOutside;
+    std::vector<core::Vec3> mLastOutside;
+};
+
+// Energy (into the cell) and the drift of the total angular momentum over the recorded states.
+struct ConservationTrack
+{
+    void observe(const core::Model& model, const core::State& state, StabilityCell& cell)
+    {
+        const double energy = core::totalEnergy(model, state);
+        const core::Vec3 momentum = core::totalMomentum(model, state).angular;
+        if (first)
+        {
+            cell.energyInitialJ = cell.energyMaxJ = cell.energyMinJ = energy;
+            momentum0 = momentum;
+            first = false;
+        }
+        cell.energyMaxJ = std::max(cell.energyMaxJ, energy);
+        cell.energyMinJ = std::min(cell.energyMinJ, energy);
+        momentumDrift = std::max(momentumDrift, (momentum - momentum0).norm());
+    }
+
+    core::Vec3 momentum0 = core::Vec3::Zero();
+    double momentumDrift = 0.0;
+    bool first = true;
+};
+
+// The scene with the method's solver and integrator, and limits.dt and limits.duration when given.
+core::Model cellModel(const core::Model& scene, const Method& method, const StabilityLimits& limits)
 {
     core::Model model = scene;
     method.applyTo(model.simulation);
@@ -228,7 +322,35 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     {
         model.simulation.dt = *limits.dt;
     }
+    return model;
+}
 
+// A run that ended still fails when a centre tunnelled or a joint came apart beyond the limits.
+void judgeSurvivor(const StabilityLimits& limits, StabilityCell& cell)
+{
+    if (cell.outcome != StabilityOutcome::Survived)
+    {
+        return;
+    }
+    if (!cell.tunnelled.empty())
+    {
+        cell.outcome = StabilityOutcome::Failed;
+        cell.note = "tunnelled: " + cell.tunnelled;
+    }
+    else if (cell.maxJointGapM > limits.maxJointGapM || cell.maxJointGapRad > limits.maxJointGapRad)
+    {
+        cell.outcome = StabilityOutcome::Failed;
+        cell.note = cell.maxJointGapM > limits.maxJointGapM
+                        ? "came apart (gap " + format("%.2g", cell.maxJointGapM) + " m)"
+                        : "came apart (gap " + format("%.2g", cell.maxJointGapRad) + " rad)";
+    }
+}
+} // namespace
+
+StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const Method& method,
+                               const StabilityLimits& limits)
+{
+    const core::Model model = cellModel(scene, method, limits);
     StabilityCell cell;
     cell.scene = sceneName;
     cell.method = method.label();
@@ -242,74 +364,15 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         return cell;
     }
 
-    // Measured on every recorded state: energy, angular momentum, centres tunnelling through static
-    // barriers. A centre tunnels when it ends below a static plane, or leaves a static box on the
-    // other side from where it came: lastOutside keeps, per body and box, its last position outside
-    // the box, and the segment from there to the next position outside must not cross the box (a
-    // centre that sinks into a box and is pushed back out the way it came stays on one side of
-    // the face it entered by, so that segment misses the box).
+    // Measured on every recorded state: energy, angular momentum, centres tunnelling.
     const bool free = isFreeSystem(model);
-    const std::vector<Barrier> walls = barriers(model);
-    const std::size_t bodies = model.bodies.size();
-    std::vector<char> watched(walls.size() * bodies, 0); // moving body i can collide with wall w
-    std::vector<char> seenOutside(walls.size() * bodies, 0);
-    std::vector<core::Vec3> lastOutside(walls.size() * bodies, core::Vec3::Zero());
-    const collision::PairFilter pairs(model);
-    for (std::size_t w = 0; w < walls.size(); ++w)
-    {
-        for (std::size_t i = 0; i < bodies; ++i)
-        {
-            watched[w * bodies + i] =
-                !model.bodies[i].isStatic && pairs.allowed(static_cast<int>(i), walls[w].body);
-        }
-    }
-    core::Vec3 momentum0 = core::Vec3::Zero();
-    double momentumDrift = 0.0;
-    bool first = true;
+    TunnelWatch tunnels(model);
+    ConservationTrack conservation;
     const Recorder record = [&](const core::State& state, const core::Simulator*)
     {
-        const double energy = core::totalEnergy(model, state);
-        const core::Vec3 momentum = core::totalMomentum(model, state).angular;
-        if (first)
-        {
-            cell.energyInitialJ = cell.energyMaxJ = cell.energyMinJ = energy;
-            momentum0 = momentum;
-            first = false;
-        }
-        cell.energyMaxJ = std::max(cell.energyMaxJ, energy);
-        cell.energyMinJ = std::min(cell.energyMinJ, energy);
-        momentumDrift = std::max(momentumDrift, (momentum - momentum0).norm());
+        conservation.observe(model, state, cell);
         cell.stepsRun = state.step;
-        for (std::size_t w = 0; w < walls.size(); ++w)
-        {
-            const Barrier& wall = walls[w];
-            for (std::size_t i = 0; i < bodies; ++i)
-            {
-                const std::size_t k = w * bodies + i;
-                if (!watched[k])
-                {
-                    continue;
-                }
-                const core::Vec3& p = state.bodies[i].position_W;
-                bool through = false;
-                if (wall.plane)
-                {
-                    through = wall.normal.dot(p) < wall.offset;
-                }
-                else if (!insideBox(wall, p))
-                {
-                    through = seenOutside[k] && segmentCrossesBox(wall, lastOutside[k], p);
-                    seenOutside[k] = 1;
-                    lastOutside[k] = p;
-                }
-                if (through && cell.tunnelled.empty())
-                {
-                    cell.tunnelled = "'" + model.bodies[i].name + "' through '" +
-                                     model.bodies[static_cast<std::size_t>(wall.body)].name +
-                                     "' at t = " + format("%.4g", state.time) + " s";
-                }
-            }
-        }
+        tunnels.observe(state, cell.tunnelled);
     };
 
     RunSettings settings;
@@ -344,23 +407,9 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     }
     if (free)
     {
-        cell.momentumDrift = momentumDrift / std::max(momentum0.norm(), 1e-300);
+        cell.momentumDrift = conservation.momentumDrift / std::max(conservation.momentum0.norm(), 1e-300);
     }
-    if (cell.outcome == StabilityOutcome::Survived)
-    {
-        if (!cell.tunnelled.empty())
-        {
-            cell.outcome = StabilityOutcome::Failed;
-            cell.note = "tunnelled: " + cell.tunnelled;
-        }
-        else if (cell.maxJointGapM > limits.maxJointGapM || cell.maxJointGapRad > limits.maxJointGapRad)
-        {
-            cell.outcome = StabilityOutcome::Failed;
-            cell.note = cell.maxJointGapM > limits.maxJointGapM
-                            ? "came apart (gap " + format("%.2g", cell.maxJointGapM) + " m)"
-                            : "came apart (gap " + format("%.2g", cell.maxJointGapRad) + " rad)";
-        }
-    }
+    judgeSurvivor(limits, cell);
     return cell;
 }
 

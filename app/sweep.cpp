@@ -273,35 +273,22 @@ SweepSchedule planSchedule(const std::vector<double>& dts, double durationS)
     return schedule;
 }
 
-SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
-                     const SweepProgress& progress)
+namespace
 {
-    SweepResult result;
-    result.schedule = schedule;
-    const std::vector<int> bodies = movingBodies(model);
-    result.bodies = static_cast<int>(bodies.size());
-    const int runCount =
-        1 + static_cast<int>(grid.integrators.size() * grid.solvers.size() * grid.dts.size());
-    auto report = [&](const std::string& run, int index)
-    {
-        return [&progress, run, index, runCount](double fraction)
-        {
-            if (progress)
-            {
-                progress(run, index, runCount, fraction);
-            }
-        };
-    };
+using RunFraction = std::function<void(double)>;
 
-    // The reference: rattle linear at the finest dt / cReferenceRefinement, euler when rattle fails.
-    core::Model work = model;
-    SweepReference& reference = result.reference;
+// The reference: rattle linear at the finest dt / cReferenceRefinement, euler when rattle fails
+// (reference.fallback says why). work leaves with the reference's settings. Throws
+// SweepReferenceError when euler fails too.
+Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedule& schedule,
+                     const std::vector<int>& bodies,
+                     const std::function<RunFraction(const std::string&)>& report, SweepReference& reference)
+{
     reference.dt = *std::min_element(grid.dts.begin(), grid.dts.end()) / cReferenceRefinement;
     reference.steps = schedule.units * stepsPerUnit(schedule.unitS, reference.dt);
     work.simulation.dt = reference.dt;
     work.simulation.duration = schedule.durationS();
     work.simulation.solver = core::SolverKind::Linear;
-    Samples referenceSamples;
     for (core::IntegratorKind integrator : {core::IntegratorKind::Rattle, core::IntegratorKind::Euler})
     {
         reference.method = {core::SolverKind::Linear, work.simulation.pgsIterations, integrator};
@@ -312,15 +299,13 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
         {
             SampledRun run = runSampled(
                 work, schedule, bodies,
-                report("reference " + reference.method.label() + " dt " + formatSeconds(reference.dt) + " s",
-                       0),
+                report("reference " + reference.method.label() + " dt " + formatSeconds(reference.dt) + " s"),
                 {});
             reference.wallSeconds = run.summary.wallSeconds;
             if (run.summary.finite && run.samples.size() == schedule.sampleUnits.size() &&
                 allFinite(run.samples))
             {
-                referenceSamples = std::move(run.samples);
-                break;
+                return std::move(run.samples);
             }
             failure = run.summary.failure.empty() ? "it did not stay finite" : run.summary.failure;
         }
@@ -338,14 +323,132 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
         }
         if (last)
         {
-            throw SweepReferenceError("the reference run (euler linear, dt " + formatSeconds(reference.dt) +
-                                      " s) failed: " + failure);
+            throw SweepReferenceError("the reference run (" + reference.method.label() + ", dt " +
+                                      formatSeconds(reference.dt) + " s) failed: " + failure);
         }
         reference.fallback = "rattle: " + failure;
     }
+    return {};
+}
+
+// A run's summary into its cell; survived when it stayed finite through every sample.
+void takeSummary(const RunSummary& s, std::size_t compared, std::size_t samples, double trajectoryError,
+                 SweepCell& cell)
+{
+    cell.stepsRun = s.steps;
+    cell.wallSeconds = s.wallSeconds;
+    cell.maxJointErrorM = s.maxJointErrorM;
+    cell.maxJointErrorRad = s.maxJointErrorRad;
+    cell.maxPenetrationM = s.maxPenetrationM;
+    cell.energyDriftJ = std::max(s.energyMaxJ - s.energyInitialJ, s.energyInitialJ - s.energyMinJ);
+    cell.energyDriftRel = s.energyInitialJ != 0.0 ? cell.energyDriftJ / std::abs(s.energyInitialJ) : cNaN;
+    cell.survived = s.finite && compared == samples && std::isfinite(trajectoryError);
+    cell.failure = s.failure;
+    if (cell.failure.empty() && !cell.survived)
+    {
+        cell.failure = "the run did not stay finite";
+    }
+}
+
+// Cost per simulated second and per body step; NaN for what a failed or empty run did not measure.
+void finishCell(double trajectoryError, SweepCell& cell)
+{
+    const double simulated = static_cast<double>(cell.stepsRun) * cell.dt;
+    cell.secondsPerSimSecond = cell.stepsRun > 0 ? cell.wallSeconds / simulated : cNaN;
+    cell.usPerBodyStep = cell.stepsRun > 0 && cell.bodies > 0
+                             ? 1e6 * cell.wallSeconds / (static_cast<double>(cell.stepsRun) * cell.bodies)
+                             : cNaN;
+    cell.trajectoryErrorM = cell.survived ? trajectoryError : cNaN;
+    if (!cell.survived)
+    {
+        cell.finalErrorM = cNaN;
+        cell.worstBody.clear();
+    }
+    if (cell.stepsRun == 0)
+    {
+        cell.maxJointErrorM = cell.maxJointErrorRad = cell.energyDriftJ = cell.energyDriftRel =
+            cell.maxPenetrationM = cNaN;
+    }
+}
+
+// One cell: work run with the cell's method and dt, compared with the reference at every sample,
+// then timed again (up to cMaxTimingRuns runs in cTimingSeconds) when it was short.
+void runCell(core::Model& work, const core::Model& model, const SweepSchedule& schedule,
+             const std::vector<int>& bodies, const Samples& referenceSamples, const RunFraction& fraction,
+             SweepCell& cell)
+{
+    work.simulation.dt = cell.dt;
+    cell.method.applyTo(work.simulation);
+    double trajectoryError = 0.0;
+    std::size_t compared = 0;
+    const auto compare = [&](std::size_t sample, const core::State& state)
+    {
+        double finalError = 0.0;
+        for (std::size_t b = 0; b < bodies.size(); ++b)
+        {
+            const double error =
+                (state.bodies[static_cast<std::size_t>(bodies[b])].position_W - referenceSamples[sample][b])
+                    .norm();
+            // NaN-aware: a non-finite position makes the error NaN.
+            trajectoryError = (error > trajectoryError || std::isnan(error)) ? error : trajectoryError;
+            if (sample + 1 == schedule.sampleUnits.size() && (error > finalError || b == 0))
+            {
+                finalError = error;
+                cell.worstBody = model.bodies[static_cast<std::size_t>(bodies[b])].name;
+            }
+        }
+        cell.finalErrorM = finalError;
+        ++compared;
+    };
+    try
+    {
+        const SampledRun run = runSampled(work, schedule, bodies, fraction, compare);
+        takeSummary(run.summary, compared, schedule.sampleUnits.size(), trajectoryError, cell);
+        // Repeats give the same trajectory (the runs are deterministic); only the time differs.
+        double spent = run.summary.wallSeconds;
+        RunSettings again;
+        again.steps = cell.steps;
+        for (int repeat = 1; cell.survived && repeat < cMaxTimingRuns && spent < cTimingSeconds; ++repeat)
+        {
+            const double wall = runSimulation(work, again, {}).wallSeconds;
+            cell.wallSeconds = std::min(cell.wallSeconds, wall);
+            spent += wall;
+        }
+    }
+    catch (const std::exception& e) // an integrator that cannot be built, a singular joint
+    {
+        cell.failure = e.what();
+        cell.survived = false;
+    }
+    finishCell(trajectoryError, cell);
+}
+} // namespace
+
+SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
+                     const SweepProgress& progress)
+{
+    SweepResult result;
+    result.schedule = schedule;
+    const std::vector<int> bodies = movingBodies(model);
+    result.bodies = static_cast<int>(bodies.size());
+    const int runCount =
+        1 + static_cast<int>(grid.integrators.size() * grid.solvers.size() * grid.dts.size());
+    int index = 0; // of the run: the reference is 0
+    const auto report = [&](const std::string& run) -> RunFraction
+    {
+        return [&progress, run, index, runCount](double fraction)
+        {
+            if (progress)
+            {
+                progress(run, index, runCount, fraction);
+            }
+        };
+    };
+
+    core::Model work = model;
+    const Samples referenceSamples = runReference(work, grid, schedule, bodies, report, result.reference);
 
     // The cells, one after another.
-    int index = 0;
     for (core::IntegratorKind integrator : grid.integrators)
     {
         for (const Method& solver : grid.solvers)
@@ -358,88 +461,8 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
                 cell.dt = dt;
                 cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
                 cell.bodies = result.bodies;
-                work.simulation.dt = dt;
-                work.simulation.integrator = integrator;
-                work.simulation.solver = solver.solver;
-                work.simulation.pgsIterations = solver.pgsIterations;
-                double trajectoryError = 0.0;
-                std::size_t compared = 0;
-                const auto compare = [&](std::size_t sample, const core::State& state)
-                {
-                    double finalError = 0.0;
-                    for (std::size_t b = 0; b < bodies.size(); ++b)
-                    {
-                        const double error = (state.bodies[static_cast<std::size_t>(bodies[b])].position_W -
-                                              referenceSamples[sample][b])
-                                                 .norm();
-                        // NaN-aware: a non-finite position makes the error NaN.
-                        trajectoryError =
-                            (error > trajectoryError || std::isnan(error)) ? error : trajectoryError;
-                        if (sample + 1 == schedule.sampleUnits.size() && (error > finalError || b == 0))
-                        {
-                            finalError = error;
-                            cell.worstBody = model.bodies[static_cast<std::size_t>(bodies[b])].name;
-                        }
-                    }
-                    cell.finalErrorM = finalError;
-                    ++compared;
-                };
-                try
-                {
-                    const SampledRun run = runSampled(
-                        work, schedule, bodies,
-                        report(cell.method.label() + " dt " + formatSeconds(dt) + " s", index), compare);
-                    const RunSummary& s = run.summary;
-                    cell.stepsRun = s.steps;
-                    cell.wallSeconds = s.wallSeconds;
-                    cell.maxJointErrorM = s.maxJointErrorM;
-                    cell.maxJointErrorRad = s.maxJointErrorRad;
-                    cell.maxPenetrationM = s.maxPenetrationM;
-                    cell.energyDriftJ =
-                        std::max(s.energyMaxJ - s.energyInitialJ, s.energyInitialJ - s.energyMinJ);
-                    cell.energyDriftRel =
-                        s.energyInitialJ != 0.0 ? cell.energyDriftJ / std::abs(s.energyInitialJ) : cNaN;
-                    cell.survived =
-                        s.finite && compared == schedule.sampleUnits.size() && std::isfinite(trajectoryError);
-                    cell.failure = s.failure;
-                    if (cell.failure.empty() && !cell.survived)
-                    {
-                        cell.failure = "the run did not stay finite";
-                    }
-                    // Repeats give the same trajectory (the runs are deterministic); only the time differs.
-                    double spent = s.wallSeconds;
-                    RunSettings again;
-                    again.steps = cell.steps;
-                    for (int repeat = 1; cell.survived && repeat < cMaxTimingRuns && spent < cTimingSeconds;
-                         ++repeat)
-                    {
-                        const double wall = runSimulation(work, again, {}).wallSeconds;
-                        cell.wallSeconds = std::min(cell.wallSeconds, wall);
-                        spent += wall;
-                    }
-                }
-                catch (const std::exception& e) // an integrator that cannot be built, a singular joint
-                {
-                    cell.failure = e.what();
-                    cell.survived = false;
-                }
-                const double simulated = static_cast<double>(cell.stepsRun) * dt;
-                cell.secondsPerSimSecond = cell.stepsRun > 0 ? cell.wallSeconds / simulated : cNaN;
-                cell.usPerBodyStep =
-                    cell.stepsRun > 0 && cell.bodies > 0
-                        ? 1e6 * cell.wallSeconds / (static_cast<double>(cell.stepsRun) * cell.bodies)
-                        : cNaN;
-                cell.trajectoryErrorM = cell.survived ? trajectoryError : cNaN;
-                if (!cell.survived)
-                {
-                    cell.finalErrorM = cNaN;
-                    cell.worstBody.clear();
-                }
-                if (cell.stepsRun == 0)
-                {
-                    cell.maxJointErrorM = cell.maxJointErrorRad = cell.energyDriftJ = cell.energyDriftRel =
-                        cell.maxPenetrationM = cNaN;
-                }
+                runCell(work, model, schedule, bodies, referenceSamples,
+                        report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell);
                 result.cells.push_back(std::move(cell));
             }
         }

@@ -268,43 +268,31 @@ ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eige
     return solveExtraRowsFrom(blocks, G, settings, lambda, scratch, coupling);
 }
 
-ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
-                                   const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
-                                   ExtraSolveScratch& scratch, const RowCoupling* coupling,
-                                   std::uint64_t matrixVersion)
+namespace
 {
-    ExtraSolveStats stats;
-    const Eigen::Index m = G.rows();
-    if (m == 0)
+
+// The coupling that lets every block move every row, when the caller has none.
+const RowCoupling* denseCoupling(std::size_t blockCount, Eigen::Index m, RowCoupling& dense)
+{
+    dense.runs.assign(blockCount, {0, static_cast<int>(m)});
+    dense.firstRun.resize(blockCount + 1);
+    for (std::size_t b = 0; b <= blockCount; ++b)
     {
-        return stats;
+        dense.firstRun[b] = static_cast<int>(b);
     }
+    return &dense;
+}
+
+// Inverse pivots, once per matrix: loops by their whole block, contacts normal row alone and the
+// 2x2 tangential block, limits and drives their one row (compliance on the diagonal). With
+// pivotsKnown only the contacts' targets and friction, which change from step to step.
+void computePivots(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G, bool pivotsKnown,
+                   ExtraSolveScratch& scratch)
+{
     // A row that can barely move (a point pinned by joints) has a tiny pivot: regularize it by a
     // relative 1e-9 of the largest diagonal so the update stays bounded.
     const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
-    // Inverse pivots, once: loops by their whole block, contacts normal row alone and the 2x2
-    // tangential block, limits and drives their one row (compliance on the diagonal). And the
-    // nonzero runs of each block's columns.
     std::vector<Mat6>& inverse = scratch.inverse;
-    const bool pivotsKnown = matrixVersion != 0 && matrixVersion == scratch.pivotsVersion &&
-                             inverse.size() == blocks.size() && scratch.pivotsRows == m;
-    scratch.pivotsVersion = matrixVersion;
-    scratch.pivotsRows = m;
-    if (!pivotsKnown)
-    {
-        inverse.assign(blocks.size(), Mat6::Zero());
-    }
-    scratch.contacts.resize(blocks.size());
-    if (coupling == nullptr)
-    {
-        scratch.dense.runs.assign(blocks.size(), {0, static_cast<int>(m)});
-        scratch.dense.firstRun.resize(blocks.size() + 1);
-        for (std::size_t b = 0; b <= blocks.size(); ++b)
-        {
-            scratch.dense.firstRun[b] = static_cast<int>(b);
-        }
-        coupling = &scratch.dense;
-    }
     for (std::size_t b = 0; b < blocks.size(); ++b)
     {
         const int o = blocks[b].offset;
@@ -350,86 +338,136 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
             p.friction = blocks[b].friction;
         }
     }
+}
 
-    Eigen::VectorXd& velocity = scratch.velocity;
-    double* v = velocity.data();
-    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+
+// A loop, drive, limit or frictionless contact block's new impulses, the others held.
+SmallVec nextImpulses(const ExtraBlock& block, const Mat6& inverse, const Eigen::VectorXd& velocity,
+                      const SmallVec& old)
+{
+    const int o = block.offset;
+    const int n = block.count;
+    SmallVec next = old;
+    if (block.kind == ExtraBlock::Kind::Loop)
     {
-        double change = 0.0;  // largest impulse change of the sweep (N s)
-        double largest = 0.0; // largest impulse (N s)
-        for (std::size_t b = 0; b < blocks.size(); ++b)
+        const SmallVec target = block.target.head(n);
+        next += inverse.topLeftCorner(n, n) *
+                (target - velocity.segment(o, n) - block.compliance.head(n).cwiseProduct(old));
+    }
+    else if (block.kind == ExtraBlock::Kind::Drive)
+    {
+        const double free =
+            old(0) + inverse(0, 0) * (block.target(0) - velocity[o] - block.compliance(0) * old(0));
+        next(0) = std::clamp(free, -block.bound, block.bound);
+    }
+    else
+    {
+        // Normal (frictionless contact) or limit row: one-sided.
+        next(0) = std::max(0.0, old(0) + inverse(0, 0) * (block.target(0) - velocity[o]));
+    }
+    return next;
+}
+
+// The largest impulse change of a sweep and the largest impulse (N s).
+struct SweepChange
+{
+    double change = 0.0;
+    double largest = 0.0;
+};
+
+// The commit step: the block's new impulses replace the old ones at rows o ..; the rows it moves
+// follow (velocity += G(:, o ..) (next - old) over the block's runs). Fixed-size vectors (a
+// contact's three rows) keep the running maxima in registers.
+template <typename Vec>
+void commitBlock(const Eigen::MatrixXd& G, int o, const Vec& old, const Vec& next,
+                 const std::pair<int, int>* firstRun, const std::pair<int, int>* lastRun,
+                 Eigen::VectorXd& lambda, Eigen::VectorXd& velocity, SweepChange& sweep)
+{
+    const int n = static_cast<int>(next.size());
+    double delta[6];
+    double step = 0.0; // largest impulse change of this block (N s)
+    for (int q = 0; q < n; ++q)
+    {
+        delta[q] = next(q) - old(q);
+        step = std::max(step, std::abs(delta[q]));
+    }
+    if (step > 0.0)
+    {
+        lambda.segment(o, n) = next;
+        addColumns(G, o, n, delta, firstRun, lastRun, velocity);
+    }
+    sweep.largest = std::max(sweep.largest, next.cwiseAbs().maxCoeff());
+    sweep.change = std::max(sweep.change, step);
+}
+
+// One Gauss-Seidel sweep over the blocks, in order.
+SweepChange sweepBlocks(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                        const RowCoupling& coupling, ExtraSolveScratch& scratch, Eigen::VectorXd& lambda)
+{
+    SweepChange sweep;
+    Eigen::VectorXd& velocity = scratch.velocity;
+    const double* v = velocity.data();
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+    {
+        const ExtraBlock& block = blocks[b];
+        const int o = block.offset;
+        const std::pair<int, int>* firstRun = coupling.runs.data() + coupling.firstRun[b];
+        const std::pair<int, int>* lastRun = coupling.runs.data() + coupling.firstRun[b + 1];
+        if (block.kind == ExtraBlock::Kind::Contact && block.count == 3)
         {
-            const ExtraBlock& block = blocks[b];
-            const int o = block.offset;
-            const int n = block.count;
-            const std::pair<int, int>* firstRun = coupling->runs.data() + coupling->firstRun[b];
-            const std::pair<int, int>* lastRun = coupling->runs.data() + coupling->firstRun[b + 1];
-            // The block's new impulses replace the old ones; the rows it moves follow.
-            auto commit = [&](const auto& old, const auto& next)
+            const Eigen::Vector3d old = lambda.segment<3>(o);
+            if (old(0) == 0.0 && old(1) == 0.0 && old(2) == 0.0 && v[o] >= scratch.contacts[b].target)
             {
-                double delta[6];
-                double step = 0.0; // largest impulse change of this block (N s)
-                for (int q = 0; q < n; ++q)
-                {
-                    delta[q] = next(q) - old(q);
-                    step = std::max(step, std::abs(delta[q]));
-                }
-                if (step > 0.0)
-                {
-                    lambda.segment(o, n) = next;
-                    addColumns(G, o, n, delta, firstRun, lastRun, velocity);
-                }
-                largest = std::max(largest, next.cwiseAbs().maxCoeff());
-                change = std::max(change, step);
-            };
-            if (block.kind == ExtraBlock::Kind::Contact && n == 3)
-            {
-                // The same commit written out for three rows, in registers: the generic one keeps
-                // its running maximum in memory, a store-to-load chain in the sweep's hot loop.
-                const Eigen::Vector3d old = lambda.segment<3>(o);
-                if (old(0) == 0.0 && old(1) == 0.0 && old(2) == 0.0 && v[o] >= scratch.contacts[b].target)
-                {
-                    // Apart and not pushing: no impulse solves the block (a quarter of the updates
-                    // in the pileup; the full update left them at zero every time).
-                    continue;
-                }
-                const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
-                double delta[3] = {next(0) - old(0), next(1) - old(1), next(2) - old(2)};
-                const double step = std::max({std::abs(delta[0]), std::abs(delta[1]), std::abs(delta[2])});
-                if (step > 0.0)
-                {
-                    lambda.segment<3>(o) = next;
-                    addColumns(G, o, 3, delta, firstRun, lastRun, velocity);
-                }
-                largest = std::max({largest, std::abs(next(0)), std::abs(next(1)), std::abs(next(2))});
-                change = std::max(change, step);
+                // Apart and not pushing: no impulse solves the block (a quarter of the updates
+                // in the pileup; the full update left them at zero every time).
                 continue;
             }
-            using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-            const SmallVec old = lambda.segment(o, n);
-            SmallVec next = old;
-            if (block.kind == ExtraBlock::Kind::Loop)
-            {
-                const SmallVec target = block.target.head(n);
-                next += inverse[b].topLeftCorner(n, n) *
-                        (target - velocity.segment(o, n) - block.compliance.head(n).cwiseProduct(old));
-            }
-            else if (block.kind == ExtraBlock::Kind::Drive)
-            {
-                const double free =
-                    old(0) + inverse[b](0, 0) * (block.target(0) - v[o] - block.compliance(0) * old(0));
-                next(0) = std::clamp(free, -block.bound, block.bound);
-            }
-            else
-            {
-                // Normal (frictionless contact) or limit row: one-sided.
-                next(0) = std::max(0.0, old(0) + inverse[b](0, 0) * (block.target(0) - v[o]));
-            }
-            commit(old, next);
+            const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
+            commitBlock(G, o, old, next, firstRun, lastRun, lambda, velocity, sweep);
+            continue;
         }
+        const SmallVec old = lambda.segment(o, block.count);
+        const SmallVec next = nextImpulses(block, scratch.inverse[b], velocity, old);
+        commitBlock(G, o, old, next, firstRun, lastRun, lambda, velocity, sweep);
+    }
+    return sweep;
+}
+
+} // namespace
+
+ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+                                   const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
+                                   ExtraSolveScratch& scratch, const RowCoupling* coupling,
+                                   std::uint64_t matrixVersion)
+{
+    ExtraSolveStats stats;
+    const Eigen::Index m = G.rows();
+    if (m == 0)
+    {
+        return stats;
+    }
+    const bool pivotsKnown = matrixVersion != 0 && matrixVersion == scratch.pivotsVersion &&
+                             scratch.inverse.size() == blocks.size() && scratch.pivotsRows == m;
+    scratch.pivotsVersion = matrixVersion;
+    scratch.pivotsRows = m;
+    if (!pivotsKnown)
+    {
+        scratch.inverse.assign(blocks.size(), Mat6::Zero());
+    }
+    scratch.contacts.resize(blocks.size());
+    if (coupling == nullptr)
+    {
+        coupling = denseCoupling(blocks.size(), m, scratch.dense);
+    }
+    computePivots(blocks, G, pivotsKnown, scratch);
+
+    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+    {
+        const SweepChange moved = sweepBlocks(blocks, G, *coupling, scratch, lambda);
         stats.sweeps = sweep + 1;
-        stats.converged = conditionsMet(blocks, velocity, lambda, settings.velocityTolerance);
-        if (stats.converged || change <= settings.tolerance * largest || change < 1e-14)
+        stats.converged = conditionsMet(blocks, scratch.velocity, lambda, settings.velocityTolerance);
+        if (stats.converged || moved.change <= settings.tolerance * moved.largest || moved.change < 1e-14)
         {
             break;
         }

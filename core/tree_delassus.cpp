@@ -55,7 +55,6 @@ template <int D, int P> void addCongruence(const double* l, const Mat6& parent, 
 
 void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
 {
-    const FrontierLayout& layout = *mSystem->layout;
     const std::size_t nblocks = mBlocks.size();
     if (mSlotOfBody.size() != mSystem->model->bodies.size())
     {
@@ -66,7 +65,18 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
         mDiagonalOf.assign(nblocks, -1);
     }
 
-    // Bodies with extra rows (slots) and the G rows each one carries, in stacking order.
+    gatherSlots(blocks);
+    layOutPaths();
+    placeJacobians(blocks);
+    sweepPathsForward();
+    invertOnPaths();
+    assembleDelassus(rows, G);
+    clearSlotMaps();
+}
+
+// Bodies with extra rows (slots) and the G rows each one carries, in stacking order.
+void TreeSolver::gatherSlots(const std::vector<ExtraBlock>& blocks)
+{
     mSlotBodies.clear();
     for (const ExtraBlock& block : blocks)
     {
@@ -103,8 +113,13 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             }
         }
     }
+}
 
-    // Paths and room for their A blocks (at most 6 x m_x each).
+// Each slot's path from its node to its root, and room for its A blocks (at most 6 x m_x each).
+void TreeSolver::layOutPaths()
+{
+    const FrontierLayout& layout = *mSystem->layout;
+    const std::size_t k = mSlotBodies.size();
     std::size_t poolSize = 0;
     for (std::size_t s = 0; s < k; ++s)
     {
@@ -117,9 +132,13 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
         }
     }
     mPool.resize(poolSize);
+}
 
-    // Each body's J_x^T at its node, its columns in the order of its rows (one pass over the
-    // blocks, with a column cursor per slot).
+// Each body's J_x^T at its node, its columns in the order of its rows (one pass over the blocks,
+// with a column cursor per slot).
+void TreeSolver::placeJacobians(const std::vector<ExtraBlock>& blocks)
+{
+    const std::size_t k = mSlotBodies.size();
     mSlotColumn.assign(k, 0);
     for (const ExtraBlock& block : blocks)
     {
@@ -138,8 +157,12 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             mSlotColumn[s] += block.count;
         }
     }
+}
 
-    // Forward sweeps, A_x = L^-1 J_x^T: from x's node, A_p = -L_b^T A_b up the path.
+// Forward sweeps, A_x = L^-1 J_x^T: from x's node, A_p = -L_b^T A_b up the path.
+void TreeSolver::sweepPathsForward()
+{
+    const std::size_t k = mSlotBodies.size();
     for (std::size_t s = 0; s < k; ++s)
     {
         const int m = static_cast<int>(mSlotRows[s].size());
@@ -168,8 +191,12 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
                      });
         }
     }
+}
 
-    // X_c on the union of the paths, from the roots down (descending layout order).
+// X_c on the union of the paths, from the roots down (descending layout order).
+void TreeSolver::invertOnPaths()
+{
+    const std::size_t k = mSlotBodies.size();
     mMarked.clear();
     for (std::size_t s = 0; s < k; ++s)
     {
@@ -215,8 +242,13 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
                      });
         }
     }
+}
 
-    // G_xy = A_x,c^T X_c A_y,c for every pair of slots in the same tree, c where their paths meet.
+// G_xy = A_x,c^T X_c A_y,c for every pair of slots in the same tree, c where their paths meet.
+void TreeSolver::assembleDelassus(int rows, Eigen::MatrixXd& G)
+{
+    const FrontierLayout& layout = *mSystem->layout;
+    const std::size_t k = mSlotBodies.size();
     G.setZero(rows, rows);
     for (std::size_t x = 0; x < k; ++x)
     {
@@ -268,8 +300,11 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
             }
         }
     }
+}
 
-    // Leave the per-body and per-block maps all -1 for the next call.
+// Leaves the per-body and per-block maps all -1 for the next call.
+void TreeSolver::clearSlotMaps()
+{
     for (int body : mSlotBodies)
     {
         mSlotOfBody[static_cast<std::size_t>(body)] = -1;

@@ -7,8 +7,8 @@
 //   §3 step 3 (back substitute): forward z_p -= L_b^T z_b; x_b = D_b^-1 z_b; backward x_b -= L_b x_p
 // Node pivots stay positive definite (M plus J^T S^-1 J terms), edge pivots negative definite
 // (-J D^-1 J^T, minus the compliance of drive rows, core/joints/drive.h), so no pivoting is needed; a pivot
-// that vanishes means dependent or degenerate joint rows and is reported with the joint's name (docs/method.md §3
-// "Pivots").
+// that vanishes means dependent or degenerate joint rows and is reported with the joint's name
+// (docs/method.md §3 "Pivots").
 //
 // Memory: O(n), no fill-in. Each block keeps only its pivot's Cholesky factor (a packed
 // dim x dim lower triangle) and L_b (dim x dim_p) at their real sizes, in layout order in one
@@ -62,6 +62,14 @@ class TreeSolver final : public ImpulseSolver
     void eliminate(std::size_t block);                           // §3 step 2 at one block
     void forwardStep(std::size_t block, const BlockVector& rhs); // §3 step 3, forward, one block
     void backwardSweep(BlockVector& solution);                   // §3 step 3, backward
+    // The steps of delassus(), in order (core/tree_delassus.cpp).
+    void gatherSlots(const std::vector<ExtraBlock>& blocks);
+    void layOutPaths();
+    void placeJacobians(const std::vector<ExtraBlock>& blocks);
+    void sweepPathsForward();
+    void invertOnPaths();
+    void assembleDelassus(int rows, Eigen::MatrixXd& G);
+    void clearSlotMaps();
 
     static constexpr std::uint8_t cEdge = 1;              // a joint block; its pivot factor is of -D_b
     static constexpr std::uint8_t cHasChildren = 2;       // some earlier block has this one as parent
