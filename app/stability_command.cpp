@@ -1,8 +1,8 @@
-// app/stability_command.cpp: `frontier stability`: the stability suite's table (app/stability.h).
+// app/stability_command.cpp: `frontier stability`: the stability suite's table (study/stability.h).
 #include "app/commands.h"
-#include "app/stability.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
+#include "study/study.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -27,7 +27,7 @@ int stabilityCommand(const StabilityOptions& options)
     }
     if (methods.empty())
     {
-        methods = defaultStabilityMethods();
+        methods = study::defaultStabilityMethods();
     }
 
     std::vector<core::Model> scenes;
@@ -46,11 +46,11 @@ int stabilityCommand(const StabilityOptions& options)
         return cExitBadInput;
     }
 
-    StabilityLimits limits;
+    study::StabilityLimits limits;
     limits.duration = options.duration;
     limits.dt = options.dt;
     limits.maxDenseRows = options.maxDenseRows;
-    std::vector<StabilityCell> cells;
+    std::vector<study::StabilityCell> cells;
     for (std::size_t s = 0; s < scenes.size(); ++s)
     {
         for (const Method& method : methods)
@@ -60,8 +60,8 @@ int stabilityCommand(const StabilityOptions& options)
                 std::fprintf(stderr, "%s %s ...", names[s].c_str(), method.label().c_str());
                 std::fflush(stderr);
             }
-            cells.push_back(runStabilityCell(scenes[s], names[s], method, limits));
-            const StabilityCell& c = cells.back();
+            cells.push_back(study::runStabilityCell(scenes[s], names[s], method, limits));
+            const study::StabilityCell& c = cells.back();
             if (!options.quiet)
             {
                 std::fprintf(stderr, " %s; gap %.2g m, %.2g rad; energy %+.3g%% / %+.3g%%; %.2f s\n",
@@ -71,7 +71,8 @@ int stabilityCommand(const StabilityOptions& options)
         }
     }
 
-    const std::string table = stabilityMarkdown(scenes, names, methods, cells, limits, machineDescription());
+    const std::string table =
+        study::stabilityMarkdown(scenes, names, methods, cells, limits, study::machineDescription());
     std::cout << table;
     if (!options.out.empty())
     {

@@ -6,13 +6,18 @@
 // dt, and the Pareto front as a highlighted step line. `cd DIR && gnuplot sweep.gp` redraws it.
 #pragma once
 
-#include "app/sweep.h"
+#include "study/sweep.h"
 
 #include <stdexcept>
 #include <string>
 
 namespace frontier::app
 {
+
+// The sweep's results (study/sweep.h).
+using study::paretoFront;
+using study::SweepCell;
+using study::SweepResult;
 
 // gnuplot ran but failed (exit code 1 of the command).
 class ChartError : public std::runtime_error

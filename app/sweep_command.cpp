@@ -1,14 +1,13 @@
-// app/sweep_command.cpp: `frontier sweep`: parse the lists, run the grid (app/sweep.h), write
+// app/sweep_command.cpp: `frontier sweep`: parse the lists, run the grid (study/sweep.h), write
 // DIR/sweep.csv, print the table, draw DIR/sweep.png (app/sweep_chart.h).
 #include "app/commands.h"
 #include "app/progress.h"
 #include "app/scene_loading.h"
-#include "app/sweep.h"
 #include "app/sweep_chart.h"
-#include "app/sweep_report.h"
 #include "core/simulator.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
+#include "study/study.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -32,8 +31,8 @@ int fail(const std::string& message, int code)
 int sweepCommand(const SweepOptions& options)
 {
     core::Model model;
-    SweepGrid grid;
-    SweepSchedule schedule;
+    study::SweepGrid grid;
+    study::SweepSchedule schedule;
     double requestedS = 0.0;
     const fs::path folder(options.out);
     try
@@ -41,15 +40,9 @@ int sweepCommand(const SweepOptions& options)
         LoadedScene loaded = loadSceneWithRobots(options.scene, options.urdf);
         printLoadWarnings(loaded.report);
         model = std::move(loaded.model);
-        grid.dts = options.dts.empty() ? defaultTimeSteps(model.simulation.dt) : parseTimeSteps(options.dts);
-        grid.solvers = options.solvers.empty()
-                           ? parseSolvers({"linear"}, model.simulation.pgsIterations)
-                           : parseSolvers(options.solvers, model.simulation.pgsIterations);
-        grid.integrators = options.integrators.empty() ? parseIntegrators({"euler", "rattle"})
-                                                       : parseIntegrators(options.integrators);
-        requestedS =
-            options.duration ? *options.duration : std::min(model.simulation.duration, cDefaultMaxDuration);
-        schedule = planSchedule(grid.dts, requestedS);
+        grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
+        requestedS = study::sweepDuration(model, options.duration);
+        schedule = study::planSchedule(grid.dts, requestedS);
         // The folder must take our files before minutes of simulation are spent.
         fs::create_directories(folder);
         io::AtomicFile probe((folder / "sweep.csv").string()); // removed again, never committed
@@ -58,7 +51,7 @@ int sweepCommand(const SweepOptions& options)
     {
         return fail(e.what(), cExitBadInput);
     }
-    catch (const SweepInputError& e)
+    catch (const study::SweepInputError& e)
     {
         return fail(e.what(), cExitBadInput);
     }
@@ -81,7 +74,7 @@ int sweepCommand(const SweepOptions& options)
     const bool terminal = stderrIsTerminal();
     int lastPercent = -1;
     int lastIndex = -1;
-    const SweepProgress progress = [&](const std::string& run, int index, int count, double fraction)
+    const study::SweepProgress progress = [&](const std::string& run, int index, int count, double fraction)
     {
         const int percent = static_cast<int>(100.0 * fraction);
         if (!terminal || (percent == lastPercent && index == lastIndex))
@@ -92,16 +85,16 @@ int sweepCommand(const SweepOptions& options)
         lastIndex = index;
         std::fprintf(stderr, "\r\033[Ksweep %d/%d  %s  %3d%%", index + 1, count, run.c_str(), percent);
     };
-    SweepResult result;
+    study::SweepResult result;
     try
     {
-        result = runSweep(model, grid, schedule, progress);
+        result = study::runSweep(model, grid, schedule, progress);
     }
     catch (const core::UnsupportedModelError& e)
     {
         return fail(options.scene + ": " + e.what(), cExitBadInput);
     }
-    catch (const SweepReferenceError& e)
+    catch (const study::SweepReferenceError& e)
     {
         if (terminal)
         {
@@ -117,19 +110,19 @@ int sweepCommand(const SweepOptions& options)
     const std::string csv = (folder / "sweep.csv").string();
     try
     {
-        writeSweepCsv(csv, options.scene, result);
+        study::writeSweepCsv(csv, options.scene, result);
     }
     catch (const io::OutputError& e)
     {
         return fail(e.what(), cExitBadInput);
     }
     std::printf("%s: %d moving bod%s, %.9g s simulated per run\n%s\n\n%s", model.name.c_str(), result.bodies,
-                result.bodies == 1 ? "y" : "ies", schedule.durationS(), describeReference(result).c_str(),
-                formatSweepTable(result).c_str());
+                result.bodies == 1 ? "y" : "ies", schedule.durationS(),
+                study::describeReference(result).c_str(), study::formatSweepTable(result).c_str());
     std::fflush(stdout);
 
-    const bool anySurvived =
-        std::any_of(result.cells.begin(), result.cells.end(), [](const SweepCell& c) { return c.survived; });
+    const bool anySurvived = std::any_of(result.cells.begin(), result.cells.end(),
+                                         [](const study::SweepCell& c) { return c.survived; });
     try
     {
         if (drawSweepChart(options.out, model.name, result))

@@ -1,11 +1,11 @@
 // tests/app/sweep_test.cpp: the sweep's list parsing, sample schedule and Pareto front, in-process.
-#include "app/sweep.h"
+#include "study/sweep.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
 
-namespace frontier::app
+namespace frontier::study
 {
 namespace
 {
@@ -90,4 +90,4 @@ TEST(Sweep, ParetoFrontKeepsOnlyCellsNoOtherBeatsInBoth)
 }
 
 } // namespace
-} // namespace frontier::app
+} // namespace frontier::study

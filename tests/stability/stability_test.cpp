@@ -3,10 +3,10 @@
 // meets the bound the README states; pgs fails where the linear solver holds. Some runs are
 // shorter than the scene's duration to keep CI fast (said where).
 //
-// Energies are relative to the scene's E_ref (app::stabilityEnergyScale: initial kinetic energy +
+// Energies are relative to the scene's E_ref (study::stabilityEnergyScale: initial kinetic energy +
 // M |g| D); "rise" is the largest excess over the initial energy, "loss" the largest deficit.
-#include "app/stability.h"
 #include "io/scene.h"
+#include "study/stability.h"
 #include "tests/soak.h"
 
 #include <cstdio>
@@ -14,8 +14,9 @@
 #include <optional>
 #include <string>
 
-namespace frontier::app::test
+namespace frontier::study::test
 {
+using app::parseMethod;
 namespace
 {
 
@@ -249,4 +250,4 @@ TEST(StabilitySuite, PgsComesApartWhereLinearHolds)
 }
 
 } // namespace
-} // namespace frontier::app::test
+} // namespace frontier::study::test

@@ -1,5 +1,5 @@
-// app/sweep.cpp: the sweep grid, its schedule, the reference run, one run per cell and the metrics.
-#include "app/sweep.h"
+// study/sweep.cpp: the sweep grid, its schedule, the reference run, one run per cell and the metrics.
+#include "study/sweep.h"
 
 #include "app/run_loop.h"
 #include "core/simulator.h"
@@ -10,8 +10,14 @@
 #include <cmath>
 #include <limits>
 
-namespace frontier::app
+namespace frontier::study
 {
+
+// The run loop of `frontier run` (app/run_loop.h).
+using app::Recorder;
+using app::RunSettings;
+using app::runSimulation;
+using app::RunSummary;
 
 namespace
 {
@@ -168,12 +174,12 @@ std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int sc
     {
         const std::string entry = trim(raw);
         bool hasIntegrator = false;
-        const std::optional<Method> parsed = parseMethod(entry, scenePgsIterations, &hasIntegrator);
+        const std::optional<Method> parsed = app::parseMethod(entry, scenePgsIterations, &hasIntegrator);
         if (!parsed && entry.rfind("pgs:", 0) == 0)
         {
             throw SweepInputError("--solver: '" + raw +
                                   "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
-                                  std::to_string(cMaxPgsIterations));
+                                  std::to_string(app::cMaxPgsIterations));
         }
         if (!parsed || hasIntegrator)
         {
@@ -271,6 +277,23 @@ SweepSchedule planSchedule(const std::vector<double>& dts, double durationS)
         schedule.sampleUnits.push_back((i * schedule.units + count / 2) / count);
     }
     return schedule;
+}
+
+SweepGrid makeSweepGrid(const core::Model& model, const std::vector<std::string>& dts,
+                        const std::vector<std::string>& solvers, const std::vector<std::string>& integrators)
+{
+    SweepGrid grid;
+    grid.dts = dts.empty() ? defaultTimeSteps(model.simulation.dt) : parseTimeSteps(dts);
+    grid.solvers = solvers.empty() ? parseSolvers({"linear"}, model.simulation.pgsIterations)
+                                   : parseSolvers(solvers, model.simulation.pgsIterations);
+    grid.integrators =
+        integrators.empty() ? parseIntegrators({"euler", "rattle"}) : parseIntegrators(integrators);
+    return grid;
+}
+
+double sweepDuration(const core::Model& model, std::optional<double> duration)
+{
+    return duration ? *duration : std::min(model.simulation.duration, cDefaultMaxDuration);
 }
 
 namespace
@@ -504,4 +527,4 @@ std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells)
     return front;
 }
 
-} // namespace frontier::app
+} // namespace frontier::study

@@ -1,6 +1,6 @@
-// app/sweep.h: `frontier sweep`, the engine: the grid of time steps x solvers x integrators, one
+// study/sweep.h: `frontier sweep`, the engine: the grid of time steps x solvers x integrators, one
 // run per cell, the reference run and the metrics (cost, trajectory error, joint gap, energy drift,
-// penetration). No output: app/sweep_report.h writes the table and CSV, app/sweep_chart.h the chart.
+// penetration). No output: study/sweep_report.h writes the table and CSV, app/sweep_chart.h the chart.
 //
 // Accuracy is measured against a reference run: integrator rattle (euler when rattle cannot be
 // built or its run fails), solver linear, at the finest time step of the grid divided by
@@ -14,12 +14,15 @@
 #include "core/model.h"
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-namespace frontier::app
+namespace frontier::study
 {
+
+using app::Method; // solver, its options and integrator (app/method.h)
 
 inline constexpr int cSampleCount = 20;          // sample times compared with the reference
 inline constexpr int cReferenceRefinement = 4;   // reference dt = finest dt of the grid / 4
@@ -118,6 +121,14 @@ struct SweepGrid
     std::vector<core::IntegratorKind> integrators;
 };
 
+// The grid from the lists as given (empty: the defaults, defaultTimeSteps of the scene's dt,
+// linear, euler and rattle). Throws SweepInputError.
+SweepGrid makeSweepGrid(const core::Model& model, const std::vector<std::string>& dts,
+                        const std::vector<std::string>& solvers, const std::vector<std::string>& integrators);
+
+// The simulated time asked for (s): the given one, else the scene's capped at cDefaultMaxDuration.
+double sweepDuration(const core::Model& model, std::optional<double> duration);
+
 // Runs the reference, then every cell of the grid one after another (never in parallel, so the
 // wall times are comparable). A cell that throws (an integrator that cannot be built, a singular
 // joint, a blow-up) is a failed cell, not an error. Throws SweepReferenceError when the reference
@@ -129,4 +140,4 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
 // other such cell at most as costly and at most as wrong (better in one). Sorted by cost.
 std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells);
 
-} // namespace frontier::app
+} // namespace frontier::study

@@ -1,5 +1,5 @@
-// app/sweep_report.cpp: sweep.csv and the terminal table.
-#include "app/sweep_report.h"
+// study/sweep_report.cpp: sweep.csv and the terminal table.
+#include "study/sweep_report.h"
 
 #include "io/atomic_file.h"
 
@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <map>
 
-namespace frontier::app
+namespace frontier::study
 {
 
 const char* const cSweepCsvHeader =
@@ -206,4 +206,4 @@ std::string formatSweepTable(const SweepResult& result)
     return out;
 }
 
-} // namespace frontier::app
+} // namespace frontier::study

@@ -1,12 +1,12 @@
-// app/sweep_report.h: the results of `frontier sweep` as DIR/sweep.csv and as a table for the
+// study/sweep_report.h: the results of `frontier sweep` as DIR/sweep.csv and as a table for the
 // terminal, with the Pareto front in words.
 #pragma once
 
-#include "app/sweep.h"
+#include "study/sweep.h"
 
 #include <string>
 
-namespace frontier::app
+namespace frontier::study
 {
 
 // The CSV's column header (its second line, after the "# frontier sweep: ..." comment line).
@@ -32,4 +32,4 @@ std::string formatSweepTable(const SweepResult& result);
 // One line describing the reference run.
 std::string describeReference(const SweepResult& result);
 
-} // namespace frontier::app
+} // namespace frontier::study

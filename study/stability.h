@@ -1,4 +1,4 @@
-// app/stability.h: the stability suite (`frontier stability`, README "Stability suite"): each
+// study/stability.h: the stability suite (`frontier stability`, README "Stability suite"): each
 // scene run with each method (solver and integrator), and what survived: joint gaps, energy
 // drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
 #pragma once
@@ -10,8 +10,10 @@
 #include <string>
 #include <vector>
 
-namespace frontier::app
+namespace frontier::study
 {
+
+using app::Method; // solver, its options and integrator (app/method.h)
 
 // linear/euler, linear/rattle, dense/euler, pgs:20/euler, pgs:100/euler.
 std::vector<Method> defaultStabilityMethods();
@@ -87,4 +89,4 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
 // "N cores, <model name>" from std::thread and /proc/cpuinfo.
 std::string machineDescription();
 
-} // namespace frontier::app
+} // namespace frontier::study

@@ -1,5 +1,5 @@
-// app/stability.cpp: the stability suite's runs and its markdown report.
-#include "app/stability.h"
+// study/stability.cpp: the stability suite's runs and its markdown report.
+#include "study/stability.h"
 
 #include "app/run_loop.h"
 #include "collision/filter.h"
@@ -16,8 +16,15 @@
 #include <sstream>
 #include <thread>
 
-namespace frontier::app
+namespace frontier::study
 {
+
+// The run loop of `frontier run` (app/run_loop.h).
+using app::Recorder;
+using app::RunSettings;
+using app::runSimulation;
+using app::RunSummary;
+using app::stepsFor;
 
 std::vector<Method> defaultStabilityMethods()
 {
@@ -565,4 +572,4 @@ std::string machineDescription()
     return std::to_string(cores) + (cores == 1 ? " core, " : " cores, ") + model;
 }
 
-} // namespace frontier::app
+} // namespace frontier::study
