@@ -78,7 +78,7 @@ Mat4 orthographic(double left, double right, double bottom, double top, double z
 }
 
 View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
-                 double aspect, double fill, double minRadius)
+                 double aspect, double fill, double minRadius, double topFill)
 {
     const core::Vec3 u = up.norm() > 0.0 ? up.normalized() : core::Vec3::UnitZ();
     // Horizontal basis (a, b) so that for z-up a = x, b = y.
@@ -99,11 +99,13 @@ View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, do
     const double tanX = tanY * aspect;
     const double kx = fill * tanX;
     const double ky = fill * tanY;
+    const double kTop = (topFill > 0.0 ? std::min(topFill, fill) : fill) * tanY;
 
     core::Vec3 lo = core::Vec3::Constant(1e300);
     core::Vec3 hi = core::Vec3::Constant(-1e300);
-    // For axis w and slope k: s.e - k f.e >= max(w.p - k f.p) = plus, -w.e - k f.e >= max(-w.p - k f.p)
-    // = minus; so f.e <= -(plus + minus) / (2 k), with w.e = (plus - minus) / 2 centring the points.
+    // For axis w and slopes k+ (top or right) and k-: w.e - k+ f.e >= max(w.p - k+ f.p) = plus and
+    // -w.e - k- f.e >= max(-w.p - k- f.p) = minus; so f.e <= -(plus + minus) / (k+ + k-), and w.e
+    // in the middle of [plus + k+ f.e, -minus - k- f.e] centres the points.
     double plusX = -1e300;
     double minusX = -1e300;
     double plusY = -1e300;
@@ -115,22 +117,23 @@ View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, do
         const double fp = f.dot(p);
         plusX = std::max(plusX, s.dot(p) - kx * fp);
         minusX = std::max(minusX, -s.dot(p) - kx * fp);
-        plusY = std::max(plusY, v.dot(p) - ky * fp);
+        plusY = std::max(plusY, v.dot(p) - kTop * fp);
         minusY = std::max(minusY, -v.dot(p) - ky * fp);
     }
     if (points.empty())
     {
         lo = core::Vec3::Constant(-1.0);
         hi = core::Vec3::Constant(1.0);
-        return framePoints({lo, hi}, up, fovyDegrees, aspect, fill, minRadius);
+        return framePoints({lo, hi}, up, fovyDegrees, aspect, fill, minRadius, topFill);
     }
-    double forward = std::min(-(plusX + minusX) / (2.0 * kx), -(plusY + minusY) / (2.0 * ky));
-    const double sideways = 0.5 * (plusX - minusX);
-    const double upwards = 0.5 * (plusY - minusY);
+    double forward = std::min(-(plusX + minusX) / (2.0 * kx), -(plusY + minusY) / (kTop + ky));
 
     const core::Vec3 centre = 0.5 * (lo + hi);
     const double minDistance = minRadius / std::sin(std::atan(std::min(tanX, tanY)));
     forward = std::min(forward, f.dot(centre) - minDistance);
+    // Centred between the bounds the chosen depth leaves on each axis.
+    const double sideways = 0.5 * (plusX - minusX);
+    const double upwards = 0.5 * ((plusY + kTop * forward) + (-minusY - ky * forward));
 
     View view;
     view.eye = sideways * s + upwards * v + forward * f;

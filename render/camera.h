@@ -37,8 +37,10 @@ struct View
 // is not magnified without limit. Closed form: with the camera axes s (right), u (up), f (forward)
 // fixed, "|s.(p - e)| <= k f.(p - e)" for every point p is two linear bounds on (s.e, f.e), and the
 // largest f.e meeting the bounds of both axes is the closest eye.
+// `topFill` (when positive and below `fill`) keeps the points below that fraction of the upper
+// half instead, leaving room for a caption.
 View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
-                 double aspect, double fill = 0.9, double minRadius = 0.25);
+                 double aspect, double fill = 0.9, double minRadius = 0.25, double topFill = 0.0);
 
 // framePoints of the eight corners of the axis-aligned box [lo, hi].
 View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, double fovyDegrees,

@@ -166,13 +166,28 @@ void drawText(Image& image, int x, int y, const std::string& text, int scale, st
     }
 }
 
+namespace
+{
+int captionScale(int height)
+{
+    return std::max(1, height / 240);
+}
+} // namespace
+
+int captionRows(int width, int height)
+{
+    (void)width;
+    const int scale = captionScale(height);
+    return 3 * scale + cGlyphHeight * scale + 2 * 2 * scale; // margin, glyphs, padding
+}
+
 void drawCaption(Image& image, const std::string& text)
 {
     if (text.empty() || image.width <= 0 || image.height <= 0)
     {
         return;
     }
-    const int scale = std::max(1, image.height / 240);
+    const int scale = captionScale(image.height);
     const int margin = 3 * scale;
     const int pad = 2 * scale;
     std::string shown = text;

@@ -28,6 +28,9 @@ int textWidth(const std::string& text, int scale);
 void drawText(Image& image, int x, int y, const std::string& text, int scale,
               std::array<std::uint8_t, 3> rgb);
 
+// Rows of an image of this size (from the top) that drawCaption may cover.
+int captionRows(int width, int height);
+
 // A caption in the top-left corner: white text on a darkened, semi-transparent band. Text that
 // does not fit the width is cut.
 void drawCaption(Image& image, const std::string& text);

@@ -267,7 +267,11 @@ struct Renderer::Impl
         View v;
         if (model.camera.automatic)
         {
-            v = framePoints(points, up, model.camera.fovDegrees, aspect);
+            // With a caption, the bodies stay below its band (captionRows() of the image's rows).
+            const double topFill = options.caption ? 0.9 - 2.0 * captionRows(options.width, options.height) /
+                                                               static_cast<double>(options.height)
+                                                   : 0.0;
+            v = framePoints(points, up, model.camera.fovDegrees, aspect, 0.9, 0.25, topFill);
         }
         else
         {

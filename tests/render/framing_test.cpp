@@ -1,5 +1,6 @@
 // tests/render/framing_test.cpp: the automatic camera framed over a whole run (Renderer::frameRun)
 // and the shadow of a resting body under the default light.
+#include "render/font.h"
 #include "render/renderer.h"
 #include "test_scenes.h"
 
@@ -115,6 +116,25 @@ TEST(Framing, ThrownBallStaysInsideEveryFrame)
     firstOnly.frameFrom(states.front());
     const PixelBox last = bodyPixels(firstOnly.render(states.back()));
     EXPECT_TRUE(last.count == 0 || last.x1 >= framingOptions().width - border);
+}
+
+TEST(Framing, BodiesStayBelowTheCaption)
+{
+    const core::Model model = ballScene();
+    const std::vector<core::State> states = throwBall(model);
+    RenderOptions options = framingOptions();
+    options.caption = true;
+    Renderer renderer(model, options);
+    renderer.frameRun(states);
+    int top = options.height;
+    for (const core::State& state : states)
+    {
+        const PixelBox box = bodyPixels(renderer.render(state));
+        ASSERT_GT(box.count, 20);
+        top = std::min(top, box.y0);
+    }
+    EXPECT_GE(top, captionRows(options.width, options.height));
+    EXPECT_LT(top, captionRows(options.width, options.height) + 12); // the arc's top is close to it
 }
 
 // Twelve coloured bars dropped from a stack up to 1.2 m high that end scattered over 2 m x 2 m of
