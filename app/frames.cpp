@@ -80,7 +80,7 @@ void renderFrames(const core::Model& model, const std::vector<core::State>& fram
         try
         {
             render::Renderer renderer(model, options);
-            renderer.frameFrom(frames.front());
+            renderer.frameRun(frames); // every frame's bodies in view
             for (std::size_t k = next++; k < frames.size(); k = next++)
             {
                 render::writePng(framePath(settings.folder, k), renderer.render(frames[k]));

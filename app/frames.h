@@ -38,8 +38,9 @@ struct FrameSettings
 // Creates the folder and checks it can be written (throws io::OutputError naming it).
 void prepareFrameFolder(const std::string& folder);
 
-// Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers framed from
-// frames[0]. progress(done) is called from the calling thread. Throws io::OutputError.
+// Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers whose camera is
+// framed once over all the frames (Renderer::frameRun): the bodies stay in view for the whole run,
+// and the camera does not move. progress(done) is called from the calling thread. Throws io::OutputError.
 void renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                   const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
 

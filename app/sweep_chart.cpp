@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 extern char** environ;
@@ -164,12 +165,106 @@ std::string findGnuplot()
     return {};
 }
 
-bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result)
+namespace
+{
+// The chart's geometry (pixels of the PNG, y up from the bottom edge) as the script sets it.
+constexpr double cWidthPx = 1100.0;
+constexpr double cHeightPx = 720.0;
+constexpr double cLeft = 0.085; // plot area edges, fractions of the image
+constexpr double cRight = 0.975;
+constexpr double cTop = 0.92;
+constexpr double cKeyRowPx = 17.0;    // one legend row at the 10 pt font
+constexpr double cBelowAxisPx = 52.0; // tick labels and the axis label under the plot
+constexpr double cLabelCharPx = 6.2;  // one character of a dt label at the 8 pt font
+constexpr double cLabelHeightPx = 11.0;
+constexpr double cMarkerPx = 5.0; // half size of a method's point (pt 7 ps 1.2)
+constexpr double cRingPx = 10.0;  // half size of a Pareto front ring (pt 6 ps 2.4)
+
+struct Rect
+{
+    double x0, y0, x1, y1;
+    bool overlaps(const Rect& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// Whole decades around [lo, hi] (at least one decade).
+void decades(double lo, double hi, double& logLo, double& logHi)
+{
+    logLo = std::floor(std::log10(lo));
+    logHi = std::ceil(std::log10(hi));
+    if (logHi <= logLo)
+    {
+        logHi = logLo + 1.0;
+    }
+}
+
+struct Axes
+{
+    double logX0 = -3, logX1 = 0, logY0 = -6, logY1 = 0; // decades
+    double bottom = 0.2;                                 // fraction of the image under the plot
+    double px(double x) const
+    {
+        return cLeft * cWidthPx + (std::log10(x) - logX0) / (logX1 - logX0) * (cRight - cLeft) * cWidthPx;
+    }
+    double py(double y) const
+    {
+        return bottom * cHeightPx + (std::log10(y) - logY0) / (logY1 - logY0) * (cTop - bottom) * cHeightPx;
+    }
+    double x(double px) const
+    {
+        return std::pow(10.0,
+                        logX0 + (px - cLeft * cWidthPx) / ((cRight - cLeft) * cWidthPx) * (logX1 - logX0));
+    }
+    double y(double py) const
+    {
+        return std::pow(10.0,
+                        logY0 + (py - bottom * cHeightPx) / ((cTop - bottom) * cHeightPx) * (logY1 - logY0));
+    }
+    Rect area() const
+    {
+        return {cLeft * cWidthPx + 2, bottom * cHeightPx + 2, cRight * cWidthPx - 2, cTop * cHeightPx - 2};
+    }
+};
+
+std::string dtLabel(const SweepCell& c)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, "%g ms", c.dt * 1e3);
+    return text;
+}
+
+std::string number(double v)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+// Small boxes along the segment from a to b (pixels), every few pixels.
+void addSegment(std::vector<Rect>& obstacles, double ax, double ay, double bx, double by, double halfWidth)
+{
+    const double length = std::hypot(bx - ax, by - ay);
+    const int pieces = std::max(1, static_cast<int>(length / 4.0));
+    for (int i = 0; i <= pieces; ++i)
+    {
+        const double t = static_cast<double>(i) / pieces;
+        const double x = ax + t * (bx - ax);
+        const double y = ay + t * (by - ay);
+        obstacles.push_back({x - halfWidth, y - halfWidth, x + halfWidth, y + halfWidth});
+    }
+}
+
+struct Chart
+{
+    std::string data;
+    std::string script;
+};
+
+Chart buildChart(const std::string& sceneName, const SweepResult& result)
 {
     // The data: the Pareto front, then one block per method (cost, error, dt label); blocks are
     // separated by two blank lines (gnuplot's `index`).
-    std::string data =
-        "# frontier sweep chart data: wall seconds per simulated second, trajectory error (m), dt\n";
+    Chart chart;
+    chart.data = "# frontier sweep chart data: wall seconds per simulated second, trajectory error (m), dt\n";
     int block = 0;
     std::vector<std::string> labels;
     for (const SweepCell& c : result.cells)
@@ -181,47 +276,158 @@ bool drawSweepChart(const std::string& folder, const std::string& sceneName, con
     }
     // The Pareto front first, under the methods' lines.
     const std::vector<std::size_t> front = paretoFront(result.cells);
+    std::vector<std::size_t> frontShown;
     std::string frontPoints;
     for (std::size_t i : front)
     {
         if (plottable(result.cells[i]))
         {
             frontPoints += point(result.cells[i]);
+            frontShown.push_back(i);
         }
     }
     std::vector<std::string> plots;
+    int keyEntries = 0;
     if (!frontPoints.empty())
     {
-        data += "# Pareto front\n" + frontPoints;
+        chart.data += "# Pareto front\n" + frontPoints;
         plots.push_back("data index 0 using 1:2 with steps lw 7 lc rgb '#a0d62728' title 'Pareto front (no "
                         "other cell both cheaper and more accurate)'");
         plots.push_back("data index 0 using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb '#d62728' notitle");
         ++block;
+        ++keyEntries;
     }
-    int style = 0;
+    struct Series
+    {
+        int lineType = 0;
+        std::vector<std::size_t> cells; // coarse to fine
+    };
+    std::vector<Series> series;
     for (const std::string& label : labels)
     {
+        Series one;
         std::string points;
-        for (const SweepCell& c : result.cells)
+        for (std::size_t i = 0; i < result.cells.size(); ++i)
         {
+            const SweepCell& c = result.cells[i];
             if (c.method.label() == label && plottable(c))
             {
                 points += point(c);
+                one.cells.push_back(i);
             }
         }
         if (points.empty())
         {
             continue;
         }
-        data += (block > 0 ? "\n\n" : "") + std::string("# ") + label + "\n" + points;
-        const std::string index = std::to_string(block);
-        const std::string lt = std::to_string(++style);
-        plots.push_back("data index " + index + " using 1:2 with linespoints lt " + lt +
+        chart.data += (block > 0 ? "\n\n" : "") + std::string("# ") + label + "\n" + points;
+        one.lineType = static_cast<int>(series.size()) + 1;
+        const std::string lt = std::to_string(one.lineType);
+        plots.push_back("data index " + std::to_string(block) + " using 1:2 with linespoints lt " + lt +
                         " lw 2 pt 7 ps 1.2 title " + gnuplotQuote(label));
-        plots.push_back("data index " + index +
-                        " using 1:2:3 with labels left offset char 0.6,0.6 font ',8' tc lt " + lt +
-                        " notitle");
+        series.push_back(one);
         ++block;
+        ++keyEntries;
+    }
+
+    // Geometry: the legend's rows set the bottom margin; the ranges are whole decades.
+    Axes axes;
+    const int keyRows = (keyEntries + 1) / 2;
+    axes.bottom = (cBelowAxisPx + keyRows * cKeyRowPx + 18.0) / cHeightPx;
+    double xLo = 1e300, xHi = -1e300, yLo = 1e300, yHi = -1e300;
+    for (const SweepCell& c : result.cells)
+    {
+        if (plottable(c))
+        {
+            xLo = std::min(xLo, c.secondsPerSimSecond);
+            xHi = std::max(xHi, c.secondsPerSimSecond);
+            yLo = std::min(yLo, c.trajectoryErrorM);
+            yHi = std::max(yHi, c.trajectoryErrorM);
+        }
+    }
+    if (!plots.empty())
+    {
+        decades(xLo, xHi, axes.logX0, axes.logX1);
+        decades(yLo, yHi, axes.logY0, axes.logY1);
+    }
+
+    // dt labels: each placed at the first free spot around its point, or left out.
+    std::vector<Rect> obstacles;
+    for (std::size_t i : frontShown)
+    {
+        const SweepCell& c = result.cells[i];
+        const double x = axes.px(c.secondsPerSimSecond);
+        const double y = axes.py(c.trajectoryErrorM);
+        obstacles.push_back({x - cRingPx, y - cRingPx, x + cRingPx, y + cRingPx});
+    }
+    for (std::size_t k = 1; k < frontShown.size(); ++k) // steps: across, then down
+    {
+        const SweepCell& a = result.cells[frontShown[k - 1]];
+        const SweepCell& b = result.cells[frontShown[k]];
+        addSegment(obstacles, axes.px(a.secondsPerSimSecond), axes.py(a.trajectoryErrorM),
+                   axes.px(b.secondsPerSimSecond), axes.py(a.trajectoryErrorM), 4.0);
+        addSegment(obstacles, axes.px(b.secondsPerSimSecond), axes.py(a.trajectoryErrorM),
+                   axes.px(b.secondsPerSimSecond), axes.py(b.trajectoryErrorM), 4.0);
+    }
+    for (const Series& one : series)
+    {
+        for (std::size_t k = 0; k < one.cells.size(); ++k)
+        {
+            const SweepCell& c = result.cells[one.cells[k]];
+            const double x = axes.px(c.secondsPerSimSecond);
+            const double y = axes.py(c.trajectoryErrorM);
+            obstacles.push_back({x - cMarkerPx, y - cMarkerPx, x + cMarkerPx, y + cMarkerPx});
+            if (k > 0)
+            {
+                const SweepCell& p = result.cells[one.cells[k - 1]];
+                addSegment(obstacles, axes.px(p.secondsPerSimSecond), axes.py(p.trajectoryErrorM), x, y, 1.5);
+            }
+        }
+    }
+    const Rect area = axes.area();
+    std::string labelCommands;
+    int labelCount = 0;
+    for (const Series& one : series)
+    {
+        for (std::size_t i : one.cells)
+        {
+            const SweepCell& c = result.cells[i];
+            const std::string text = dtLabel(c);
+            const double x = axes.px(c.secondsPerSimSecond);
+            const double y = axes.py(c.trajectoryErrorM);
+            const bool onFront = std::find(frontShown.begin(), frontShown.end(), i) != frontShown.end();
+            const double gap = (onFront ? cRingPx : cMarkerPx) + 2.0;
+            const double w = cLabelCharPx * static_cast<double>(text.size());
+            const double h = cLabelHeightPx;
+            // Left edge and vertical centre of each candidate, in order of preference.
+            const double candidates[][2] = {{x + gap, y + 0.6 * h},
+                                            {x + gap, y - 0.6 * h},
+                                            {x - gap - w, y + 0.6 * h},
+                                            {x - gap - w, y - 0.6 * h},
+                                            {x + gap + 2, y},
+                                            {x - gap - 2 - w, y},
+                                            {x - 0.5 * w, y + gap + 0.5 * h},
+                                            {x - 0.5 * w, y - gap - 0.5 * h}};
+            for (const auto& cand : candidates)
+            {
+                const Rect r{cand[0], cand[1] - 0.5 * h, cand[0] + w, cand[1] + 0.5 * h};
+                if (r.x0 < area.x0 || r.x1 > area.x1 || r.y0 < area.y0 || r.y1 > area.y1)
+                {
+                    continue;
+                }
+                if (std::any_of(obstacles.begin(), obstacles.end(),
+                                [&](const Rect& o) { return o.overlaps(r); }))
+                {
+                    continue;
+                }
+                obstacles.push_back(r);
+                labelCommands += "set label " + std::to_string(++labelCount) + " " + gnuplotQuote(text) +
+                                 " at " + number(axes.x(r.x0)) + ", " + number(axes.y(cand[1])) +
+                                 " left font ',8' tc lt " + std::to_string(one.lineType) +
+                                 " front noenhanced\n";
+                break;
+            }
+        }
     }
 
     char title[512];
@@ -229,6 +435,14 @@ bool drawSweepChart(const std::string& folder, const std::string& sceneName, con
                   "%s: speed against accuracy (reference %s at dt %g s, %g s simulated, %zu sample times)",
                   sceneName.c_str(), result.reference.method.label().c_str(), result.reference.dt,
                   result.schedule.durationS(), result.schedule.sampleUnits.size());
+    std::string titleExpression = gnuplotQuote(title);
+    if (errorRanksNothing(result.cells))
+    {
+        titleExpression +=
+            " . \"\\n\" . " + gnuplotQuote("(chaotic: error does not rank the methods; no method's "
+                                           "error falls as dt is refined)");
+    }
+    const double keyTop = axes.bottom - cBelowAxisPx / cHeightPx;
     std::string script =
         "# sweep.gp: the chart of `frontier sweep`; `gnuplot sweep.gp` in this folder draws sweep.png\n"
         "# from sweep.dat (the Pareto front, then one block per method).\n"
@@ -245,18 +459,30 @@ bool drawSweepChart(const std::string& folder, const std::string& sceneName, con
         "}\n"
         "set output out\n"
         "set title " +
-        gnuplotQuote(title) +
+        titleExpression +
         " noenhanced\n"
+        "set lmargin at screen " +
+        number(cLeft) + "\nset rmargin at screen " + number(cRight) + "\nset tmargin at screen " +
+        number(cTop) + "\nset bmargin at screen " + number(axes.bottom) +
+        "\n"
         "set logscale xy\n"
+        "set xrange [" +
+        number(std::pow(10.0, axes.logX0)) + ":" + number(std::pow(10.0, axes.logX1)) + "]\nset yrange [" +
+        number(std::pow(10.0, axes.logY0)) + ":" + number(std::pow(10.0, axes.logY1)) +
+        "]\n"
+        "set xtics 10\nset ytics 10\nset mxtics 10\nset mytics 10\n"
+        "set format x '1e%T'\nset format y '1e%T'\n" // one style per axis: 1e-3, 1e0, 1e2
         "set xlabel 'cost: wall seconds per simulated second' noenhanced\n"
         "set ylabel 'trajectory error (m): largest centre-of-mass distance to the reference' noenhanced\n"
         "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
-        "set format xy '%g'\n"
-        "set key below box Left reverse noenhanced\n"; // under the plot: never over a cell
+        // Under the axis label, two columns: never over a cell or a label.
+        "set key at screen 0.5, screen " +
+        number(keyTop) + " center top vertical maxrows " + std::to_string(std::max(keyRows, 1)) +
+        " box Left reverse width 2 noenhanced\n" + labelCommands;
     if (plots.empty())
     {
         script += "set label 1 'no cell survived: nothing to draw' at graph 0.5, graph 0.5 center\n"
-                  "set xrange [1e-3:1]\nset yrange [1e-6:1]\nplot NaN notitle\n";
+                  "plot NaN notitle\n";
     }
     else
     {
@@ -267,7 +493,64 @@ bool drawSweepChart(const std::string& folder, const std::string& sceneName, con
         }
         script += "\n";
     }
+    chart.script = script;
+    return chart;
+}
+} // namespace
 
+bool errorRanksNothing(const std::vector<SweepCell>& cells)
+{
+    std::vector<std::string> labels;
+    for (const SweepCell& c : cells)
+    {
+        if (std::find(labels.begin(), labels.end(), c.method.label()) == labels.end())
+        {
+            labels.push_back(c.method.label());
+        }
+    }
+    bool judged = false;
+    for (const std::string& label : labels)
+    {
+        std::vector<std::pair<double, double>> runs; // dt (s), error (m)
+        for (const SweepCell& c : cells)
+        {
+            if (c.method.label() == label && c.survived && std::isfinite(c.trajectoryErrorM) &&
+                c.trajectoryErrorM > 0.0 && c.dt > 0.0)
+            {
+                runs.emplace_back(c.dt, c.trajectoryErrorM);
+            }
+        }
+        if (runs.size() < 2)
+        {
+            continue;
+        }
+        judged = true;
+        std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        bool converging = true;
+        for (std::size_t k = 1; k < runs.size() && converging; ++k)
+        {
+            const double allowed =
+                runs[k - 1].second * std::pow(runs[k].first / runs[k - 1].first, cConvergenceOrder);
+            converging = runs[k].second <= allowed;
+        }
+        if (converging)
+        {
+            return false;
+        }
+    }
+    return judged;
+}
+
+std::string sweepChartScript(const std::string& sceneName, const SweepResult& result)
+{
+    return buildChart(sceneName, result).script;
+}
+
+bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result)
+{
+    const Chart chart = buildChart(sceneName, result);
+    const std::string& data = chart.data;
+    const std::string& script = chart.script;
     const fs::path dir(folder);
     writeFile(dir / cData, data);
     writeFile(dir / cScript, script);

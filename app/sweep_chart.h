@@ -4,12 +4,19 @@
 // DIR as a child process (no shell) and draws DIR/sweep.png: trajectory error (m) against cost
 // (wall seconds per simulated second), log-log, one line per method with its points labelled by
 // dt, and the Pareto front as a highlighted step line. `cd DIR && gnuplot sweep.gp` redraws it.
+//
+// Layout: fixed margins and axis ranges (whole decades around the data), ticks at every decade
+// written "1e-3" on both axes, the legend below the axis label in two columns (never over the
+// data), and each dt label placed by the script writer where it overlaps no point, line or other
+// label (or left out when no place is free). A sweep where the error does not fall with dt for any
+// method (errorRanksNothing) says so in the title.
 #pragma once
 
 #include "study/sweep.h"
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace frontier::app
 {
@@ -25,6 +32,20 @@ class ChartError : public std::runtime_error
   public:
     using std::runtime_error::runtime_error;
 };
+
+// The relative drop in error per refinement of dt a method must show to count as converging: its
+// error at each finer dt at most (finer dt / coarser dt)^cConvergenceOrder times the one before
+// (a factor 0.84 per halving: an observed order of accuracy of at least 1/4).
+inline constexpr double cConvergenceOrder = 0.25;
+
+// True when the error ranks nothing: at least one method has two or more surviving cells, and no
+// method's trajectory error falls at every refinement of dt as cConvergenceOrder asks. Then the
+// scene is chaotic at these time steps (a pile of contacts: tiny differences grow until every
+// run is as far from the reference as any other), and the chart compares noise, not methods.
+bool errorRanksNothing(const std::vector<SweepCell>& cells);
+
+// The text of sweep.gp (for the data sweep.dat that drawSweepChart writes alongside it).
+std::string sweepChartScript(const std::string& sceneName, const SweepResult& result);
 
 // gnuplot on the PATH, or empty when it is not installed.
 std::string findGnuplot();

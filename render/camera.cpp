@@ -77,8 +77,8 @@ Mat4 orthographic(double left, double right, double bottom, double top, double z
     return m;
 }
 
-View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, double fovyDegrees,
-              double aspect)
+View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
+                 double aspect, double fill, double minRadius, double topFill)
 {
     const core::Vec3 u = up.norm() > 0.0 ? up.normalized() : core::Vec3::UnitZ();
     // Horizontal basis (a, b) so that for z-up a = x, b = y.
@@ -86,53 +86,73 @@ View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, 
         std::abs(u.dot(core::Vec3::UnitX())) < 0.9 ? core::Vec3::UnitX() : core::Vec3::UnitY();
     const core::Vec3 a = (ref - ref.dot(u) * u).normalized();
     const core::Vec3 b = u.cross(a);
+    const double elevation = 25.0 * std::numbers::pi / 180.0;
+    const core::Vec3 horizontal = (a - b).normalized(); // from the scene towards the camera (+x, -y)
+    const core::Vec3 towardsEye = std::cos(elevation) * horizontal + std::sin(elevation) * u;
+
+    // Camera axes as lookAt builds them.
+    const core::Vec3 f = -towardsEye;
+    const core::Vec3 s = f.cross(robustUp(f, u)).normalized();
+    const core::Vec3 v = s.cross(f);
+
+    const double tanY = std::tan(0.5 * std::clamp(fovyDegrees, 1.0, 170.0) * std::numbers::pi / 180.0);
+    const double tanX = tanY * aspect;
+    const double kx = fill * tanX;
+    const double ky = fill * tanY;
+    const double kTop = (topFill > 0.0 ? std::min(topFill, fill) : fill) * tanY;
+
+    core::Vec3 lo = core::Vec3::Constant(1e300);
+    core::Vec3 hi = core::Vec3::Constant(-1e300);
+    // For axis w and slopes k+ (top or right) and k-: w.e - k+ f.e >= max(w.p - k+ f.p) = plus and
+    // -w.e - k- f.e >= max(-w.p - k- f.p) = minus; so f.e <= -(plus + minus) / (k+ + k-), and w.e
+    // in the middle of [plus + k+ f.e, -minus - k- f.e] centres the points.
+    double plusX = -1e300;
+    double minusX = -1e300;
+    double plusY = -1e300;
+    double minusY = -1e300;
+    for (const core::Vec3& p : points)
+    {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+        const double fp = f.dot(p);
+        plusX = std::max(plusX, s.dot(p) - kx * fp);
+        minusX = std::max(minusX, -s.dot(p) - kx * fp);
+        plusY = std::max(plusY, v.dot(p) - kTop * fp);
+        minusY = std::max(minusY, -v.dot(p) - ky * fp);
+    }
+    if (points.empty())
+    {
+        lo = core::Vec3::Constant(-1.0);
+        hi = core::Vec3::Constant(1.0);
+        return framePoints({lo, hi}, up, fovyDegrees, aspect, fill, minRadius, topFill);
+    }
+    double forward = std::min(-(plusX + minusX) / (2.0 * kx), -(plusY + minusY) / (kTop + ky));
 
     const core::Vec3 centre = 0.5 * (lo + hi);
-    const double radius = std::max(0.5 * (hi - lo).norm(), 0.25);
-    const double elevation = 25.0 * std::numbers::pi / 180.0;
-    const core::Vec3 horizontal = (a - b).normalized(); // from the centre towards the camera (+x, -y)
-    const core::Vec3 dir = std::cos(elevation) * horizontal + std::sin(elevation) * u;
-
-    const double halfFovY = 0.5 * fovyDegrees * std::numbers::pi / 180.0;
-    const double tanY = std::tan(halfFovY);
-    const double tanX = tanY * aspect;
-    // The smallest distance at which all eight corners lie inside 90 % of the view.
-    auto fits = [&](double distance)
-    {
-        const Mat4 view = lookAt(centre + distance * dir, centre, u);
-        for (int i = 0; i < 8; ++i)
-        {
-            const Eigen::Vector4d corner((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(),
-                                         (i & 4) ? hi.z() : lo.z(), 1.0);
-            const Eigen::Vector4d p = view * corner;
-            const double depth = -p.z();
-            if (depth < 0.1 * distance || std::abs(p.x()) > 0.9 * depth * tanX ||
-                std::abs(p.y()) > 0.9 * depth * tanY)
-            {
-                return false;
-            }
-        }
-        return true;
-    };
-    double far = radius / std::sin(std::atan(std::min(tanX, tanY)));
-    for (int i = 0; i < 60 && !fits(far); ++i)
-    {
-        far *= 1.25;
-    }
-    double near = 0.0;
-    for (int i = 0; i < 40; ++i)
-    {
-        const double mid = 0.5 * (near + far);
-        (fits(mid) ? far : near) = mid;
-    }
-    const double distance = far;
+    const double minDistance = minRadius / std::sin(std::atan(std::min(tanX, tanY)));
+    forward = std::min(forward, f.dot(centre) - minDistance);
+    // Centred between the bounds the chosen depth leaves on each axis.
+    const double sideways = 0.5 * (plusX - minusX);
+    const double upwards = 0.5 * ((plusY + kTop * forward) + (-minusY - ky * forward));
 
     View view;
-    view.target = centre;
-    view.eye = centre + distance * dir;
+    view.eye = sideways * s + upwards * v + forward * f;
+    // Look straight ahead (along f), at the depth of the points' centre.
+    view.target = view.eye + std::max(f.dot(centre) - forward, 1e-3) * f;
     view.up = u;
     view.fovyDegrees = fovyDegrees;
     return view;
+}
+
+View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, double fovyDegrees,
+              double aspect)
+{
+    std::vector<core::Vec3> corners;
+    for (int i = 0; i < 8; ++i)
+    {
+        corners.emplace_back((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(), (i & 4) ? hi.z() : lo.z());
+    }
+    return framePoints(corners, up, fovyDegrees, aspect);
 }
 
 } // namespace frontier::render

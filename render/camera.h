@@ -4,6 +4,7 @@
 #include "core/model.h"
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace frontier::render
 {
@@ -28,8 +29,20 @@ struct View
     double fovyDegrees = 45.0;
 };
 
-// A camera that sees the whole axis-aligned box [lo, hi] from the usual three-quarter direction
-// (azimuth -45 deg, elevation about 25 deg relative to `up`), with a small margin.
+// The tightest camera looking from the usual three-quarter direction (azimuth -45 deg, elevation
+// 25 deg relative to `up`) that keeps every point inside the central `fill` fraction of the image
+// in both directions, centred on the points' extent (so the points touch the margin on the
+// limiting axis and are centred on the other). The camera is never closer to the points' bounding
+// box centre than `minRadius` (m) over the sine of the smaller half field of view, so a tiny scene
+// is not magnified without limit. Closed form: with the camera axes s (right), u (up), f (forward)
+// fixed, "|s.(p - e)| <= k f.(p - e)" for every point p is two linear bounds on (s.e, f.e), and the
+// largest f.e meeting the bounds of both axes is the closest eye.
+// `topFill` (when positive and below `fill`) keeps the points below that fraction of the upper
+// half instead, leaving room for a caption.
+View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
+                 double aspect, double fill = 0.9, double minRadius = 0.25, double topFill = 0.0);
+
+// framePoints of the eight corners of the axis-aligned box [lo, hi].
 View frameBox(const core::Vec3& lo, const core::Vec3& hi, const core::Vec3& up, double fovyDegrees,
               double aspect);
 

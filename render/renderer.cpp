@@ -218,27 +218,60 @@ struct Renderer::Impl
         quad = uploadMesh(square);
     }
 
-    // Camera and floor placement, from the first rendered state.
-    void frame(const core::State& state)
+    // Camera and floor placement over `states`: the tightest automatic camera that keeps every pose
+    // the moving bodies (all bodies when none move) take in them inside the image. With
+    // `dropToFloor` (one state whose future is unknown) each point's drop onto the floors below it
+    // is framed too, so that falling bodies stay in view.
+    void frame(const std::vector<core::State>& states, bool dropToFloor)
     {
         const double aspect = static_cast<double>(options.width) / options.height;
-        Bounds box = bodyBounds(model, state, true);
-        if (!box.valid())
+        std::vector<core::Vec3> points;
+        for (const core::State& state : states)
         {
-            box = bodyBounds(model, state, false);
+            addShapeCorners(model, state, true, points);
         }
-        if (!box.valid())
+        if (points.empty())
         {
-            box.add(core::Vec3::Constant(-1.0));
-            box.add(core::Vec3::Constant(1.0));
+            for (const core::State& state : states)
+            {
+                addShapeCorners(model, state, false, points);
+            }
         }
-        const Bounds framedBox = withGround(box, model);
+        if (points.empty())
+        {
+            points = {core::Vec3::Constant(-1.0), core::Vec3::Constant(1.0)};
+        }
+        if (dropToFloor)
+        {
+            const std::size_t n = points.size();
+            for (std::size_t i = 0; i < n; ++i)
+            {
+                for (const Floor& f : floors)
+                {
+                    const double facing = f.normal.dot(up);
+                    const double height = f.normal.dot(points[i]) - f.offset;
+                    if (facing >= 0.5 && height > 0.0) // not a wall or ceiling, and the point is above
+                    {
+                        points.push_back(points[i] - (height / facing) * up);
+                    }
+                }
+            }
+        }
+        Bounds framedBox;
+        for (const core::Vec3& p : points)
+        {
+            framedBox.add(p);
+        }
         const double radius = std::max(framedBox.radius(), 0.25);
 
         View v;
         if (model.camera.automatic)
         {
-            v = frameBox(framedBox.lo, framedBox.hi, up, model.camera.fovDegrees, aspect);
+            // With a caption, the bodies stay below its band (captionRows() of the image's rows).
+            const double topFill = options.caption ? 0.9 - 2.0 * captionRows(options.width, options.height) /
+                                                               static_cast<double>(options.height)
+                                                   : 0.0;
+            v = framePoints(points, up, model.camera.fovDegrees, aspect, 0.9, 0.25, topFill);
         }
         else
         {
@@ -379,31 +412,35 @@ struct Renderer::Impl
         glBindVertexArray(0);
     }
 
-    void frameOnce(const core::State& state)
+    void checkSize(const core::State& state) const
     {
         if (state.bodies.size() != model.bodies.size())
         {
             throw std::invalid_argument("render: the state has " + std::to_string(state.bodies.size()) +
                                         " bodies but the model has " + std::to_string(model.bodies.size()));
         }
-        if (!framed)
+    }
+
+    void frameOnce(const std::vector<core::State>& states, bool dropToFloor)
+    {
+        for (const core::State& state : states)
+        {
+            checkSize(state);
+        }
+        if (!framed && !states.empty())
         {
             context.makeCurrent();
-            frame(state);
+            frame(states, dropToFloor);
         }
     }
 
     Image render(const core::State& state)
     {
-        if (state.bodies.size() != model.bodies.size())
-        {
-            throw std::invalid_argument("render: the state has " + std::to_string(state.bodies.size()) +
-                                        " bodies but the model has " + std::to_string(model.bodies.size()));
-        }
+        checkSize(state);
         context.makeCurrent();
         if (!framed)
         {
-            frame(state);
+            frame({state}, true);
         }
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -459,7 +496,12 @@ Image Renderer::render(const core::State& state)
 
 void Renderer::frameFrom(const core::State& state)
 {
-    impl_->frameOnce(state);
+    impl_->frameOnce({state}, true);
+}
+
+void Renderer::frameRun(const std::vector<core::State>& states)
+{
+    impl_->frameOnce(states, false);
 }
 
 core::Vec3 Renderer::lightDirection() const

@@ -36,9 +36,10 @@ struct Image
 // its own OSMesa (software OpenGL 3.3 core) context. A Renderer must be used by one thread at a
 // time; several Renderers may render concurrently on different threads.
 //
-// Camera: Model::camera when camera.automatic is false; otherwise framed around the moving
-// bodies (and the ground below them) in the state passed to the FIRST render() call, then kept
-// fixed so that an animation does not jitter.
+// Camera: Model::camera when camera.automatic is false; otherwise framed once, then kept fixed so
+// that an animation does not jitter: around every pose of the moving bodies over a whole run
+// (frameRun), or else around the moving bodies (and their drop onto the floor) in the state passed
+// to frameFrom or to the FIRST render() call.
 class Renderer
 {
   public:
@@ -55,6 +56,12 @@ class Renderer
     // Several renderers framed from the same state draw any frame identically, so the frames of
     // one run can be rendered in parallel. No effect once framed.
     void frameFrom(const core::State& state);
+
+    // Fixes the camera framing (and floor placement) so that the bodies stay inside the image in
+    // every one of `states` (the frames of a whole run): the tightest view of every pose the moving
+    // bodies take. Throws std::invalid_argument when a state does not match the model. No effect
+    // once framed or when `states` is empty.
+    void frameRun(const std::vector<core::State>& states);
 
     // The unit direction the light travels, world frame.
     core::Vec3 lightDirection() const;

@@ -2,6 +2,7 @@
 #include "render/scene_bounds.h"
 
 #include <algorithm>
+#include <iterator>
 
 namespace frontier::render
 {
@@ -17,7 +18,10 @@ const std::vector<core::Shape>& drawnShapes(const core::Body& body)
     return body.visuals.empty() ? body.shapes : body.visuals;
 }
 
-Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose)
+namespace
+{
+// The shape's own bounding box corners in the world; false for planes and empty meshes.
+bool shapeCorners(const core::Shape& shape, const core::BodyState& pose, core::Vec3 (&corners)[8])
 {
     core::Vec3 lo = core::Vec3::Zero();
     core::Vec3 hi = core::Vec3::Zero();
@@ -42,7 +46,7 @@ Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose)
     case core::ShapeType::Mesh:
         if (shape.vertices.empty())
         {
-            return {};
+            return false;
         }
         lo = hi = shape.vertices.front();
         for (const core::Vec3& v : shape.vertices)
@@ -52,18 +56,53 @@ Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose)
         }
         break;
     case core::ShapeType::Plane:
-        return {};
+        return false;
     }
     const core::Quat q = pose.orientation_WB * shape.rotation_BS;
     const core::Vec3 origin = pose.position_W + pose.orientation_WB * shape.position_BS;
-    Bounds b;
     for (int i = 0; i < 8; ++i)
     {
         const core::Vec3 corner((i & 1) ? hi.x() : lo.x(), (i & 2) ? hi.y() : lo.y(),
                                 (i & 4) ? hi.z() : lo.z());
-        b.add(origin + q * corner);
+        corners[i] = origin + q * corner;
+    }
+    return true;
+}
+} // namespace
+
+Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose)
+{
+    core::Vec3 corners[8];
+    Bounds b;
+    if (shapeCorners(shape, pose, corners))
+    {
+        for (const core::Vec3& c : corners)
+        {
+            b.add(c);
+        }
     }
     return b;
+}
+
+void addShapeCorners(const core::Model& model, const core::State& state, bool movingOnly,
+                     std::vector<core::Vec3>& points)
+{
+    const std::size_t n = std::min(model.bodies.size(), state.bodies.size());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        if (movingOnly && model.bodies[i].isStatic)
+        {
+            continue;
+        }
+        for (const core::Shape& shape : drawnShapes(model.bodies[i]))
+        {
+            core::Vec3 corners[8];
+            if (shapeCorners(shape, state.bodies[i], corners))
+            {
+                points.insert(points.end(), std::begin(corners), std::end(corners));
+            }
+        }
+    }
 }
 
 Bounds bodyBounds(const core::Model& model, const core::State& state, bool movingOnly)

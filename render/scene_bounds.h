@@ -41,6 +41,11 @@ const std::vector<core::Shape>& drawnShapes(const core::Body& body);
 // Axis-aligned world bounds of one non-plane shape of a body in the given pose (conservative).
 Bounds shapeBounds(const core::Shape& shape, const core::BodyState& pose);
 
+// Appends the eight corners of the oriented bounding box of every drawn non-plane shape of the
+// moving bodies (of all bodies when `movingOnly` is false) in this state to `points`.
+void addShapeCorners(const core::Model& model, const core::State& state, bool movingOnly,
+                     std::vector<core::Vec3>& points);
+
 // Bounds of all drawn non-plane shapes of the moving bodies (or of all bodies when `movingOnly` is
 // false).
 Bounds bodyBounds(const core::Model& model, const core::State& state, bool movingOnly);

@@ -109,7 +109,7 @@ def falling():
                 f"    anchor: {fmt(a)}"]
         if axis:
             out.append(f"    axis: {fmt(axis)}")
-    out.append("camera: {position: [2.6, -2.6, 1.6], look_at: [0, 0, 0.4], fov: 45}")
+    # No camera: the renderer frames the doll over the whole fall (render/README.md).
     return "\n".join(out) + "\n"
 
 

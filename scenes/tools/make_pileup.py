@@ -70,7 +70,7 @@ def main():
                 joints.append(f"  - {{name: c{c}_joint{k}, type: ball, parent: c{c}_link{k - 1}, "
                               f"child: c{c}_link{k}, anchor: {fmt(anchor)}}}")
     out += joints
-    out.append("camera: {position: [3.0, -3.0, 2.2], look_at: [0, 0, 0.2], fov: 45}")
+    # No camera: the renderer frames the chains over the whole run (render/README.md).
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "pileup44.yaml")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")

@@ -32,6 +32,61 @@ TEST(Font, GlyphsAreDistinctAndSpaceIsBlank)
     EXPECT_EQ(glyph('~'), glyph('?')); // unknown characters
 }
 
+bool inkBelowBaseline(char c)
+{
+    const auto rows = glyph(c);
+    for (int r = cGlyphBaseline; r < cGlyphHeight; ++r)
+    {
+        if (rows[static_cast<std::size_t>(r)] != 0)
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool inkOnBaselineRow(char c)
+{
+    return glyph(c)[static_cast<std::size_t>(cGlyphBaseline - 1)] != 0;
+}
+
+TEST(Font, DescendersDropBelowTheBaseline)
+{
+    for (char c : std::string("gjpqy,"))
+    {
+        EXPECT_TRUE(inkBelowBaseline(c)) << c;
+    }
+    for (char c : std::string("aceimnorsuvwxzABGJPQY0123456789."))
+    {
+        EXPECT_FALSE(inkBelowBaseline(c)) << c;
+        EXPECT_TRUE(inkOnBaselineRow(c)) << c << " should stand on the baseline";
+    }
+}
+
+TEST(Font, DrawnDescenderInksBelowTheBaseline)
+{
+    // "ag" at scale 1 from the top: 'a' ends on the baseline row, 'g' inks the rows below it.
+    Image image;
+    image.width = 12;
+    image.height = cGlyphHeight;
+    image.rgba.assign(static_cast<std::size_t>(12 * cGlyphHeight * 4), 0);
+    drawText(image, 0, 0, "ag", 1, {255, 255, 255});
+    auto inkedInRows = [&](int x0, int x1, int y0, int y1)
+    {
+        int n = 0;
+        for (int y = y0; y < y1; ++y)
+        {
+            for (int x = x0; x < x1; ++x)
+            {
+                n += image.rgba[(static_cast<std::size_t>(y) * 12 + static_cast<std::size_t>(x)) * 4] == 255;
+            }
+        }
+        return n;
+    };
+    EXPECT_EQ(inkedInRows(0, cGlyphWidth, cGlyphBaseline, cGlyphHeight), 0); // 'a'
+    EXPECT_GT(inkedInRows(cGlyphAdvance, cGlyphAdvance + cGlyphWidth, cGlyphBaseline, cGlyphHeight), 0);
+}
+
 TEST(Font, DrawTextClipsAndInks)
 {
     Image image;
