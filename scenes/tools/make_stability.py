@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the generated scenes of the stability suite (scenes/stability/, README "Stability suite").
+"""Writes the generated scenes of the stability suite (scenes/stability/, docs/stability.md).
 
   python3 scenes/tools/make_stability.py            # writes every generated scene
   python3 scenes/tools/make_stability.py chain1000  # one of them, to stdout
@@ -94,7 +94,7 @@ HEAVY_1E6_NOTE = [
     "# sqrt(T / (m L)) rad/s (T the tension, m and L the link's mass and length), and a step that",
     "# does not resolve it (h^2 T / (m L) above about 0.5) makes the joint correction diverge",
     "# whatever the solver: here T reaches 3e6 N, so h must stay under about 4e-5 s. At dt = 1 ms",
-    "# every method comes apart within 0.2 s (README, Stability suite)."]
+    "# every method comes apart within 0.2 s (docs/stability.md)."]
 
 
 def doll_large_step():
@@ -205,7 +205,7 @@ def whip():
            f"# tip moves at {spin * tip:g} m/s. Gravity bends the chain down while the spin flings it out:",
            "# waves run along it under a tension of nearly 300 N at the rim (1400 times a link's weight).",
            "# The same chain yanked from rest by the spinning flywheel cracks like a whip (its end",
-           "# reaches 80 m/s at 30 rad/s) and every method comes apart (README, Stability suite).",
+           "# reaches 80 m/s at 30 rad/s) and every method comes apart (docs/stability.md).",
            GENERATED,
            "name: whip",
            "simulation: {dt: 0.001, duration: 2.0, gravity: [0, 0, -9.81], solver: linear}",
