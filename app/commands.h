@@ -10,7 +10,7 @@
 namespace frontier::app
 {
 
-// Exit codes (docs/method.md §10): 0 success, 1 the run failed on its own terms, 2 bad input or usage.
+// Exit codes (README, "Commands"): 0 success, 1 the run failed on its own terms, 2 bad input or usage.
 inline constexpr int cExitOk = 0;
 inline constexpr int cExitFailed = 1;
 inline constexpr int cExitBadInput = 2;

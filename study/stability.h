@@ -1,4 +1,4 @@
-// study/stability.h: the stability suite (`frontier stability`, README "Stability suite"): each
+// study/stability.h: the stability suite (`frontier stability`, docs/stability.md): each
 // scene run with each method (solver and integrator), and what survived: joint gaps, energy
 // drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
 #pragma once

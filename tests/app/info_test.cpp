@@ -15,7 +15,7 @@ namespace frontier::app::test
 namespace
 {
 
-// Rows per joint type (README "The impulse problem"), written out here rather than taken from core.
+// Rows per joint type (docs/method.md §2), written out here rather than taken from core.
 const std::map<std::string, int> cRowsByType = {{"ball", 3},  {"nail", 3},        {"revolute", 5},
                                                 {"angle", 4}, {"cylindrical", 4}, {"prismatic", 5},
                                                 {"fixed", 6}};

@@ -114,7 +114,7 @@ TEST(Convergence, TenLinkChainIsFirstOrderWithEulerAndSecondOrderWithRattle)
 }
 
 // 1000 s of the conservative 10-link chain released at 0.5 rad, rattle at dt = 2.5 ms.
-// Bound (stated in the README): the energy error stays under 1e-5 of the chain's m g L (9.81 J)
+// Bound (docs/method.md §9): the energy error stays under 1e-5 of the chain's m g L (9.81 J)
 // and does not drift: its largest value over the last 100 s is at most twice that over the
 // first 100 s (a symplectic scheme's error oscillates; a drifting one would grow tenfold from the
 // first to the tenth 100 s). Joint gaps under 1e-9 m after every step.

@@ -1,7 +1,7 @@
-// tests/stability/stability_test.cpp: the stability suite (scenes/stability/, README "Stability
-// suite"). Every scene runs with the default method (the linear solver, the euler integrator) and
-// meets the bound the README states; pgs fails where the linear solver holds. Some runs are
-// shorter than the scene's duration to keep CI fast (said where).
+// tests/stability/stability_test.cpp: the stability suite (scenes/stability/, docs/stability.md). Every scene
+// runs with the default method (the linear solver, the euler integrator) and meets the bound
+// docs/stability.md states; pgs fails where the linear solver holds. Some runs are shorter than the scene's
+// duration to keep CI fast (said where).
 //
 // Energies are relative to the scene's E_ref (study::stabilityEnergyScale: initial kinetic energy +
 // M |g| D); "rise" is the largest excess over the initial energy, "loss" the largest deficit.
@@ -193,7 +193,7 @@ TEST(StabilitySuite, THandle)
     EXPECT_LT(c.energyLoss(), 1e-6);
 }
 
-// The ball at 300 m/s tunnels through the 1 cm wall at dt = 1 ms (the README says so and why).
+// The ball at 300 m/s tunnels through the 1 cm wall at dt = 1 ms (docs/stability.md says so and why).
 // At dt = 50 us a step starts with the ball overlapping the wall short of its mid-plane (it moves
 // 15 mm per step, the margin is 2 mm): no tunnelling, an overlap under those 15 mm (measured
 // 5 mm, then projected out), and it bounces back with restitution 0.5, keeping a quarter of its
