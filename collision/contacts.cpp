@@ -3,7 +3,7 @@
 // Pipeline of detect():
 //   1. Pose every shape of a moving body (body frame at the centre of mass, shape pose in it).
 //   2. Ground: each moving shape against each static plane, directly (planes never enter the
-//      broadphase: FCL crashes on infinite AABBs in bulk registration). These
+//      broadphase: FCL's bulk registration crashes on infinite AABBs). These
 //      contacts are made here (plane_manifold.cpp), not by FCL, which returns one point for a
 //      box, capsule or cylinder on a half-space; we return every box vertex, both capsule end
 //      spheres, the cylinder rim points and the mesh vertices within the margin.
@@ -296,17 +296,22 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
             partner = filter.allowed(b, fclBodies[k]);
         inBroadphase[static_cast<std::size_t>(b)] = partner ? 1 : 0;
     }
+    std::vector<fcl::CollisionObjectd*> registered;
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {
         if (!objects[s] || !inBroadphase[static_cast<std::size_t>(shapes[s].body)])
             continue;
-        manager.registerObject(objects[s].get()); // one at a time
+        registered.push_back(objects[s].get());
         if (!filter.isStatic(shapes[s].body))
         {
             movingRegistered.push_back(objects[s].get());
             registeredMoving[s] = 1;
         }
     }
+    // All at once: FCL builds the tree top-down in O(n log n), where inserting one at a time
+    // degenerates on bodies laid along a line (a long chain). Every AABB here is finite (planes
+    // never enter the broadphase).
+    manager.registerObjects(registered);
     useBroadphase = !movingRegistered.empty();
     if (useBroadphase)
         manager.setup();

@@ -373,7 +373,7 @@ void readBody(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
         body.shapes.push_back(std::move(shape));
     }
     builder.bodyMarks[body.name] = nameNode.Mark();
-    builder.model.bodies.push_back(std::move(body));
+    builder.addBody(std::move(body));
 }
 
 } // namespace
@@ -396,18 +396,7 @@ void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const
         failAt(builder.source, nameNode, "invalid " + kind + " name '" + name + "': " + reason);
     }
     const auto& marks = kind == "body" ? builder.bodyMarks : builder.jointMarks;
-    bool taken = false;
-    if (kind == "body")
-    {
-        taken = builder.model.findBody(name) >= 0;
-    }
-    else
-    {
-        for (const core::Joint& joint : builder.model.joints)
-        {
-            taken = taken || joint.name == name;
-        }
-    }
+    const bool taken = kind == "body" ? builder.findBody(name) >= 0 : builder.jointNames.count(name) > 0;
     if (taken)
     {
         const auto it = marks.find(name);
@@ -430,7 +419,7 @@ int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const s
         }
         return core::cWorld;
     }
-    int index = builder.model.findBody(name);
+    int index = builder.findBody(name);
     if (const auto welded = builder.weldedLinks.find(name); index < 0 && welded != builder.weldedLinks.end())
     {
         index = welded->second;

@@ -137,7 +137,7 @@ void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
     joint.collideConnected = map.optBool("collide").value_or(false);
     core::setJointFrames(model, joint, anchor, axis);
     builder.jointMarks[joint.name] = nameNode.Mark();
-    model.joints.push_back(std::move(joint));
+    builder.addJoint(std::move(joint));
 }
 
 } // namespace

@@ -143,26 +143,23 @@ void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fra
     const int offset = static_cast<int>(model.bodies.size());
     for (core::Body& body : fragment.bodies)
     {
-        if (model.findBody(body.name) >= 0)
+        if (builder.findBody(body.name) >= 0)
         {
             entry.fail("the model from '" + urdfPath + "' adds body '" + body.name +
                        "', but a body of that name exists already; give this model another 'prefix'");
         }
-        model.bodies.push_back(std::move(body));
+        builder.addBody(std::move(body));
     }
     for (core::Joint& joint : fragment.joints)
     {
-        for (const core::Joint& existing : model.joints)
+        if (builder.jointNames.count(joint.name))
         {
-            if (existing.name == joint.name)
-            {
-                entry.fail("the model from '" + urdfPath + "' adds joint '" + joint.name +
-                           "', but a joint of that name exists already; give this model another 'prefix'");
-            }
+            entry.fail("the model from '" + urdfPath + "' adds joint '" + joint.name +
+                       "', but a joint of that name exists already; give this model another 'prefix'");
         }
         joint.parent = joint.parent == core::cWorld ? core::cWorld : joint.parent + offset;
         joint.child += offset;
-        model.joints.push_back(std::move(joint));
+        builder.addJoint(std::move(joint));
     }
 }
 

@@ -10,6 +10,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace frontier::io::detail
 {
@@ -19,13 +21,31 @@ struct SceneBuilder
 {
     YamlSource source;
     core::Model model;
-    std::map<std::string, YAML::Mark> bodyMarks;  // where each YAML body's name was given
-    std::map<std::string, YAML::Mark> jointMarks; // where each YAML joint's name was given
-    std::map<std::string, int> weldedLinks;       // a URDF link welded into a body (prefixed name -> body)
-    UrdfOptions urdf;                             // how `models:` are read
-    std::optional<PackagePaths> packages;         // their mesh URIs, made on first use
-    LoadReport* report = nullptr;                 // receives warnings and what loading did
-    std::vector<std::array<int, 2>> heldJoints;   // joints [first, end) of models held by servos
+    std::map<std::string, YAML::Mark> bodyMarks;    // where each YAML body's name was given
+    std::map<std::string, YAML::Mark> jointMarks;   // where each YAML joint's name was given
+    std::map<std::string, int> weldedLinks;         // a URDF link welded into a body (prefixed name -> body)
+    UrdfOptions urdf;                               // how `models:` are read
+    std::optional<PackagePaths> packages;           // their mesh URIs, made on first use
+    LoadReport* report = nullptr;                   // receives warnings and what loading did
+    std::vector<std::array<int, 2>> heldJoints;     // joints [first, end) of models held by servos
+    std::unordered_map<std::string, int> bodyIndex; // every body's name -> its index (no linear search)
+    std::unordered_set<std::string> jointNames;     // every joint's name
+
+    void addBody(core::Body body)
+    {
+        bodyIndex.emplace(body.name, static_cast<int>(model.bodies.size()));
+        model.bodies.push_back(std::move(body));
+    }
+    void addJoint(core::Joint joint)
+    {
+        jointNames.insert(joint.name);
+        model.joints.push_back(std::move(joint));
+    }
+    int findBody(const std::string& name) const
+    {
+        const auto it = bodyIndex.find(name);
+        return it == bodyIndex.end() ? -1 : it->second;
+    }
 };
 
 // Scene text to model (sourceName for messages and relative paths).

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Frontier needs, only those that are missing.
-# Usage: scripts/install-deps.sh [--with-extras] [--for-tests]
+# Usage: scripts/install-deps.sh [--with-extras] [--for-tests] [--with-peers]
 #   --with-extras also installs ffmpeg (--video). gnuplot-nox (the charts of `frontier sweep`)
 #   is in the main list: the sweep test draws one in CI.
 #   --for-tests also installs dart-doc: real robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas)
 #   that the robot corpus test (tests/robots) runs.
+#   --with-peers also installs Bullet, ODE and MuJoCo for bench/peers (the comparison harness,
+#   cmake -DFRONTIER_PEERS=ON); scripts/test.sh builds and runs it.
 # Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
 set -euo pipefail
 
@@ -19,7 +21,8 @@ for option in "$@"; do
   case "$option" in
     --with-extras) packages+=(ffmpeg) ;;
     --for-tests) packages+=(dart-doc) ;;
-    *) echo "install-deps: unknown option '$option' (expected --with-extras or --for-tests)" >&2; exit 2 ;;
+    --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
+    *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests or --with-peers)" >&2; exit 2 ;;
   esac
 done
 

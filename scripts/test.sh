@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: a Release build (warnings are errors) and an
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2.
-# Installs missing Debian packages first (scripts/install-deps.sh --for-tests).
+# Installs missing Debian packages first (scripts/install-deps.sh --for-tests --with-peers); the
+# Release build also builds and tests bench/peers (the comparison with Bullet, ODE and MuJoCo).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=${JOBS:-2}
 
-scripts/install-deps.sh --for-tests
+scripts/install-deps.sh --for-tests --with-peers
 
 echo "== Release build and tests"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFRONTIER_WERROR=ON >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFRONTIER_WERROR=ON -DFRONTIER_PEERS=ON >/dev/null
 cmake --build build -j"$jobs"
 ctest --test-dir build -j"$jobs" --output-on-failure
 

@@ -1,0 +1,62 @@
+// bench/peers/engine.h: one scene (a core::Model) stepped by Frontier or by a peer engine (Bullet,
+// ODE, MuJoCo), each translated from the same Model through that engine's own API, so that every
+// engine runs the same bodies, joints, gravity and time step.
+//
+// Scope: moving bodies joined in one tree by ball, revolute and fixed joints, the tree's root either
+// joined to the world or free; no contacts (a scene's collision shapes are not given to the peers,
+// and Frontier runs without contact detection). A model outside that scope is refused with a
+// message that says what is missing.
+#pragma once
+
+#include "core/model.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace frontier::peers
+{
+
+// A body's pose: centre of mass (m) and orientation, world frame.
+struct Pose
+{
+    core::Vec3 position_W = core::Vec3::Zero();
+    core::Quat orientation_WB = core::Quat::Identity();
+};
+
+// The model cannot be run by an engine (a joint type it lacks, a body off the tree, ...).
+class Unsupported : public std::runtime_error
+{
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+class Engine
+{
+  public:
+    virtual ~Engine() = default;
+    // Advances one time step of the model's dt (s).
+    virtual void step() = 0;
+    // The moving bodies' poses, in Model::bodies order (static bodies keep their model pose).
+    virtual void poses(std::vector<Pose>& out) = 0;
+};
+
+// Every engine and method of the harness, by the names the command line and the tables use:
+//   frontier-euler, frontier-rattle  Frontier, `linear` solver (exact, O(n))
+//   bullet-multibody                 Bullet 3 btMultiBody (reduced coordinates, Featherstone)
+//   bullet-si                        Bullet 3 rigid bodies and constraints, sequential impulses (10 it.)
+//   ode-quick, ode-direct            ODE dWorldQuickStep (20 it.) and dWorldStep (direct LCP)
+//   mujoco                           MuJoCo (reduced coordinates), its default Euler integrator
+std::vector<std::string> engineNames();
+// Throws Unsupported, or std::invalid_argument for an unknown name.
+std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model);
+
+// Per-engine constructors (engine_*.cpp).
+std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator);
+std::unique_ptr<Engine> makeBulletMultibody(const core::Model& model);
+std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model);
+std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep);
+std::unique_ptr<Engine> makeMujoco(const core::Model& model);
+
+} // namespace frontier::peers

@@ -1,0 +1,49 @@
+// bench/peers/engine_frontier.cpp: Frontier itself, the `linear` (exact, O(n)) solver, without
+// contact detection (the harness's scope, engine.h).
+#include "bench/peers/engine.h"
+#include "core/simulator.h"
+#include "core/state.h"
+
+namespace frontier::peers
+{
+namespace
+{
+
+class FrontierEngine final : public Engine
+{
+  public:
+    FrontierEngine(const core::Model& model, core::IntegratorKind integrator)
+        : mModel(withIntegrator(model, integrator)), mSimulator(mModel), mState(core::initialState(mModel))
+    {
+    }
+
+    void step() override { mSimulator.step(mState); }
+
+    void poses(std::vector<Pose>& out) override
+    {
+        out.resize(mState.bodies.size());
+        for (std::size_t b = 0; b < out.size(); ++b)
+            out[b] = {mState.bodies[b].position_W, mState.bodies[b].orientation_WB};
+    }
+
+  private:
+    static core::Model withIntegrator(core::Model model, core::IntegratorKind integrator)
+    {
+        model.simulation.integrator = integrator;
+        model.simulation.solver = core::SolverKind::Linear;
+        return model;
+    }
+
+    core::Model mModel;
+    core::Simulator mSimulator;
+    core::State mState;
+};
+
+} // namespace
+
+std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator)
+{
+    return std::make_unique<FrontierEngine>(model, integrator);
+}
+
+} // namespace frontier::peers
