@@ -1,7 +1,8 @@
 # tests/install/install_test.cmake (cmake -P; tests/install/CMakeLists.txt passes the variables).
 # In a directory of its own under WORK_DIR, removed at the end whatever happens:
 #   1. cmake --install FRONTIER_BINARY_DIR --prefix <dir>/prefix;
-#   2. every `#include "..."` of an installed header names an installed header;
+#   2. the package config names neither tree, and every `#include "..."` of an installed header
+#      names an installed header;
 #   3. configures examples/step_a_scene with CMAKE_PREFIX_PATH=<dir>/prefix (the same generator,
 #      compiler and build type, warnings as errors), builds it and runs it: its exit status is the
 #      verdict on the physics it prints.
@@ -33,6 +34,18 @@ if(header_count EQUAL 0 OR NOT EXISTS "${prefix}/bin/frontier" OR
   file(REMOVE_RECURSE "${dir}")
   message(FATAL_ERROR "the install lacks headers, bin/frontier or the package config")
 endif()
+# The package is relocatable: nothing in it points back into the source or build tree.
+file(GLOB package_files "${prefix}/lib/cmake/Frontier/*.cmake")
+foreach(file IN LISTS package_files)
+  file(READ "${file}" text)
+  foreach(tree "${FRONTIER_SOURCE_DIR}" "${FRONTIER_BINARY_DIR}")
+    string(FIND "${text}" "${tree}" at)
+    if(NOT at EQUAL -1)
+      file(REMOVE_RECURSE "${dir}")
+      message(FATAL_ERROR "${file} names ${tree}")
+    endif()
+  endforeach()
+endforeach()
 foreach(header IN LISTS headers)
   file(STRINGS "${include_dir}/${header}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
   foreach(line IN LISTS includes)
