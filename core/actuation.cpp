@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace frontier::core
 {
@@ -95,7 +96,18 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
     mStepAtLimit.assign(n, 0);
     mLastFraction.assign(n, 0.0);
     mEfforts.assign(n, ActuatorEffort{});
+    mTargets.resize(n);
     updateGains();
+}
+
+void Actuation::setTarget(std::size_t actuator, TimeFunction target)
+{
+    mTargets.at(actuator) = std::move(target);
+}
+
+const TimeFunction& Actuation::targetOf(std::size_t a) const
+{
+    return mTargets[a] ? *mTargets[a] : mModel.actuators[a].target;
 }
 
 void Actuation::updateGains()
@@ -161,7 +173,7 @@ void Actuation::applyForces(State& state, double t0, double t1)
         {
             continue;
         }
-        const double commanded = valueAt(actuator.target, t0); // N m or N
+        const double commanded = valueAt(targetOf(a), t0); // N m or N
         const double effort = std::clamp(commanded, -actuator.effortLimit, actuator.effortLimit);
         mStepAtLimit[a] = mStepAtLimit[a] || std::abs(commanded) > actuator.effortLimit;
         const double impulse = effort * (t1 - t0);
@@ -183,14 +195,14 @@ Actuation::Command Actuation::command(std::size_t a, const State& state, double 
     Command c;
     if (actuator.kind == ActuatorKind::Velocity)
     {
-        c.speed = valueAt(actuator.target, tEnd);
+        c.speed = valueAt(targetOf(a), tEnd);
         c.force = actuator.kd * c.speed;
         return c;
     }
     const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
-    const double target = valueAt(actuator.target, tEnd) - joint.initialPosition; // from the initial pose
+    const double target = valueAt(targetOf(a), tEnd) - joint.initialPosition; // from the initial pose
     const double q = jointCoordinate(mModel, state, actuator.joint, actuator.coordinate);
-    c.speed = rateAt(actuator.target, tEnd);
+    c.speed = rateAt(targetOf(a), tEnd);
     c.force = actuator.kd * c.speed - actuator.kp * (q - target);
     return c;
 }

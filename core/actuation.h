@@ -31,6 +31,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -59,6 +60,11 @@ class Actuation
     std::span<const JointDriveGains> gains() const { return mGains; }
     // Some position or velocity actuator: solves are measured and may be taken again.
     bool hasDriveRows() const { return mDriveActuators > 0; }
+
+    // Replaces the target of Model::actuators[actuator] from the next solve on (the model's own
+    // target is no longer read; units as Actuator::target). Throws std::out_of_range for an index
+    // beyond Model::actuators.
+    void setTarget(std::size_t actuator, TimeFunction target);
 
     // A new step: forgets the impulses of an earlier attempt.
     void beginStep();
@@ -96,6 +102,8 @@ class Actuation
         double speed = 0.0; // v* (m/s or rad/s)
     };
     Command command(std::size_t a, const State& state, double tEnd) const;
+    // The target actuator a follows: one given to setTarget, else the model's.
+    const TimeFunction& targetOf(std::size_t a) const;
 
     const Model& mModel;
     std::vector<int> mRow;               // per actuator: its drive row in the joint's block
@@ -108,6 +116,8 @@ class Actuation
     std::vector<double> mLastFraction;    // per actuator: |impulse| / bound in its last solve
     std::vector<double> mSolveImpulse;    // scratch of acceptSolve
     std::vector<ActuatorEffort> mEfforts; // the last finished step
+    // Per actuator: the target given to setTarget, or none (the model's).
+    std::vector<std::optional<TimeFunction>> mTargets;
 };
 
 } // namespace frontier::core

@@ -53,6 +53,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace frontier::core
 {
@@ -159,6 +160,18 @@ class Simulator
     // applied over the step divided by dt (N or N m, along its coordinate; drift corrections not
     // counted), and whether it sat at its effort limit (core/actuation.h).
     std::span<const ActuatorEffort> actuatorEfforts() const { return mActuation.efforts(); }
+    // Replaces the target of Model::actuators[actuator] from the next step on, by a constant (rad
+    // or m for a servo in the model file's coordinate, rad/s or m/s for a motor, N m or N for an
+    // effort; Actuator::target) or by any TimeFunction of the simulation time. Throws
+    // std::out_of_range for an index beyond Model::actuators.
+    void setActuatorTarget(std::size_t actuator, double value)
+    {
+        mActuation.setTarget(actuator, constantFunction(value));
+    }
+    void setActuatorTarget(std::size_t actuator, TimeFunction target)
+    {
+        mActuation.setTarget(actuator, std::move(target));
+    }
 
     // What the last step passed through its joints and contacts, worked out when asked
     // (core/step_report.cpp; nothing of it runs in step()).

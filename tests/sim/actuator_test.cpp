@@ -4,7 +4,8 @@
 // cannot lift its rod pushes at its effort limit exactly while the rod falls at (tau_g - limit) / I,
 // one that can holds its speed; an effort actuator accelerates a known body at tau / I; no
 // actuator's impulse exceeds limit * dt in a chain of saturating servos, on either integrator and
-// solver; the O(n) solver and the dense one agree with servos in the joint blocks.
+// solver; the O(n) solver and the dense one agree with servos in the joint blocks; a target set at
+// run time (Simulator::setActuatorTarget) is followed from then on.
 #include "core/joints/coordinates.h"
 #include "joint_models.h"
 #include "sim_test_util.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace frontier::sim::test
 {
@@ -77,6 +79,38 @@ TEST(Actuators, PositionServoOnAPendulumIsTheClosedFormDampedOscillator)
         }
         RecordProperty(std::string("worst_error_rad_") + core::integratorName(integrator), sci(worst));
         EXPECT_LT(worst, 0.01 * target) << core::integratorName(integrator);
+    }
+}
+
+// Simulator::setActuatorTarget: a servo holding the pendulum at 0 and given the target 0.3 rad at
+// T = 0.5 s follows the same damped oscillator from T (a constant target: no rate to damp towards).
+TEST(Actuators, TargetSetAtRunTimeIsFollowedFromThen)
+{
+    constexpr double target = 0.3;                   // rad
+    constexpr double omega = 2.0 * std::numbers::pi; // rad/s
+    constexpr double zeta = 0.2;
+    constexpr double dt = 1e-4;
+    constexpr double switchTime = 0.5; // s
+    for (const IntegratorKind integrator : cIntegrators)
+    {
+        const core::Model model = servoPendulum(integrator, dt, 0.0, omega, zeta);
+        core::Simulator simulator(model);
+        core::State state = core::initialState(model);
+        for (long k = 0; k < stepsFor(switchTime, dt); ++k)
+        {
+            simulator.step(state);
+        }
+        EXPECT_EQ(state.jointAngles[0], 0.0) << core::integratorName(integrator);
+        simulator.setActuatorTarget(0, target);
+        double worst = 0.0;
+        for (long k = 0; k < stepsFor(2.5, dt); ++k)
+        {
+            simulator.step(state);
+            const double expected = target + dampedOscillator(target, omega, zeta, state.time - switchTime);
+            worst = std::max(worst, std::abs(state.jointAngles[0] - expected));
+        }
+        EXPECT_LT(worst, 0.01 * target) << core::integratorName(integrator);
+        EXPECT_THROW(simulator.setActuatorTarget(1, 0.0), std::out_of_range);
     }
 }
 

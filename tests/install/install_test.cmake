@@ -1,0 +1,70 @@
+# tests/install/install_test.cmake (cmake -P; tests/install/CMakeLists.txt passes the variables).
+# In a directory of its own under WORK_DIR, removed at the end whatever happens:
+#   1. cmake --install FRONTIER_BINARY_DIR --prefix <dir>/prefix;
+#   2. the package config names neither tree, and every `#include "..."` of an installed header
+#      names an installed header;
+#   3. configures examples/step_a_scene with CMAKE_PREFIX_PATH=<dir>/prefix (the same generator,
+#      compiler and build type, warnings as errors), builds it and runs it: its exit status is the
+#      verdict on the physics it prints.
+cmake_minimum_required(VERSION 3.20)
+
+string(RANDOM LENGTH 10 suffix)
+set(dir "${WORK_DIR}/install-test-${suffix}")
+file(MAKE_DIRECTORY "${dir}")
+set(prefix "${dir}/prefix")
+
+# Runs a command; on failure removes `dir` and stops with the command's output.
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    file(REMOVE_RECURSE "${dir}")
+    message(FATAL_ERROR "${what} failed (${status}):\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run("cmake --install" ${CMAKE_COMMAND} --install "${FRONTIER_BINARY_DIR}" --prefix "${prefix}")
+
+set(include_dir "${prefix}/include/frontier")
+file(GLOB_RECURSE headers RELATIVE "${include_dir}" "${include_dir}/*.h")
+list(LENGTH headers header_count)
+if(header_count EQUAL 0 OR NOT EXISTS "${prefix}/bin/frontier" OR
+   NOT EXISTS "${prefix}/lib/cmake/Frontier/FrontierConfig.cmake" OR
+   NOT EXISTS "${prefix}/lib/cmake/Frontier/FrontierConfigVersion.cmake")
+  file(REMOVE_RECURSE "${dir}")
+  message(FATAL_ERROR "the install lacks headers, bin/frontier or the package config")
+endif()
+# The package is relocatable: nothing in it points back into the source or build tree.
+file(GLOB package_files "${prefix}/lib/cmake/Frontier/*.cmake")
+foreach(file IN LISTS package_files)
+  file(READ "${file}" text)
+  foreach(tree "${FRONTIER_SOURCE_DIR}" "${FRONTIER_BINARY_DIR}")
+    string(FIND "${text}" "${tree}" at)
+    if(NOT at EQUAL -1)
+      file(REMOVE_RECURSE "${dir}")
+      message(FATAL_ERROR "${file} names ${tree}")
+    endif()
+  endforeach()
+endforeach()
+foreach(header IN LISTS headers)
+  file(STRINGS "${include_dir}/${header}" includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\".*$" "\\1" included "${line}")
+    if(NOT EXISTS "${include_dir}/${included}")
+      file(REMOVE_RECURSE "${dir}")
+      message(FATAL_ERROR "installed ${header} includes \"${included}\", which was not installed")
+    endif()
+  endforeach()
+endforeach()
+
+set(configure_args -S "${FRONTIER_SOURCE_DIR}/examples/step_a_scene" -B "${dir}/build" -G "${GENERATOR}"
+  "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}"
+  "-DCMAKE_CXX_FLAGS=-Wall -Wextra -Wpedantic -Wshadow -Werror")
+if(CXX_COMPILER_LAUNCHER)
+  list(APPEND configure_args "-DCMAKE_CXX_COMPILER_LAUNCHER=${CXX_COMPILER_LAUNCHER}")
+endif()
+run("configuring examples/step_a_scene" ${CMAKE_COMMAND} ${configure_args})
+run("building examples/step_a_scene" ${CMAKE_COMMAND} --build "${dir}/build")
+run("running step_a_scene" "${dir}/build/step_a_scene")
+message(STATUS "${header_count} headers installed; step_a_scene:\n${last_output}")
+file(REMOVE_RECURSE "${dir}")
