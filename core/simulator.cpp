@@ -8,10 +8,9 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include <utility>
 
 namespace frontier::core
 {
@@ -28,26 +27,6 @@ Quat rotationFromVector(const Vec3& theta)
     }
     return Quat(Eigen::AngleAxisd(angle, theta / angle));
 }
-
-// Wall time of consecutive stages of one step, into StepStats::seconds.
-class StageClock
-{
-  public:
-    explicit StageClock(std::array<double, cStepStages>& out)
-        : mOut(out), mLast(std::chrono::steady_clock::now())
-    {
-    }
-    void lap(StepStage stage)
-    {
-        const auto now = std::chrono::steady_clock::now();
-        mOut[static_cast<std::size_t>(stage)] = std::chrono::duration<double>(now - mLast).count();
-        mLast = now;
-    }
-
-  private:
-    std::array<double, cStepStages>& mOut;
-    std::chrono::steady_clock::time_point mLast;
-};
 
 // Anything beyond these is a blow-up even while still finite.
 constexpr double cMaxSpeed = 1e5;        // m/s
@@ -68,7 +47,8 @@ bool pushesApart(const ExtraBlock& block)
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mActuation(model, mLayout),
-      mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)), mDt(model.simulation.dt)
+      mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)),
+      mProblem(model, mOptions, mLayout, *mSolver), mDt(model.simulation.dt)
 {
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
@@ -84,18 +64,6 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
         if (!model.bodies[i].isStatic)
         {
             mPrincipal[i] = principalAxes(model.bodies[i].inertia_B);
-        }
-    }
-    for (std::size_t k = 0; k < nj; ++k)
-    {
-        const Joint& joint = model.joints[k];
-        if (joint.limits && (joint.type == JointType::Revolute || joint.type == JointType::Prismatic))
-        {
-            mLimitedJoints.push_back(static_cast<int>(k));
-        }
-        if (joint.friction > 0.0 && !jointCoordinates(joint.type).empty())
-        {
-            mFrictionJoints.push_back(static_cast<int>(k));
         }
     }
 }
@@ -155,7 +123,7 @@ void Simulator::stepEuler(State& state)
         buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
         recordStartDefects(state);
         setMomentumRhs(state, state.time + mDt);
-        carryImpulses(); // the last step's impulses on those rows join the right-hand side
+        mProblem.carryImpulses(mRhs); // the last step's impulses on those rows join the right-hand side
         // docs/method.md §3, eq. (5) (eliminate), once per step, and eq. (6) (substitute) for the joint
         // impulses of the free velocities and the carried extra impulses, fused into one pass.
         mSolver->factorAndSolve(mRows, mRhs, mSolution);
@@ -224,7 +192,7 @@ bool Simulator::stepRattle(State& state)
         buildExtraRows(state);
         recordStartDefects(state);
         setMomentumRhs(state, state.time + 0.5 * mDt);
-        carryImpulses();
+        mProblem.carryImpulses(mRhs);
         mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
         solveContactImpulses(state);
         clock.lap(StepStage::Solve);
@@ -269,9 +237,9 @@ void Simulator::projectVelocities(State& state)
     for (;;)
     {
         mSolver->factor(mRows);
-        buildLoopRows(mRows);
+        buildLoopBlocks(mModel, mLayout, mRows, mLoopBlocks);
         mEndBlocks = mLoopBlocks;
-        for (const ExtraBlock& block : mExtra)
+        for (const ExtraBlock& block : mProblem.blocks())
         {
             if (block.kind == ExtraBlock::Kind::Drive)
             {
@@ -281,7 +249,7 @@ void Simulator::projectVelocities(State& state)
                 }
                 continue;
             }
-            if (block.kind != ExtraBlock::Kind::Loop && mExtraLambda(block.offset) > 0.0)
+            if (block.kind != ExtraBlock::Kind::Loop && mProblem.impulses()(block.offset) > 0.0)
             {
                 ExtraBlock normal = block;
                 normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
@@ -300,8 +268,8 @@ void Simulator::projectVelocities(State& state)
             extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
             mEndLambda.setZero(rows);
             coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
-            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda, mExtraScratch,
-                           &mEndCoupling);
+            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda,
+                           mProblem.scratch(), &mEndCoupling);
             mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
         }
         if (mActuation.acceptSolve(mRows, mCorrection, mEndBlocks, mEndLambda, driveStep()))
@@ -333,7 +301,7 @@ void Simulator::recordStartDefects(const State& state)
 {
     if (!mStartRecorded)
     {
-        mStartDefects = findStartDefects(mContacts, mExtra, mModel, state);
+        mStartDefects = findStartDefects(mProblem.contacts(), mProblem.blocks(), mModel, state);
         mStartRecorded = true;
     }
 }
@@ -350,7 +318,7 @@ std::string Simulator::likelyCause(const State& state) const
         mStartDefects.limitExcess /
             (std::min(mOptions.penetrationMaxSpeed, mOptions.penetrationMaxAngularSpeed) * mDt);
     bool stillThere = mStats.maxPenetrationM > cDeepOverlap;
-    for (const ExtraBlock& block : mExtra)
+    for (const ExtraBlock& block : mProblem.blocks())
     {
         stillThere =
             stillThere || (block.kind == ExtraBlock::Kind::Limit &&
@@ -395,12 +363,17 @@ void Simulator::checkState(const State& state, const char* where) const
         }
         if (quantity != nullptr)
         {
-            std::ostringstream msg;
-            msg << "simulation blew up at step " << state.step << " (t = " << state.time << " s, " << where
-                << "): body '" << mModel.bodies[i].name << "' has a non-finite or runaway " << quantity
-                << " (limits " << cMaxSpeed << " m/s, " << cMaxAngularSpeed << " rad/s)"
-                << likelyCause(state);
-            throw SimulationError(msg.str());
+            SimulationFailure failure;
+            failure.step = state.step;
+            failure.time = state.time;
+            failure.where = where;
+            failure.body = static_cast<int>(i);
+            failure.bodyName = mModel.bodies[i].name;
+            failure.quantity = quantity;
+            failure.maxSpeed = cMaxSpeed;
+            failure.maxAngularSpeed = cMaxAngularSpeed;
+            failure.hint = likelyCause(state);
+            throw SimulationError(std::move(failure));
         }
     }
 }
@@ -432,7 +405,7 @@ void Simulator::keepFreeVelocities(const State& state)
 bool Simulator::actuatorsWithinLimits(State& state)
 {
     if (!mActuation.hasDriveRows() ||
-        mActuation.acceptSolve(mRows, mSolution, mExtra, mExtraLambda, driveStep()))
+        mActuation.acceptSolve(mRows, mSolution, mProblem.blocks(), mProblem.impulses(), driveStep()))
     {
         return true;
     }
@@ -457,114 +430,26 @@ void Simulator::kickByGravity(State& state, double h)
 
 void Simulator::detectContacts(const State& state)
 {
-    mContacts.clear();
+    std::vector<Contact>& contacts = mProblem.contacts();
+    contacts.clear();
     if (mContactSource != nullptr)
     {
-        mContactSource->detect(state, mContacts);
+        mContactSource->detect(state, contacts);
     }
-    mStats.contacts = static_cast<int>(mContacts.size());
+    mStats.contacts = static_cast<int>(contacts.size());
     mStats.maxPenetrationM = 0.0;
-    for (const Contact& contact : mContacts)
+    for (const Contact& contact : contacts)
     {
         mStats.maxPenetrationM = std::max(mStats.maxPenetrationM, contact.depth);
     }
 }
 
-// Contact rows with their targets (restitution, or the gap that may close this step), the rows of
-// loop-closing joints, and limit rows near a limit. Evaluated at the start-of-step pose.
+// The step's extra rows at the start-of-step pose (core/step/contact_problem.h): the loop joints'
+// rows of the factored rows, contacts, limits, joint friction and actuators at their limits.
 void Simulator::buildExtraRows(const State& state)
 {
-    mExtra.clear();
-    const double e = mModel.contact.restitution;
-    for (std::size_t c = 0; c < mContacts.size(); ++c)
-    {
-        const Contact& contact = mContacts[c];
-        // A gap that the bodies cannot close within cSpeculativeSteps steps, even moving straight
-        // at each other at their relative speed plus this step's gravity, needs no row: only the
-        // rows a scene needs are built (resting bodies near each other add none).
-        constexpr double cSpeculativeSteps = 3.0;
-        if (contact.depth < 0.0)
-        {
-            Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
-            const BodyState& a = mStart[static_cast<std::size_t>(contact.bodyA)];
-            relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
-            if (contact.bodyB >= 0 && !mModel.bodies[static_cast<std::size_t>(contact.bodyB)].isStatic)
-            {
-                const BodyState& b = mStart[static_cast<std::size_t>(contact.bodyB)];
-                relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
-            }
-            const double closing = relative.norm() + mModel.simulation.gravity.norm() * mDt;
-            if (closing * mDt * cSpeculativeSteps < -contact.depth)
-            {
-                continue;
-            }
-        }
-        ExtraBlock& block =
-            appendContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c), mExtra);
-        // Normal velocity before this step's gravity (m/s); < 0 approaching.
-        double approach =
-            block.J_A.row(0).dot((Vec6() << mStart[static_cast<std::size_t>(block.bodyA)].velocity_W,
-                                  mStart[static_cast<std::size_t>(block.bodyA)].angularVelocity_W)
-                                     .finished());
-        if (block.bodyB >= 0)
-        {
-            const BodyState& b = mStart[static_cast<std::size_t>(block.bodyB)];
-            approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
-        }
-        const bool closes = contact.depth >= 0.0 || approach * mDt <= contact.depth;
-        if (!closes)
-        {
-            block.target(0) = contact.depth / mDt; // speculative: may approach by the gap, no more
-        }
-        else if (approach < -mOptions.restitutionSpeed)
-        {
-            block.target(0) = -e * approach; // Newton restitution
-        }
-    }
-    buildLoopRows(mRows);
-    for (const ExtraBlock& loop : mLoopBlocks)
-    {
-        mExtra.push_back(loop);
-    }
-    for (int joint : mLimitedJoints)
-    {
-        const std::size_t before = mExtra.size();
-        appendLimitBlocks(mModel, state, joint, mOptions.limitMargin, mExtra);
-        if (mExtra.size() > before && mExtra.back().error(0) < 0.0)
-        {
-            mExtra.back().target(0) = mExtra.back().error(0) / mDt; // the gap to the limit
-        }
-    }
-    for (int joint : mFrictionJoints)
-    {
-        appendFrictionBlocks(mModel, state, joint, driveStep(), mExtra);
-    }
-    mActuation.appendBoundedRows(state, state.time + driveStep(), driveStep(), mExtra);
-    mStats.extraRows = layoutExtraRows(mExtra);
-}
-
-// Loop-closing joints: all their rows bilateral, velocity target 0.
-void Simulator::buildLoopRows(const RowSystem& rows)
-{
-    mLoopBlocks.clear();
-    for (int k : mLayout.loopJoints)
-    {
-        const Joint& joint = mModel.joints[static_cast<std::size_t>(k)];
-        const JointRows& r = rows.joints[static_cast<std::size_t>(k)];
-        ExtraBlock block;
-        block.kind = ExtraBlock::Kind::Loop;
-        block.count = r.count;
-        block.bodyA = jointToWorld(mModel, joint) ? -1 : joint.parent;
-        block.bodyB = joint.child;
-        block.J_A = r.J_a;
-        block.J_B = r.J_b;
-        block.error = r.error;
-        const int drives = r.count - r.constraintRows;
-        block.compliance.segment(r.constraintRows, drives) = r.compliance.segment(r.constraintRows, drives);
-        block.source = k;
-        mLoopBlocks.push_back(block);
-    }
-    layoutExtraRows(mLoopBlocks);
+    buildLoopBlocks(mModel, mLayout, mRows, mLoopBlocks);
+    mStats.extraRows = mProblem.build(state, mStart, mLoopBlocks, mDt, driveStep(), mActuation);
 }
 
 // p = M u* for the joint-impulse solve M u' - J^T lambda = M u*, J u' + E lambda = c: c = 0 but
@@ -588,291 +473,19 @@ void Simulator::setMomentumRhs(const State& state, double tEnd)
     mActuation.setRowTargets(state, tEnd, driveStep(), mRhs); // servos and motors in their blocks
 }
 
-// The last step's impulses on this step's rows (warmStart), and their momentum J_x^T lambda in
-// the right-hand side of the step's first solve: that solve then gives u(lambda_carried) =
-// H^-1 (M u* + J_x^T lambda_carried) exactly, so a step whose carried impulses still hold needs no
-// second O(n) solve, and the others apply only the change of the impulses.
-void Simulator::carryImpulses()
-{
-    mExtraLambda.setZero(mStats.extraRows);
-    mWarm = mStats.extraRows > 0 && warmStart();
-    mBaseLambda = mExtraLambda;
-    if (mWarm)
-    {
-        ImpulseSolver::addExtraImpulses(mExtra, mExtraLambda, mRhs);
-    }
-}
-
-// solution += H^-1 J_x^T (lambda - lambda_carried): from u(lambda_carried) to u(lambda).
-void Simulator::applyImpulseChange(BlockVector& solution)
-{
-    mImpulseChange = mExtraLambda - mBaseLambda;
-    mSolver->applyExtraImpulses(mExtra, mImpulseChange, solution);
-}
-
-// With the tree's solution u(lambda_carried) (mSolution, u_free when nothing was carried), the
-// extra rows in constraint space: v = J_x u_free + G lambda with the complementarity conditions,
-// and u' = u_free + H^-1 J_x^T lambda; then the state takes u'.
+// The extra rows' impulses on top of the tree's solution (core/step/contact_problem.h); then the
+// state takes the velocities u'.
 void Simulator::solveContactImpulses(State& state)
 {
-    mStats.contactSweeps = 0;
-    mStats.contactRoute = ContactRoute::None;
-    mDelassusValid = false;
-    if (mDelassusAge >= 0 && mDelassusAge <= cMaxDelassusAge)
-    {
-        ++mDelassusAge; // stops one past the limit
-    }
-    if (mStats.extraRows > 0)
-    {
-        if (mWarm && lastImpulsesStillHold())
-        {
-            mStats.contactRoute = ContactRoute::Carried;
-        }
-        else if (mWarm && mOptions.reuseDelassus && solveWithLastDelassus())
-        {
-            mStats.contactRoute = ContactRoute::Reused;
-        }
-        else
-        {
-            mStats.contactRoute = ContactRoute::Built;
-            buildDelassus();
-            if (mWarm)
-            {
-                mExtraScratch.velocity = mExtraVelocity; // exact at the impulses reached so far
-            }
-            else
-            {
-                extraRowVelocities(mExtra, mSolution, mExtraScratch.velocity); // lambda = 0
-            }
-            mStats.contactSweeps += solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda,
-                                                       mExtraScratch, &mCoupling, mDelassusVersion)
-                                        .sweeps;
-            applyImpulseChange(mSolution);
-        }
-    }
-    rememberImpulses();
+    const ContactProblem::Outcome outcome = mProblem.solve(mSolution);
+    mStats.contactSweeps = outcome.sweeps;
+    mStats.contactRoute = outcome.route;
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
     {
         if (!mModel.bodies[i].isStatic)
         {
             state.bodies[i].velocity_W = mSolution.body[i].head<3>();
             state.bodies[i].angularVelocity_W = mSolution.body[i].tail<3>();
-        }
-    }
-}
-
-// Resting contact: the impulses carried over from the last step often still meet every
-// condition of this step to the solve's tolerance (core::conditionResidual). The step's first
-// solve included them (carryImpulses), so the check is v = J_x u(lambda_carried), without G; when
-// they hold, the step keeps them (0 sweeps, the same criterion the Gauss-Seidel stops on).
-bool Simulator::lastImpulsesStillHold()
-{
-    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
-    return conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance);
-}
-
-// The Delassus matrix of this step's extra rows and their coupling by tree, once per step and
-// only when needed. The rows it was built for are remembered for solveWithLastDelassus.
-void Simulator::buildDelassus()
-{
-    if (!mDelassusValid)
-    {
-        mSolver->delassus(mExtra, mStats.extraRows, mG);
-        ++mDelassusVersion; // the Gauss-Seidel's pivots of the last G no longer hold
-        coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
-        mDelassusValid = true;
-        mDelassusRows.clear();
-        for (const ExtraBlock& block : mExtra)
-        {
-            mDelassusRows.push_back(rowKey(block));
-        }
-        mDelassusAge = 0;
-    }
-}
-
-Simulator::RowKey Simulator::rowKey(const ExtraBlock& block) const
-{
-    RowKey key{block.kind,   block.count,    block.bodyA,  block.bodyB,
-               block.source, block.actuator, Vec3::Zero(), Vec6::Zero()};
-    if (block.kind == ExtraBlock::Kind::Contact)
-    {
-        const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
-        key.source = -1; // contact indices are not stable; the point and normal are compared
-        key.point_W = c.point_W;
-        key.direction.head<3>() = c.normal_W;
-    }
-    else
-    {
-        // Loops and limits by joint; the first row tells which side a limit is on (its sign
-        // flips between the lower and the upper limit).
-        key.direction = (block.bodyA >= 0 ? block.J_A : block.J_B).row(0).transpose();
-    }
-    return key;
-}
-
-// The same rows as when mG was built, each contact within cReuseDistance of its point then.
-bool Simulator::sameRowsAsLastDelassus() const
-{
-    constexpr double cReuseDistance = 1e-3; // m
-    if (mDelassusAge < 0 || mDelassusAge > cMaxDelassusAge || mDelassusRows.size() != mExtra.size())
-    {
-        return false;
-    }
-    for (std::size_t b = 0; b < mExtra.size(); ++b)
-    {
-        const RowKey now = rowKey(mExtra[b]);
-        const RowKey& then = mDelassusRows[b];
-        if (now.kind != then.kind || now.count != then.count || now.bodyA != then.bodyA ||
-            now.bodyB != then.bodyB || now.source != then.source)
-        {
-            return false;
-        }
-        const bool contact = now.kind == ExtraBlock::Kind::Contact;
-        if (contact && ((now.point_W - then.point_W).squaredNorm() > cReuseDistance * cReuseDistance ||
-                        now.direction.dot(then.direction) < 0.999))
-        {
-            return false;
-        }
-        if (!contact && !sameJointRows(now, then))
-        {
-            return false;
-        }
-    }
-    return true;
-}
-
-bool Simulator::sameJointRows(const RowKey& now, const RowKey& then)
-{
-    return now.kind == then.kind && now.source == then.source && now.actuator == then.actuator &&
-           now.direction.dot(then.direction) > 0.0;
-}
-
-// Resting contact whose carried-over impulses just miss the tolerance: the Delassus matrix G~ of
-// a recent step (same rows, contacts within a millimetre) stands in for this step's G in a defect
-// correction. With the exact row velocities v(lambda) = J_x (u_free + H^-1 J_x^T lambda) (one
-// O(n) solve), Gauss-Seidel solves v(lambda) + G~ (lambda' - lambda) against the contact
-// conditions; the result is accepted only when the exact velocities meet every condition to the
-// solve's tolerance (core::conditionResidual), the criterion of the full solve. Building G costs
-// a path sweep per body and a product per pair of bodies; a round here costs one O(n) solve and a
-// few sweeps. False (after cReuseRounds) leaves the full solve to the caller.
-//
-// Reads mExtraVelocity as lastImpulsesStillHold leaves it (the exact row velocities at the
-// carried-over impulses), so it runs only after that check has failed. When it gives up, the
-// full solve starts from the impulses reached here (one-sided and inside the cone), and the
-// step's sweep count includes both.
-bool Simulator::solveWithLastDelassus()
-{
-    constexpr int cReuseRounds = 2;
-    if (!sameRowsAsLastDelassus())
-    {
-        return false;
-    }
-    ExtraSolveSettings settings = mOptions.contactSolve;
-    settings.velocityTolerance *= 0.9; // margin for the difference between G~ and G
-    for (int round = 0; round < cReuseRounds; ++round)
-    {
-        mExtraScratch.velocity = mExtraVelocity; // v(lambda), then v(lambda) + G~ (lambda' - lambda)
-        const ExtraSolveStats sweeps = solveExtraRowsFrom(mExtra, mG, settings, mExtraLambda, mExtraScratch,
-                                                          &mCoupling, mDelassusVersion);
-        mStats.contactSweeps += sweeps.sweeps;
-        mTrial = mSolution;
-        applyImpulseChange(mTrial);
-        extraRowVelocities(mExtra, mTrial, mExtraVelocity);
-        if (conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
-        {
-            std::swap(mSolution, mTrial);
-            return true;
-        }
-        if (!sweeps.converged)
-        {
-            return false; // Gauss-Seidel did not converge even on G~: a hard step, G is built
-        }
-    }
-    return false;
-}
-
-// Contacts persist from step to step: a contact between the same bodies within cWarmDistance of
-// one of the last step's starts from that one's impulse, so resting contact needs few sweeps.
-// Loop and limit blocks start from their joint's impulse of the last step. True when some
-// impulse was carried over.
-bool Simulator::warmStart()
-{
-    bool any = false;
-    constexpr double cWarmDistance = 5e-3; // m
-    for (const ExtraBlock& block : mExtra)
-    {
-        if (block.kind != ExtraBlock::Kind::Contact)
-        {
-            // Loops and limits by joint, a limit only on the same side as last step.
-            const RowKey key = rowKey(block);
-            for (const JointImpulse& previous : mPreviousJointImpulses)
-            {
-                if (sameJointRows(key, previous.key))
-                {
-                    mExtraLambda.segment(block.offset, block.count) = previous.lambda.head(block.count);
-                    any = any || previous.lambda.head(block.count).cwiseAbs().maxCoeff() > 0.0;
-                    break;
-                }
-            }
-            continue;
-        }
-        const Contact& c = mContacts[static_cast<std::size_t>(block.source)];
-        double best = cWarmDistance * cWarmDistance;
-        int match = -1;
-        // The last step's contacts of the same body pair (mPreviousOrder: by pair, then index).
-        const std::uint64_t pair = bodyPairKey(c);
-        const auto first = std::lower_bound(mPreviousOrder.begin(), mPreviousOrder.end(),
-                                            std::pair<std::uint64_t, int>(pair, -1));
-        for (auto it = first; it != mPreviousOrder.end() && it->first == pair; ++it)
-        {
-            const std::size_t p = static_cast<std::size_t>(it->second);
-            const Contact& q = mPreviousContacts[p];
-            const double d = (q.point_W - c.point_W).squaredNorm();
-            if (d < best && q.normal_W.dot(c.normal_W) > 0.99)
-            {
-                best = d;
-                match = static_cast<int>(p);
-            }
-        }
-        if (match >= 0)
-        {
-            mExtraLambda.segment(block.offset, block.count) =
-                mPreviousImpulses[static_cast<std::size_t>(match)].head(block.count);
-            any = any || mExtraLambda(block.offset) > 0.0;
-        }
-    }
-    return any;
-}
-
-std::uint64_t Simulator::bodyPairKey(const Contact& c)
-{
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.bodyA)) << 32) |
-           static_cast<std::uint32_t>(c.bodyB);
-}
-
-void Simulator::rememberImpulses()
-{
-    mPreviousContacts = mContacts;
-    mPreviousOrder.resize(mContacts.size());
-    for (std::size_t k = 0; k < mContacts.size(); ++k)
-    {
-        mPreviousOrder[k] = {bodyPairKey(mContacts[k]), static_cast<int>(k)};
-    }
-    std::sort(mPreviousOrder.begin(), mPreviousOrder.end()); // by pair, then index
-    mPreviousImpulses.assign(mContacts.size(), Vec3::Zero());
-    mPreviousJointImpulses.clear();
-    for (const ExtraBlock& block : mExtra)
-    {
-        if (block.kind == ExtraBlock::Kind::Contact)
-        {
-            mPreviousImpulses[static_cast<std::size_t>(block.source)].head(block.count) =
-                mExtraLambda.segment(block.offset, block.count);
-        }
-        else
-        {
-            JointImpulse previous{rowKey(block), Vec6::Zero()};
-            previous.lambda.head(block.count) = mExtraLambda.segment(block.offset, block.count);
-            mPreviousJointImpulses.push_back(previous);
         }
     }
 }
@@ -913,14 +526,15 @@ void Simulator::removePenetration(State& state)
     }
     // Overlap predicted after this step (m or rad): now minus h times the separating speed; the
     // part beyond the slop (contacts) or the limit is removed. Most steps have none.
-    extraRowVelocities(mExtra, mSolution, mExtraVelocity);
+    const std::vector<ExtraBlock>& extra = mProblem.blocks();
+    extraRowVelocities(extra, mSolution, mExtraVelocity);
     auto excessOf = [&](const ExtraBlock& block)
     {
         const double predicted = block.error(0) - mDt * mExtraVelocity(block.offset);
         return predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
     };
     bool any = false;
-    for (const ExtraBlock& block : mExtra)
+    for (const ExtraBlock& block : extra)
     {
         any = any || (pushesApart(block) && excessOf(block) > 0.0);
     }
@@ -928,13 +542,14 @@ void Simulator::removePenetration(State& state)
     {
         return;
     }
-    buildDelassus();
+    mProblem.buildDelassus();
+    const Eigen::MatrixXd& G = mProblem.delassus();
     std::vector<ExtraBlock>& blocks = mPenetrationBlocks;
     std::vector<int>& rows = mPenetrationRows;
     blocks.clear();
     rows.clear();
     any = false;
-    for (const ExtraBlock& block : mExtra)
+    for (const ExtraBlock& block : extra)
     {
         if (block.kind == ExtraBlock::Kind::Drive)
         {
@@ -945,7 +560,7 @@ void Simulator::removePenetration(State& state)
         if (block.kind != ExtraBlock::Kind::Loop)
         {
             // A row the joints hold: no displacement they allow moves it (its G_ii is round-off).
-            if (heldByJoints(block, mG(block.offset, block.offset), mRows, mPrincipal,
+            if (heldByJoints(block, G(block.offset, block.offset), mRows, mPrincipal,
                              mOptions.penetrationHeldRatio))
             {
                 continue;
@@ -965,13 +580,13 @@ void Simulator::removePenetration(State& state)
         return;
     }
     const int n = layoutExtraRows(blocks);
-    mPenetrationG = mG(rows, rows); // the normal, limit and loop rows of the step's G
+    mPenetrationG = G(rows, rows); // the normal, limit and loop rows of the step's G
     mPenetrationFree.setZero(n);
     mPenetrationImpulse.setZero(n);
     ExtraSolveSettings settings = mOptions.contactSolve;
     settings.velocityTolerance *= mDt; // here the rows are displacements (m), one step's worth
     coupleRowsByTree(blocks, mLayout.treeOfBody, mPenetrationCoupling, mTreeRuns);
-    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, settings, mPenetrationImpulse, mExtraScratch,
+    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, settings, mPenetrationImpulse, mProblem.scratch(),
                    &mPenetrationCoupling);
     mCorrection.setZero();
     mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
@@ -1122,18 +737,22 @@ bool Simulator::stabilizeJoints(State& state)
             if (error > cJointBlowUp)
             {
                 const Joint& joint = mModel.joints[static_cast<std::size_t>(mWorstJoint)];
-                const std::string parent =
-                    joint.parent == cWorld
-                        ? std::string("the world")
-                        : "'" + mModel.bodies[static_cast<std::size_t>(joint.parent)].name + "'";
-                const bool positional = mStats.maxJointErrorM >= mStats.maxJointErrorRad;
-                std::ostringstream msg;
-                msg << "simulation blew up at step " << state.step << " (t = " << state.time << " s): body '"
-                    << mModel.bodies[static_cast<std::size_t>(joint.child)].name << "' came off " << parent
-                    << " at joint '" << joint.name << "': joint " << (positional ? "position" : "orientation")
-                    << " error " << error << (positional ? " m" : " rad")
-                    << " after the correction did not converge" << likelyCause(state);
-                throw SimulationError(msg.str());
+                SimulationFailure failure;
+                failure.step = state.step;
+                failure.time = state.time;
+                failure.body = joint.child;
+                failure.bodyName = mModel.bodies[static_cast<std::size_t>(joint.child)].name;
+                failure.joint = mWorstJoint;
+                failure.jointName = joint.name;
+                if (joint.parent != cWorld)
+                {
+                    failure.parentName = mModel.bodies[static_cast<std::size_t>(joint.parent)].name;
+                }
+                failure.quantity =
+                    mStats.maxJointErrorM >= mStats.maxJointErrorRad ? "position" : "orientation";
+                failure.gap = error;
+                failure.hint = likelyCause(state);
+                throw SimulationError(std::move(failure));
             }
             break;
         }
@@ -1142,7 +761,7 @@ bool Simulator::stabilizeJoints(State& state)
             refactored = true;
             mRowsRefactored = mRowsAfter;
             mSolver->factor(mRowsRefactored);
-            buildLoopRows(mRowsRefactored);
+            buildLoopBlocks(mModel, mLayout, mRowsRefactored, mLoopBlocks);
             loopsFactored = false;
         }
         if (!mLoopBlocks.empty() && !loopsFactored)

@@ -1,6 +1,6 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
 // (the `--joints` and `--contacts` outputs). Nothing here runs inside step(): a step keeps its
-// impulses anyway (the joints' in mSolution, the extra rows' in mExtraLambda, the rattle
+// impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
 // projection's in mEndLambda, the loops' drift correction in mLoopCorrection).
 //
 // A joint's impulse on its child is J_b^T lambda summed over the rows of the joint: its block in
@@ -82,7 +82,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
             addBlock(static_cast<int>(k), mSolution.joint[k]);
         }
     }
-    addExtra(mExtra, mExtraLambda);
+    addExtra(mProblem.blocks(), mProblem.impulses());
     addExtra(mLoopBlocks, mLoopCorrection);
     if (mRattleStep)
     {
@@ -114,7 +114,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
 void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
 {
     out.clear();
-    for (const Contact& contact : mContacts)
+    for (const Contact& contact : mProblem.contacts())
     {
         out.push_back({contact, Vec3::Zero()});
     }
@@ -132,7 +132,7 @@ void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
             }
         }
     };
-    add(mExtra, mExtraLambda);
+    add(mProblem.blocks(), mProblem.impulses());
     if (mRattleStep)
     {
         add(mEndBlocks, mEndLambda);
@@ -142,10 +142,10 @@ void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
 int Simulator::pushingLimitRows() const
 {
     int count = 0;
-    for (const ExtraBlock& block : mExtra)
+    for (const ExtraBlock& block : mProblem.blocks())
     {
-        if (block.kind == ExtraBlock::Kind::Limit && block.offset < mExtraLambda.size() &&
-            mExtraLambda(block.offset) > 0.0)
+        if (block.kind == ExtraBlock::Kind::Limit && block.offset < mProblem.impulses().size() &&
+            mProblem.impulses()(block.offset) > 0.0)
         {
             ++count;
         }
