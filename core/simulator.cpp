@@ -5,6 +5,7 @@
 #include "core/failure_hint.h"
 #include "core/joints/coordinates.h"
 #include "core/penetration.h"
+#include "core/step/positions.h"
 
 #include <algorithm>
 #include <array>
@@ -17,17 +18,6 @@ namespace frontier::core
 
 namespace
 {
-// exp of a rotation vector (rad) as a unit quaternion.
-Quat rotationFromVector(const Vec3& theta)
-{
-    const double angle = theta.norm();
-    if (angle < 1e-12)
-    {
-        return Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
-    }
-    return Quat(Eigen::AngleAxisd(angle, theta / angle));
-}
-
 // Anything beyond these is a blow-up even while still finite.
 constexpr double cMaxSpeed = 1e5;        // m/s
 constexpr double cMaxAngularSpeed = 1e6; // rad/s
@@ -37,18 +27,14 @@ bool finite(const Vec3& v)
     return v.allFinite();
 }
 
-// One-sided rows that keep bodies apart (contacts, limits): what removePenetration projects.
-bool pushesApart(const ExtraBlock& block)
-{
-    return block.kind == ExtraBlock::Kind::Contact || block.kind == ExtraBlock::Kind::Limit;
-}
 } // namespace
 
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mActuation(model, mLayout),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)),
-      mProblem(model, mOptions, mLayout, *mSolver), mDt(model.simulation.dt)
+      mProblem(model, mOptions, mLayout, *mSolver), mPenetration(model, mOptions, mLayout, *mSolver),
+      mDrift(model, mOptions, mLayout, *mSolver), mDt(model.simulation.dt)
 {
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
@@ -93,13 +79,13 @@ void Simulator::takeStep(State& state)
     }
     mStepStart = state;
     mEndRowsValid = false; // the rattle projection swaps mRowsAfter away
-    const bool penetrationCapped = mPenetrationCapped;
+    const bool penetrationCapped = mPenetration.capped();
     if (!stepRattle(state))
     {
         // RATTLE's position iteration stalled (very fast rotation within the step): this step is
         // taken again from its start by the robust first-order scheme.
         state = mStepStart;
-        mPenetrationCapped = penetrationCapped;
+        mPenetration.setCapped(penetrationCapped);
         mRattleStep = false;
         mFactoredPoseValid = false;
         stepEuler(state);
@@ -134,7 +120,7 @@ void Simulator::stepEuler(State& state)
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
-    carryAngularMomentum(state);
+    carryAngularMomentum(mModel, mPrincipal, mRows, state);
     trackJointAngles(mModel, state);
     state.time += mDt;
     ++state.step;
@@ -203,7 +189,7 @@ bool Simulator::stepRattle(State& state)
     {
         return false;
     }
-    carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
+    carryAngularMomentum(mModel, mPrincipal, mRows, state); // w_{n+1} = I_W(R_{n+1})^-1 L
     kickByGravity(state, 0.5 * mDt);
     mActuation.applyForces(state, state.time + 0.5 * mDt, state.time + mDt);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
@@ -490,370 +476,59 @@ void Simulator::solveContactImpulses(State& state)
     }
 }
 
-// Moves positions by a displacement (m, rad) without touching velocities.
-void Simulator::displacePositions(State& state, const BlockVector& displacement)
-{
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (mModel.bodies[i].isStatic)
-        {
-            continue;
-        }
-        BodyState& s = state.bodies[i];
-        s.position_W += displacement.body[i].head<3>();
-        s.orientation_WB =
-            (rotationFromVector(displacement.body[i].tail<3>()) * s.orientation_WB).normalized();
-        mStart[i].position_W += displacement.body[i].head<3>();
-        mStart[i].orientation_WB =
-            (rotationFromVector(displacement.body[i].tail<3>()) * mStart[i].orientation_WB).normalized();
-    }
-}
-
-// Penetration beyond the slop (contacts) or past a limit, predicted at the end of the step, is
-// removed by a displacement H^-1 J^T mu (through the joints, so they stay together) with mu >= 0:
-// a position projection that leaves velocities, and so kinetic energy, unchanged. Loop joints
-// ride along as bilateral rows with target 0. It is bounded (core/penetration.h): rows the joints
-// hold are left alone, and a step moves no body faster than penetrationMaxSpeed nor turns it
-// faster than penetrationMaxAngularSpeed (deep overlaps come out over several steps); a
-// displacement that turns bodies puts their joints back by displacement too (restoreJoints).
+// The bounded position projection of overlaps and limit overruns (core/step/penetration_projection.h).
 void Simulator::removePenetration(State& state)
 {
-    const bool wasCapped = mPenetrationCapped;
-    mPenetrationCapped = false; // set again below when this step's displacement is capped
-    if (mStats.extraRows == 0)
-    {
-        return;
-    }
-    // Overlap predicted after this step (m or rad): now minus h times the separating speed; the
-    // part beyond the slop (contacts) or the limit is removed. Most steps have none.
-    const std::vector<ExtraBlock>& extra = mProblem.blocks();
-    extraRowVelocities(extra, mSolution, mExtraVelocity);
-    auto excessOf = [&](const ExtraBlock& block)
-    {
-        const double predicted = block.error(0) - mDt * mExtraVelocity(block.offset);
-        return predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
-    };
-    bool any = false;
-    for (const ExtraBlock& block : extra)
-    {
-        any = any || (pushesApart(block) && excessOf(block) > 0.0);
-    }
-    if (!any)
-    {
-        return;
-    }
-    mProblem.buildDelassus();
-    const Eigen::MatrixXd& G = mProblem.delassus();
-    std::vector<ExtraBlock>& blocks = mPenetrationBlocks;
-    std::vector<int>& rows = mPenetrationRows;
-    blocks.clear();
-    rows.clear();
-    any = false;
-    for (const ExtraBlock& block : extra)
-    {
-        if (block.kind == ExtraBlock::Kind::Drive)
-        {
-            continue; // joint friction has no position to restore
-        }
-        ExtraBlock p = block;
-        p.target.setZero();
-        if (block.kind != ExtraBlock::Kind::Loop)
-        {
-            // A row the joints hold: no displacement they allow moves it (its G_ii is round-off).
-            if (heldByJoints(block, G(block.offset, block.offset), mRows, mPrincipal,
-                             mOptions.penetrationHeldRatio))
-            {
-                continue;
-            }
-            p.count = 1;
-            p.target(0) = std::max(0.0, excessOf(block));
-            any = any || p.target(0) > 0.0;
-        }
-        for (int k = 0; k < p.count; ++k)
-        {
-            rows.push_back(block.offset + k);
-        }
-        blocks.push_back(p);
-    }
-    if (!any)
-    {
-        return;
-    }
-    const int n = layoutExtraRows(blocks);
-    mPenetrationG = G(rows, rows); // the normal, limit and loop rows of the step's G
-    mPenetrationFree.setZero(n);
-    mPenetrationImpulse.setZero(n);
-    ExtraSolveSettings settings = mOptions.contactSolve;
-    settings.velocityTolerance *= mDt; // here the rows are displacements (m), one step's worth
-    coupleRowsByTree(blocks, mLayout.treeOfBody, mPenetrationCoupling, mTreeRuns);
-    solveExtraRows(blocks, mPenetrationG, mPenetrationFree, settings, mPenetrationImpulse, mProblem.scratch(),
-                   &mPenetrationCoupling);
-    mCorrection.setZero();
-    mSolver->applyExtraImpulses(blocks, mPenetrationImpulse, mCorrection);
-    const double scale = displacementScale(mModel, mCorrection, mOptions.penetrationMaxSpeed * mDt,
-                                           mOptions.penetrationMaxAngularSpeed * mDt);
-    if (scale < 1.0)
-    {
-        for (Vec6& d : mCorrection.body)
-        {
-            d *= scale;
-        }
-    }
-    // A recovery (its capped steps, and the one that finishes it) keeps the joints by displacement.
-    const bool recovering = scale < 1.0 || wasCapped;
-    mPenetrationCapped = scale < 1.0;
-    if (recovering || largestRotation(mModel, mCorrection) > cRestoreRotation)
-    {
-        restoreJoints(state);
-        return;
-    }
-    displacePositions(state, mCorrection);
+    mPenetration.apply(state, mStart, mProblem, mSolution, mRows, mPrincipal, mDt, driveStep(), mActuation);
 }
 
-// Applies the penetration displacement (mCorrection) and puts the joints back as they were. The
-// displacement keeps them to first order only: turning a body by theta leaves a joint at lever L
-// about theta^2 L / 2 apart, which stabilizeJoints would remove with a velocity (C / h), adding
-// kinetic energy. Here the tree joints' conditions are driven back to their values before the
-// displacement by further displacements H^-1 J^T nu (J d = -(C - C_before)), on the step's
-// factorization; velocities are not touched. Loop joints are left to stabilizeJoints.
-void Simulator::restoreJoints(State& state)
-{
-    constexpr int cRestoreIterations = 10;
-    assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
-    mJointErrorBefore.resize(mModel.joints.size());
-    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-    {
-        mJointErrorBefore[k] = mRowsAfter.joints[k].error;
-    }
-    displacePositions(state, mCorrection);
-    for (int iteration = 0; iteration < cRestoreIterations; ++iteration)
-    {
-        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
-        double worst = 0.0;
-        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-        {
-            const JointRows& r = mRowsAfter.joints[k];
-            mRhs.joint[k] = -(r.error - mJointErrorBefore[k]);
-            if (!std::binary_search(mLayout.loopJoints.begin(), mLayout.loopJoints.end(),
-                                    static_cast<int>(k)))
-            {
-                worst = std::max(worst, mRhs.joint[k].head(r.count).cwiseAbs().maxCoeff());
-            }
-        }
-        if (worst <= mOptions.stabilizationTolerance)
-        {
-            break;
-        }
-        for (Vec6& p : mRhs.body)
-        {
-            p.setZero();
-        }
-        mSolver->solve(mRhs, mCorrection);
-        displacePositions(state, mCorrection);
-    }
-}
-
-// x_{n+1} = x_n + h v_{n+1}, from the start-of-step pose. Rotation: euler R_{n+1} = exp(h w) R_n;
-// rattle the free rigid-body rotation at the world angular momentum L = I_W(R_n) w.
+// The position update from the start-of-step pose (core/step/positions.h).
 void Simulator::integratePositions(State& state)
 {
-    const bool rattle = mRattleStep;
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (mModel.bodies[i].isStatic)
-        {
-            continue;
-        }
-        BodyState& s = state.bodies[i];
-        s.position_W = mStart[i].position_W + mDt * s.velocity_W;
-        s.orientation_WB =
-            rattle ? rotateFreely(mStart[i].orientation_WB, mPrincipal[i],
-                                  mRows.inertia_W[i] * s.angularVelocity_W, mDt)
-                   : (rotationFromVector(mDt * s.angularVelocity_W) * mStart[i].orientation_WB).normalized();
-    }
+    core::integratePositions(mModel, mStart, mPrincipal, mRows, mDt, mRattleStep, state);
 }
 
-void Simulator::measureJointErrors(const RowSystem& rows)
-{
-    mStats.maxJointErrorM = 0.0;
-    mStats.maxJointErrorRad = 0.0;
-    double worst = -1.0;
-    for (std::size_t k = 0; k < rows.joints.size(); ++k)
-    {
-        const JointRows& r = rows.joints[k];
-        for (int row = 0; row < r.count; ++row)
-        {
-            const double error = std::abs(r.error(row));
-            double& slot = row < r.positionRows ? mStats.maxJointErrorM : mStats.maxJointErrorRad;
-            slot = std::max(slot, error);
-            if (error > worst)
-            {
-                worst = error;
-                mWorstJoint = static_cast<int>(k);
-            }
-        }
-    }
-}
-
-// SHAKE-type projection: impulses along J^T that bring C(q_{n+1}) to zero. Each iteration solves
-// [M J^T; J 0][du; -dlambda] = [0; -C/h] and moves velocities by du and positions by h du. The
-// first iterations reuse the step's factorization (quasi-Newton: J at the start of the step stands
-// for J at the end); when an iteration contracts the error by less than cSlowContraction
-// (fast rotation, thin bodies, large steps), the system is re-factored at the current
-// configuration (once per step: re-factoring again made convergence worse in tests). A joint
-// still apart by more than cJointBlowUp after the last iteration is a
-// blow-up: the run stops naming the step, the joint and the gap, instead of going on with garbage.
+// The drift correction of the joints (core/step/drift_correction.h). A joint still apart after it
+// is a blow-up: the run stops naming the step, the joint and the gap. False: a rattle step stalled.
 bool Simulator::stabilizeJoints(State& state)
 {
-    constexpr double cSlowContraction = 0.1;
-    constexpr double cJointBlowUp = 1e-3; // m or rad
-    mStats.stabilizationIterations = 0;
-    double previous = std::numeric_limits<double>::infinity();
-    bool loopsFactored = false;
-    bool refactored = false;
-    // rattle: the quasi-Newton iteration keeps RATTLE's impulse direction J(q_n)^T (so the step is
-    // the symplectic map) and is never re-factored; when it stalls (contraction worse than
-    // cRattleStall, or not converged after cRattleIterations: very fast rotation within the
-    // step), it reports false and the step is taken again by the first-order scheme.
-    constexpr double cRattleStall = 0.5;
-    constexpr int cRattleIterations = 12;
-    const bool rattle = mRattleStep;
-    mLoopCorrection.setZero(mLoopBlocks.empty() ? 0 : mLoopBlocks.back().offset + mLoopBlocks.back().count);
-    for (int iteration = 0;; ++iteration)
+    const DriftCorrection::Outcome outcome =
+        mDrift.run(state, mStart, mPrincipal, mRows, mRowsAfter, mLoopBlocks, mSolution, mDt, driveStep(),
+                   mRattleStep, mActuation);
+    const JointErrors& errors = mDrift.errors();
+    mStats.maxJointErrorM = errors.maxM;
+    mStats.maxJointErrorRad = errors.maxRad;
+    mStats.stabilizationIterations = mDrift.iterations();
+    if (outcome == DriftCorrection::Outcome::CameApart)
     {
-        assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
-        measureJointErrors(mRowsAfter);
-        const double error = std::max(mStats.maxJointErrorM, mStats.maxJointErrorRad);
-        if (error <= mOptions.stabilizationTolerance)
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(errors.worstJoint)];
+        SimulationFailure failure;
+        failure.step = state.step;
+        failure.time = state.time;
+        failure.body = joint.child;
+        failure.bodyName = mModel.bodies[static_cast<std::size_t>(joint.child)].name;
+        failure.joint = errors.worstJoint;
+        failure.jointName = joint.name;
+        if (joint.parent != cWorld)
         {
-            break;
+            failure.parentName = mModel.bodies[static_cast<std::size_t>(joint.parent)].name;
         }
-        if (rattle && (error > cRattleStall * previous || iteration >= cRattleIterations))
-        {
-            return false;
-        }
-        if (iteration >= mOptions.stabilizationIterations)
-        {
-            if (error > cJointBlowUp)
-            {
-                const Joint& joint = mModel.joints[static_cast<std::size_t>(mWorstJoint)];
-                SimulationFailure failure;
-                failure.step = state.step;
-                failure.time = state.time;
-                failure.body = joint.child;
-                failure.bodyName = mModel.bodies[static_cast<std::size_t>(joint.child)].name;
-                failure.joint = mWorstJoint;
-                failure.jointName = joint.name;
-                if (joint.parent != cWorld)
-                {
-                    failure.parentName = mModel.bodies[static_cast<std::size_t>(joint.parent)].name;
-                }
-                failure.quantity =
-                    mStats.maxJointErrorM >= mStats.maxJointErrorRad ? "position" : "orientation";
-                failure.gap = error;
-                failure.hint = likelyCause(state);
-                throw SimulationError(std::move(failure));
-            }
-            break;
-        }
-        if (!refactored && error > cSlowContraction * previous)
-        {
-            refactored = true;
-            mRowsRefactored = mRowsAfter;
-            mSolver->factor(mRowsRefactored);
-            buildLoopBlocks(mModel, mLayout, mRowsRefactored, mLoopBlocks);
-            loopsFactored = false;
-        }
-        if (!mLoopBlocks.empty() && !loopsFactored)
-        {
-            // Loop rows join the projection exactly: their Delassus block, once per factorization.
-            mSolver->delassus(mLoopBlocks, layoutExtraRows(mLoopBlocks), mLoopG);
-            addLoopCompliance();
-            mLoopLdlt.compute(mLoopG);
-            loopsFactored = true;
-        }
-        mLoopError.resize(mLoopG.rows());
-        for (const ExtraBlock& loop : mLoopBlocks)
-        {
-            mLoopError.segment(loop.offset, loop.count) =
-                mRowsAfter.joints[static_cast<std::size_t>(loop.source)].error.head(loop.count);
-        }
-        previous = error;
-        mStats.stabilizationIterations = iteration + 1;
-        for (Vec6& p : mRhs.body)
-        {
-            p.setZero();
-        }
-        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-        {
-            mRhs.joint[k] = -mRowsAfter.joints[k].error / mDt;
-        }
-        mSolver->solve(mRhs, mCorrection);
-        if (!mLoopBlocks.empty())
-        {
-            correctLoops();
-        }
-        for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-        {
-            if (!mModel.bodies[i].isStatic)
-            {
-                state.bodies[i].velocity_W += mCorrection.body[i].head<3>();
-                state.bodies[i].angularVelocity_W += mCorrection.body[i].tail<3>();
-            }
-        }
-        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-        {
-            mSolution.joint[k] += mCorrection.joint[k];
-        }
-        integratePositions(state);
+        const bool positional = errors.maxM >= errors.maxRad;
+        failure.quantity = positional ? "position" : "orientation";
+        failure.gap = std::max(errors.maxM, errors.maxRad);
+        failure.hint = likelyCause(state);
+        throw SimulationError(std::move(failure));
     }
-    return true;
-}
-
-// Loop rows in the projection: the tree correction du_0 leaves J_loop du_0 + C_loop / h; the loop
-// impulse mu = G_loop^-1 (-C_loop / h - J_loop du_0) removes it, and du += H^-1 J_loop^T mu.
-void Simulator::correctLoops()
-{
-    extraRowVelocities(mLoopBlocks, mCorrection, mExtraVelocity);
-    const Eigen::VectorXd residual = -mLoopError / mDt - mExtraVelocity;
-    const Eigen::VectorXd mu = mLoopLdlt.solve(residual);
-    mSolver->applyExtraImpulses(mLoopBlocks, mu, mCorrection);
-    mLoopCorrection += mu;
-}
-
-// Drive rows of loop joints are compliant in the projection too: G_loop gains E on their diagonal.
-void Simulator::addLoopCompliance()
-{
-    for (const ExtraBlock& loop : mLoopBlocks)
-    {
-        mLoopG.diagonal().segment(loop.offset, loop.count) += loop.compliance.head(loop.count);
-    }
-}
-
-// The angular momentum I_W(R_n) w that the step gave each body is kept through the rotation:
-// w_{n+1} = I_W(R_{n+1})^-1 I_W(R_n) w.
-void Simulator::carryAngularMomentum(State& state)
-{
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        const Body& body = mModel.bodies[i];
-        if (body.isStatic)
-        {
-            continue;
-        }
-        BodyState& s = state.bodies[i];
-        const Vec3 momentum = mRows.inertia_W[i] * s.angularVelocity_W;
-        // I_W^-1 L in the principal frame P of the new orientation: w = R_WP diag(1/I) R_WP^T L.
-        const Quat toWorld = s.orientation_WB * mPrincipal[i].rotation_BP;
-        s.angularVelocity_W = toWorld * (toWorld.conjugate() * momentum).cwiseQuotient(mPrincipal[i].moments);
-    }
+    return outcome != DriftCorrection::Outcome::Stalled;
 }
 
 std::pair<double, double> Simulator::jointErrors(const State& state)
 {
     mEndRowsValid = false; // mRowsAfter is about to hold other rows
     assembleRows(mModel, mLayout, state, driveStep(), mRowsAfter, mActuation.gains());
-    measureJointErrors(mRowsAfter);
+    const JointErrors& errors = mDrift.measure(mRowsAfter);
+    mStats.maxJointErrorM = errors.maxM;
+    mStats.maxJointErrorRad = errors.maxRad;
     return {mStats.maxJointErrorM, mStats.maxJointErrorRad};
 }
 

@@ -46,6 +46,8 @@
 #include "core/free_rotation.h"
 #include "core/impulse_solver.h"
 #include "core/step/contact_problem.h"
+#include "core/step/drift_correction.h"
+#include "core/step/penetration_projection.h"
 #include "core/step/simulation_error.h"
 #include "core/step/step_options.h"
 #include "core/step/step_stats.h"
@@ -124,52 +126,27 @@ class Simulator
     void solveContactImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
-    void restoreJoints(State& state);
-    // A penetration displacement that recovers a deep defect (capped, or the one after a capped
-    // step) or turns a body by more than this (rad) puts the joints back by restoreJoints. Below it
-    // their second-order gap (theta^2 L / 2, under 5e-5 m at L = 1 m) is left to stabilizeJoints
-    // as before (the bundled scenes turn bodies by up to 4.7e-3 rad a step at 1 ms).
-    static constexpr double cRestoreRotation = 0.01;
-    std::vector<Vec6> mJointErrorBefore; // restoreJoints: C per joint before the displacement
-    bool mPenetrationCapped = false;     // the last step's penetration displacement was capped
-    bool stabilizeJoints(State& state);  // false: a rattle step stalled
-    void correctLoops();
-    Eigen::VectorXd mLoopCorrection; // loop impulses of this step's drift correction (N s, N m s)
-    void addLoopCompliance();
+    bool stabilizeJoints(State& state); // false: a rattle step stalled
     // Duration of one impulse solve (s): the step, or half of it for rattle, whose two velocity
     // stages each take half of the joints' damping and friction (core/joints/drive.h).
     double driveStep() const { return mRattleStep ? 0.5 * mDt : mDt; }
-    void displacePositions(State& state, const BlockVector& displacement);
-    void carryAngularMomentum(State& state);
-    void measureJointErrors(const RowSystem& rows);
 
     const Model& mModel;
     StepOptions mOptions;
     ContactSource* mContactSource;
-    Eigen::VectorXd
-        mExtraVelocity; // J_x u of the extra rows (removePenetration), of the loops (correctLoops)
-    RowCoupling mPenetrationCoupling; // rows each of removePenetration's blocks can move
-    RowCoupling mEndCoupling;         // the same for the rattle projection's
+    RowCoupling mEndCoupling; // rows each of the rattle projection's blocks can move
     std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
-    // Scratch of removePenetration: its blocks, their rows in the step's G, their G, free velocity, impulses.
-    std::vector<ExtraBlock> mPenetrationBlocks;
-    std::vector<int> mPenetrationRows;
-    Eigen::MatrixXd mPenetrationG;
-    Eigen::VectorXd mPenetrationFree, mPenetrationImpulse;
-    std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, for the stabilization
-    Eigen::MatrixXd mLoopG;
-    Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
-    Eigen::VectorXd mLoopError; // C of the loop rows (m, rad)
+    std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, at the factored rows (§5, §7)
     FrontierLayout mLayout;
     Actuation mActuation; // servos, motors, effort actuators and loads
     std::unique_ptr<ImpulseSolver> mSolver;
-    ContactProblem mProblem;   // contacts, loops, limits, joint friction: the extra rows (§5)
-    RowSystem mRows;           // rows at the start of the step (the factored ones)
-    RowSystem mRowsAfter;      // rows re-evaluated after the position update (errors only)
-    RowSystem mRowsRefactored; // rows of a re-factorization when the quasi-Newton iteration is slow
+    ContactProblem mProblem;            // contacts, loops, limits, joint friction: the extra rows (§5)
+    PenetrationProjection mPenetration; // overlaps and limit overruns out by displacement (§5)
+    DriftCorrection mDrift;             // the joints' position conditions back to zero (§7)
+    RowSystem mRows;                    // rows at the start of the step (the factored ones)
+    RowSystem mRowsAfter;               // rows re-evaluated after the position update (errors only)
     BlockVector mRhs, mSolution, mCorrection;
     std::vector<BodyState> mStart; // poses at the start of the step
-    std::vector<Vec3> mMomentum;   // world angular momentum per body during the step
     // rattle: principal axes per body; the pose at which mRows was factored by the last step's
     // velocity projection (reused when the next step starts there); the projection's extra rows.
     std::vector<PrincipalAxes> mPrincipal;
@@ -183,7 +160,6 @@ class Simulator
     Eigen::MatrixXd mEndG;
     Eigen::VectorXd mEndVelocity, mEndLambda;
     StepStats mStats;
-    int mWorstJoint = 0; // joint of the largest violation in the last measurement
     double mDt;
 };
 

@@ -1,7 +1,7 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
 // (the `--joints` and `--contacts` outputs). Nothing here runs inside step(): a step keeps its
 // impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
-// projection's in mEndLambda, the loops' drift correction in mLoopCorrection).
+// projection's in mEndLambda, the loops' drift correction in DriftCorrection::loopCorrection).
 //
 // A joint's impulse on its child is J_b^T lambda summed over the rows of the joint: its block in
 // the tree (conditions and drive rows), and its extra rows (loop, limit, friction). Those rows
@@ -83,7 +83,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
         }
     }
     addExtra(mProblem.blocks(), mProblem.impulses());
-    addExtra(mLoopBlocks, mLoopCorrection);
+    addExtra(mLoopBlocks, mDrift.loopCorrection());
     if (mRattleStep)
     {
         addExtra(mEndBlocks, mEndLambda); // the velocity projection at the end of a rattle step

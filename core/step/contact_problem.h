@@ -65,6 +65,7 @@ class ContactProblem
     void buildDelassus();
 
     const std::vector<ExtraBlock>& blocks() const { return mExtra; }
+    int rows() const { return mRows; }                               // rows of the blocks
     const Eigen::VectorXd& impulses() const { return mExtraLambda; } // N s or N m s, by row
     const Eigen::MatrixXd& delassus() const { return mG; }           // valid after buildDelassus
     ExtraSolveScratch& scratch() { return mExtraScratch; } // the Gauss-Seidel's, shared with other solves
