@@ -18,7 +18,7 @@ long stepsFor(double duration, double dt)
 }
 
 // Contacts are reported while shapes are closer than this (m): far enough that a body at 5 m/s
-// cannot cross it in one step unseen (speculative contacts, core/simulator.cpp), at least 2 mm.
+// cannot cross it in one step unseen (speculative contacts, core/step/contact_problem.cpp), at least 2 mm.
 double contactMargin(double dt)
 {
     return std::clamp(5.0 * dt, 2e-3, 0.05);

@@ -2,10 +2,10 @@
 // schemes.
 #include "core/simulator.h"
 
-#include "core/failure_hint.h"
 #include "core/joints/coordinates.h"
 #include "core/penetration.h"
 #include "core/step/positions.h"
+#include "core/step/velocity_stage.h"
 
 #include <algorithm>
 #include <array>
@@ -16,31 +16,18 @@
 namespace frontier::core
 {
 
-namespace
-{
-// Anything beyond these is a blow-up even while still finite.
-constexpr double cMaxSpeed = 1e5;        // m/s
-constexpr double cMaxAngularSpeed = 1e6; // rad/s
-
-bool finite(const Vec3& v)
-{
-    return v.allFinite();
-}
-
-} // namespace
-
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mActuation(model, mLayout),
       mSolver(makeSolver(model.simulation.solver, model.simulation.pgsIterations)),
       mProblem(model, mOptions, mLayout, *mSolver), mPenetration(model, mOptions, mLayout, *mSolver),
-      mDrift(model, mOptions, mLayout, *mSolver), mDt(model.simulation.dt)
+      mDrift(model, mOptions, mLayout, *mSolver), mRattle(model, mOptions, mLayout, *mSolver),
+      mBlowUp(model, mOptions, model.simulation.dt), mDt(model.simulation.dt)
 {
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
     mRhs.resize(nb, nj);
     mSolution.resize(nb, nj);
-    mCorrection.resize(nb, nj);
     mRhs.setZero();
     mSolution.setZero();
     mStart.resize(nb);
@@ -64,7 +51,7 @@ void Simulator::step(State& state)
         // Actuators returned to their joints' blocks: rows assembled for the next step before
         // this are stale.
         mEndRowsValid = false;
-        mFactoredPoseValid = false;
+        mRattle.forgetFactoredPose();
     }
 }
 
@@ -87,7 +74,7 @@ void Simulator::takeStep(State& state)
         state = mStepStart;
         mPenetration.setCapped(penetrationCapped);
         mRattleStep = false;
-        mFactoredPoseValid = false;
+        mRattle.forgetFactoredPose();
         stepEuler(state);
         mStats.firstOrderFallback = true;
     }
@@ -102,14 +89,12 @@ void Simulator::stepEuler(State& state)
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
-    keepFreeVelocities(state);
     do
     {
         rowsAtStart(state);
         buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
-        recordStartDefects(state);
         setMomentumRhs(state, state.time + mDt);
-        mProblem.carryImpulses(mRhs); // the last step's impulses on those rows join the right-hand side
+        carryImpulses(); // the last step's impulses on those rows join the right-hand side
         // docs/method.md §3, eq. (5) (eliminate), once per step, and eq. (6) (substitute) for the joint
         // impulses of the free velocities and the carried extra impulses, fused into one pass.
         mSolver->factorAndSolve(mRows, mRhs, mSolution);
@@ -120,11 +105,8 @@ void Simulator::stepEuler(State& state)
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
-    carryAngularMomentum(mModel, mPrincipal, mRows, state);
-    trackJointAngles(mModel, state);
-    state.time += mDt;
-    ++state.step;
-    checkState(state, "end of step");
+    carryAngularMomentum(state);
+    finishStep(state);
     mEndPose = state.bodies;
     mEndRowsValid = true;
     clock.lap(StepStage::Integrate);
@@ -134,7 +116,7 @@ void Simulator::stepEuler(State& state)
 // pose, which is this one unless the state was changed between steps (bit-identical either way).
 void Simulator::rowsAtStart(const State& state)
 {
-    if (mEndRowsValid && samePose(state, mEndPose))
+    if (mEndRowsValid && samePose(mModel, state, mEndPose))
     {
         std::swap(mRows, mRowsAfter);
     }
@@ -143,20 +125,6 @@ void Simulator::rowsAtStart(const State& state)
         assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
     }
     mEndRowsValid = false;
-}
-
-bool Simulator::samePose(const State& state, const std::vector<BodyState>& pose) const
-{
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        const BodyState& now = state.bodies[i];
-        const BodyState& then = pose[i];
-        if (now.position_W != then.position_W || now.orientation_WB.coeffs() != then.orientation_WB.coeffs())
-        {
-            return false;
-        }
-    }
-    return true;
 }
 
 // Second order (RATTLE): kick h/2 g; impulses at q_n (joints, contacts) that the Newton
@@ -170,15 +138,13 @@ bool Simulator::stepRattle(State& state)
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, 0.5 * mDt);
-    keepFreeVelocities(state);
     do
     {
         factorAtStart(state); // docs/method.md §3, eq. (5), shared with the last step's projection
         clock.lap(StepStage::Factor);
         buildExtraRows(state);
-        recordStartDefects(state);
         setMomentumRhs(state, state.time + 0.5 * mDt);
-        mProblem.carryImpulses(mRhs);
+        carryImpulses();
         mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
         solveContactImpulses(state);
         clock.lap(StepStage::Solve);
@@ -189,183 +155,52 @@ bool Simulator::stepRattle(State& state)
     {
         return false;
     }
-    carryAngularMomentum(mModel, mPrincipal, mRows, state); // w_{n+1} = I_W(R_{n+1})^-1 L
+    carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
     kickByGravity(state, 0.5 * mDt);
     mActuation.applyForces(state, state.time + 0.5 * mDt, state.time + mDt);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
-    trackJointAngles(mModel, state);
-    state.time += mDt;
-    ++state.step;
-    checkState(state, "end of step");
+    finishStep(state);
     clock.lap(StepStage::Integrate);
     return true;
 }
 
-// Rows and factorization at the start-of-step pose; the rattle scheme's last projection left
-// them factored at exactly this pose unless the state was changed between steps.
+// Rows and factorization at the start-of-step pose (core/step/rattle_projection.h).
 void Simulator::factorAtStart(const State& state)
 {
-    if (!(mFactoredPoseValid && samePose(state, mFactoredPose)))
-    {
-        assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
-        mSolver->factor(mRows);
-    }
-    mFactoredPoseValid = false;
+    mRattle.factorAtStart(state, mRows, driveStep(), mActuation);
 }
 
-// The second half of RATTLE's velocity update: u_{n+1} = u - M^-1 J^T mu with J(q_{n+1}) u_{n+1} = 0,
-// M and J at q_{n+1} (the rows the last Newton iteration assembled). Loop joints join as
-// bilateral rows; contacts and limits that pushed in this step's impulse stage as one-sided
-// normal rows with target 0 (they may separate, never pull).
+// RATTLE's velocity projection at q_{n+1} (core/step/rattle_projection.h).
 void Simulator::projectVelocities(State& state)
 {
-    std::swap(mRows, mRowsAfter);
-    for (;;)
-    {
-        mSolver->factor(mRows);
-        buildLoopBlocks(mModel, mLayout, mRows, mLoopBlocks);
-        mEndBlocks = mLoopBlocks;
-        for (const ExtraBlock& block : mProblem.blocks())
-        {
-            if (block.kind == ExtraBlock::Kind::Drive)
-            {
-                if (block.actuator < 0)
-                {
-                    mEndBlocks.push_back(block); // joint friction acts in both halves of the step
-                }
-                continue;
-            }
-            if (block.kind != ExtraBlock::Kind::Loop && mProblem.impulses()(block.offset) > 0.0)
-            {
-                ExtraBlock normal = block;
-                normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
-                normal.target.setZero();
-                mEndBlocks.push_back(normal);
-            }
-        }
-        // Actuators at their limits act in the second half too, with their targets at its end.
-        mActuation.appendBoundedRows(state, state.time + mDt, driveStep(), mEndBlocks);
-        setMomentumRhs(state, state.time + mDt);
-        mSolver->solve(mRhs, mCorrection);
-        if (!mEndBlocks.empty())
-        {
-            const int rows = layoutExtraRows(mEndBlocks);
-            mSolver->delassus(mEndBlocks, rows, mEndG);
-            extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
-            mEndLambda.setZero(rows);
-            coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
-            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda,
-                           mProblem.scratch(), &mEndCoupling);
-            mSolver->applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
-        }
-        if (mActuation.acceptSolve(mRows, mCorrection, mEndBlocks, mEndLambda, driveStep()))
-        {
-            break;
-        }
-        // An actuator went beyond its limit: out of its block, the projection again.
-        assembleRows(mModel, mLayout, state, driveStep(), mRows, mActuation.gains());
-    }
-    mFactoredPose = state.bodies;
-    mFactoredPoseValid = true;
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (!mModel.bodies[i].isStatic)
-        {
-            state.bodies[i].velocity_W = mCorrection.body[i].head<3>();
-            state.bodies[i].angularVelocity_W = mCorrection.body[i].tail<3>();
-        }
-    }
-    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-    {
-        mSolution.joint[k] += mCorrection.joint[k];
-    }
+    mRattle.project(state, mRows, mRowsAfter, mLoopBlocks, mProblem, mRhs, mSolution, mDt, driveStep(),
+                    mActuation);
 }
 
-// The first step's contacts and limit rows tell whether the scene started with bodies deep inside
-// each other or a joint beyond its limit (core/failure_hint.h).
+// The joints' angles continued across +-pi (State::jointAngles), the clock advanced, the state checked.
+void Simulator::finishStep(State& state)
+{
+    trackJointAngles(mModel, state);
+    state.time += mDt;
+    ++state.step;
+    checkState(state, "end of step");
+}
+
+// The first step's contacts and limit rows: how the scene started (core/failure_hint.h).
 void Simulator::recordStartDefects(const State& state)
 {
-    if (!mStartRecorded)
-    {
-        mStartDefects = findStartDefects(mProblem.contacts(), mProblem.blocks(), mModel, state);
-        mStartRecorded = true;
-    }
+    mBlowUp.recordStartDefects(mProblem.contacts(), mProblem.blocks(), state);
 }
 
-// The hint of a failure at this state: the start defects while their recovery (at most
-// penetrationMaxSpeed, penetrationMaxAngularSpeed) could still be under way, with some steps to
-// spare, or while they are still there; else a smaller step when a body turned far within the
-// failing step.
-std::string Simulator::likelyCause(const State& state) const
-{
-    constexpr double cSpareSteps = 10.0;
-    const double recoverySteps =
-        cSpareSteps + mStartDefects.overlapM / (mOptions.penetrationMaxSpeed * mDt) +
-        mStartDefects.limitExcess /
-            (std::min(mOptions.penetrationMaxSpeed, mOptions.penetrationMaxAngularSpeed) * mDt);
-    bool stillThere = mStats.maxPenetrationM > cDeepOverlap;
-    for (const ExtraBlock& block : mProblem.blocks())
-    {
-        stillThere =
-            stillThere || (block.kind == ExtraBlock::Kind::Limit &&
-                           block.source == mStartDefects.limitJoint && block.error(0) > cDeepOverlap);
-    }
-    double rotation = 0.0;
-    int fastest = -1;
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        const double turn = mStart[i].angularVelocity_W.norm() * mDt;
-        if (!mModel.bodies[i].isStatic && turn > rotation)
-        {
-            rotation = turn;
-            fastest = static_cast<int>(i);
-        }
-    }
-    const bool recovering = stillThere || static_cast<double>(state.step) <= recoverySteps;
-    return failureHint(mModel, mStartDefects, recovering, rotation, fastest);
-}
-
+// A body's state non-finite or runaway: SimulationError (core/step/blow_up_check.h).
 void Simulator::checkState(const State& state, const char* where) const
 {
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        const BodyState& s = state.bodies[i];
-        const char* quantity = nullptr;
-        if (!finite(s.position_W))
-        {
-            quantity = "position";
-        }
-        else if (!s.orientation_WB.coeffs().allFinite())
-        {
-            quantity = "orientation";
-        }
-        else if (!finite(s.velocity_W) || s.velocity_W.norm() > cMaxSpeed)
-        {
-            quantity = "velocity";
-        }
-        else if (!finite(s.angularVelocity_W) || s.angularVelocity_W.norm() > cMaxAngularSpeed)
-        {
-            quantity = "angular velocity";
-        }
-        if (quantity != nullptr)
-        {
-            SimulationFailure failure;
-            failure.step = state.step;
-            failure.time = state.time;
-            failure.where = where;
-            failure.body = static_cast<int>(i);
-            failure.bodyName = mModel.bodies[i].name;
-            failure.quantity = quantity;
-            failure.maxSpeed = cMaxSpeed;
-            failure.maxAngularSpeed = cMaxAngularSpeed;
-            failure.hint = likelyCause(state);
-            throw SimulationError(std::move(failure));
-        }
-    }
+    mBlowUp.checkState(state, where, {mStats.maxPenetrationM, mProblem.blocks(), mStart});
 }
 
-// u* = u + h M^-1 f over a time h (s): gravity on the centre of mass; no torque. Saves the
-// start-of-step poses.
+// u* = u + h M^-1 f over a time h (s): gravity on the centre of mass, effort actuators and loads.
+// Saves the start-of-step poses, and the free velocities when an actuator may make the step's
+// first solve be taken again.
 void Simulator::computeFreeVelocities(State& state, double h)
 {
     for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
@@ -374,6 +209,13 @@ void Simulator::computeFreeVelocities(State& state, double h)
     }
     kickByGravity(state, h);
     mActuation.applyForces(state, state.time, state.time + h); // effort actuators, loads
+    keepFreeVelocities(state);
+}
+
+// v += h g for every moving body (h in s; core/step/velocity_stage.h).
+void Simulator::kickByGravity(State& state, double h)
+{
+    core::kickByGravity(mModel, state, h);
 }
 
 // The free velocities, kept when an actuator may make the step's first solve be taken again.
@@ -397,21 +239,8 @@ bool Simulator::actuatorsWithinLimits(State& state)
     }
     state.bodies = mFree;
     mEndRowsValid = false;
-    mFactoredPoseValid = false;
+    mRattle.forgetFactoredPose();
     return false;
-}
-
-// v += h g for every moving body (h in s).
-void Simulator::kickByGravity(State& state, double h)
-{
-    const Vec3 dv = h * mModel.simulation.gravity;
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (!mModel.bodies[i].isStatic)
-        {
-            state.bodies[i].velocity_W += dv;
-        }
-    }
 }
 
 void Simulator::detectContacts(const State& state)
@@ -431,32 +260,26 @@ void Simulator::detectContacts(const State& state)
 }
 
 // The step's extra rows at the start-of-step pose (core/step/contact_problem.h): the loop joints'
-// rows of the factored rows, contacts, limits, joint friction and actuators at their limits.
+// rows of the factored rows, contacts, limits, joint friction and actuators at their limits. The
+// first step's also tell how the scene started.
 void Simulator::buildExtraRows(const State& state)
 {
     buildLoopBlocks(mModel, mLayout, mRows, mLoopBlocks);
     mStats.extraRows = mProblem.build(state, mStart, mLoopBlocks, mDt, driveStep(), mActuation);
+    recordStartDefects(state);
 }
 
-// p = M u* for the joint-impulse solve M u' - J^T lambda = M u*, J u' + E lambda = c: c = 0 but
-// for the rows of servos and motors in their joints' blocks (targets at tEnd, s).
+// p = M u* (core/step/velocity_stage.h), targets of the drives in their blocks at tEnd (s).
 void Simulator::setMomentumRhs(const State& state, double tEnd)
 {
-    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-    {
-        if (mModel.bodies[i].isStatic)
-        {
-            continue;
-        }
-        const BodyState& s = state.bodies[i];
-        mRhs.body[i].head<3>() = mRows.mass[i] * s.velocity_W;
-        mRhs.body[i].tail<3>() = mRows.inertia_W[i] * s.angularVelocity_W;
-    }
-    for (Vec6& c : mRhs.joint)
-    {
-        c.setZero();
-    }
-    mActuation.setRowTargets(state, tEnd, driveStep(), mRhs); // servos and motors in their blocks
+    core::setMomentumRhs(mModel, mRows, state, tEnd, driveStep(), mActuation, mRhs);
+}
+
+// The last step's impulses on this step's rows, their momentum into the right-hand side
+// (core/step/contact_problem.h).
+void Simulator::carryImpulses()
+{
+    mProblem.carryImpulses(mRhs);
 }
 
 // The extra rows' impulses on top of the tree's solution (core/step/contact_problem.h); then the
@@ -488,6 +311,12 @@ void Simulator::integratePositions(State& state)
     core::integratePositions(mModel, mStart, mPrincipal, mRows, mDt, mRattleStep, state);
 }
 
+// w_{n+1} = I_W(R_{n+1})^-1 I_W(R_n) w (core/step/positions.h).
+void Simulator::carryAngularMomentum(State& state)
+{
+    core::carryAngularMomentum(mModel, mPrincipal, mRows, state);
+}
+
 // The drift correction of the joints (core/step/drift_correction.h). A joint still apart after it
 // is a blow-up: the run stops naming the step, the joint and the gap. False: a rattle step stalled.
 bool Simulator::stabilizeJoints(State& state)
@@ -501,23 +330,7 @@ bool Simulator::stabilizeJoints(State& state)
     mStats.stabilizationIterations = mDrift.iterations();
     if (outcome == DriftCorrection::Outcome::CameApart)
     {
-        const Joint& joint = mModel.joints[static_cast<std::size_t>(errors.worstJoint)];
-        SimulationFailure failure;
-        failure.step = state.step;
-        failure.time = state.time;
-        failure.body = joint.child;
-        failure.bodyName = mModel.bodies[static_cast<std::size_t>(joint.child)].name;
-        failure.joint = errors.worstJoint;
-        failure.jointName = joint.name;
-        if (joint.parent != cWorld)
-        {
-            failure.parentName = mModel.bodies[static_cast<std::size_t>(joint.parent)].name;
-        }
-        const bool positional = errors.maxM >= errors.maxRad;
-        failure.quantity = positional ? "position" : "orientation";
-        failure.gap = std::max(errors.maxM, errors.maxRad);
-        failure.hint = likelyCause(state);
-        throw SimulationError(std::move(failure));
+        mBlowUp.jointCameApart(state, errors, {mStats.maxPenetrationM, mProblem.blocks(), mStart});
     }
     return outcome != DriftCorrection::Outcome::Stalled;
 }

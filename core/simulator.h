@@ -1,14 +1,22 @@
 // core/simulator.h: the fixed-step integrator and its step pipeline.
 //
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
-// reads like the physics, in Simulator::step():
-//   checkState -> detectContacts -> computeFreeVelocities -> assembleRows -> setMomentumRhs
-//   -> factorAndSolve (O(n): elimination and the joint impulses in one pass) -> buildExtraRows
-//   -> solveContactImpulses -> integratePositions -> removePenetration
-//   -> stabilizeJoints -> carryAngularMomentum -> checkState
+// reads like the physics, in Simulator::stepEuler() (stage timings: StepStage, core/step/step_stats.h):
+//   checkState -> detectContacts                                                       [Detect]
+//   -> computeFreeVelocities -> rowsAtStart -> buildExtraRows -> setMomentumRhs -> carryImpulses
+//   -> factorAndSolve (O(n): elimination and the joint impulses in one pass)           [Factor]
+//   -> solveContactImpulses                                                            [Solve]
+//      (rowsAtStart .. solveContactImpulses again while an actuator went past its effort limit)
+//   -> integratePositions -> removePenetration -> stabilizeJoints -> carryAngularMomentum
+//   -> finishStep (joint angles, time, checkState)                                     [Integrate]
+// Each stage is a unit of core/step/: the contact problem (contact_problem.h, with the warm start
+// of impulse_memory.h), positions (positions.h), the penetration projection
+// (penetration_projection.h), the drift correction (drift_correction.h), RATTLE's projection
+// (rattle_projection.h), and the checks that stop a run that blew up (blow_up_check.h,
+// simulation_error.h).
 // Contacts, loop-closing joints and joint limits are extra rows on top of the tree factorization
 // (docs/method.md §5, core/extra_rows.h): contacts one-sided with a Coulomb friction cone and Newton
-// restitution above cRestitutionSpeed; penetration beyond a slop is removed by a separate
+// restitution above StepOptions::restitutionSpeed; penetration beyond a slop is removed by a separate
 // position projection (no velocity bias, so no bodies jump).
 // Joint damping is a compliant drive row in the joint's block of the factorization (implicit, so
 // stable for any value), Coulomb joint friction a bounded extra row (core/joints/drive.h). Position
@@ -28,7 +36,15 @@
 // update (w = I_W(R_new)^-1 I_W(R_old) w), so a free body's angular momentum is exact.
 //
 // The second-order scheme (`rattle`, Simulator::stepRattle) is RATTLE on the bodies' positions
-// and rotations: half kick h/2 g; impulses along J(q_n)^T chosen so that the drifted positions
+// and rotations:
+//   checkState -> detectContacts                                                       [Detect]
+//   -> computeFreeVelocities (h/2) -> factorAtStart                                    [Factor]
+//   -> buildExtraRows -> setMomentumRhs -> carryImpulses -> solve -> solveContactImpulses [Solve]
+//      (factorAtStart .. solveContactImpulses again while an actuator went past its effort limit)
+//   -> integratePositions -> removePenetration -> stabilizeJoints (stalled: the step is taken
+//      again by euler) -> carryAngularMomentum -> kickByGravity (h/2) -> applyForces (h/2)
+//   -> projectVelocities -> finishStep                                                 [Integrate]
+// That is: half kick h/2 g; impulses along J(q_n)^T chosen so that the drifted positions
 // satisfy C(q_{n+1}) = 0 (Newton iterations to stabilizationTolerance with the O(n) factorization);
 // a drift at constant momenta (straight lines, and the split free rigid-body rotation of
 // core/free_rotation.h on SO(3)); half kick; the velocity projection J(q_{n+1}) u_{n+1} = 0
@@ -42,12 +58,13 @@
 
 #include "core/actuation.h"
 #include "core/contact.h"
-#include "core/failure_hint.h"
 #include "core/free_rotation.h"
 #include "core/impulse_solver.h"
+#include "core/step/blow_up_check.h"
 #include "core/step/contact_problem.h"
 #include "core/step/drift_correction.h"
 #include "core/step/penetration_projection.h"
+#include "core/step/rattle_projection.h"
 #include "core/step/simulation_error.h"
 #include "core/step/step_options.h"
 #include "core/step/step_stats.h"
@@ -108,21 +125,20 @@ class Simulator
     State mStepStart;              // the state a rattle step started from
     void checkState(const State& state, const char* where) const;
     void recordStartDefects(const State& state);
-    std::string likelyCause(const State& state) const; // "; ..." for a failure message, or empty
-    StartDefects mStartDefects;                        // what the first step found wrong with the start
-    bool mStartRecorded = false;                       // mStartDefects is set
     void detectContacts(const State& state);
     void computeFreeVelocities(State& state, double h);
     void keepFreeVelocities(const State& state);
     bool actuatorsWithinLimits(State& state);
     std::vector<BodyState> mFree; // the free velocities of the step (actuators may solve again)
-    void kickByGravity(State& state, double h);
-    void factorAtStart(const State& state);
     void rowsAtStart(const State& state);
-    bool samePose(const State& state, const std::vector<BodyState>& pose) const;
-    void projectVelocities(State& state);
     void buildExtraRows(const State& state);
     void setMomentumRhs(const State& state, double tEnd);
+    void carryImpulses();
+    void factorAtStart(const State& state);
+    void projectVelocities(State& state);
+    void kickByGravity(State& state, double h);
+    void carryAngularMomentum(State& state);
+    void finishStep(State& state);
     void solveContactImpulses(State& state);
     void integratePositions(State& state);
     void removePenetration(State& state);
@@ -134,8 +150,6 @@ class Simulator
     const Model& mModel;
     StepOptions mOptions;
     ContactSource* mContactSource;
-    RowCoupling mEndCoupling; // rows each of the rattle projection's blocks can move
-    std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
     std::vector<ExtraBlock> mLoopBlocks; // loop joints alone, at the factored rows (§5, §7)
     FrontierLayout mLayout;
     Actuation mActuation; // servos, motors, effort actuators and loads
@@ -143,22 +157,17 @@ class Simulator
     ContactProblem mProblem;            // contacts, loops, limits, joint friction: the extra rows (§5)
     PenetrationProjection mPenetration; // overlaps and limit overruns out by displacement (§5)
     DriftCorrection mDrift;             // the joints' position conditions back to zero (§7)
+    RattleProjection mRattle;           // rattle: the velocity projection at the end of the step (§4)
+    BlowUpCheck mBlowUp;                // runaway states, joints come apart: SimulationError
     RowSystem mRows;                    // rows at the start of the step (the factored ones)
     RowSystem mRowsAfter;               // rows re-evaluated after the position update (errors only)
-    BlockVector mRhs, mSolution, mCorrection;
-    std::vector<BodyState> mStart; // poses at the start of the step
-    // rattle: principal axes per body; the pose at which mRows was factored by the last step's
-    // velocity projection (reused when the next step starts there); the projection's extra rows.
-    std::vector<PrincipalAxes> mPrincipal;
-    std::vector<BodyState> mFactoredPose;
-    bool mFactoredPoseValid = false;
+    BlockVector mRhs, mSolution;
+    std::vector<BodyState> mStart;         // poses at the start of the step
+    std::vector<PrincipalAxes> mPrincipal; // principal axes per body (free rotation, momentum carry)
     // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
     // next step's mRows when it starts there).
     std::vector<BodyState> mEndPose;
     bool mEndRowsValid = false;
-    std::vector<ExtraBlock> mEndBlocks;
-    Eigen::MatrixXd mEndG;
-    Eigen::VectorXd mEndVelocity, mEndLambda;
     StepStats mStats;
     double mDt;
 };

@@ -1,7 +1,8 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
 // (the `--joints` and `--contacts` outputs). Nothing here runs inside step(): a step keeps its
 // impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
-// projection's in mEndLambda, the loops' drift correction in DriftCorrection::loopCorrection).
+// projection's in RattleProjection::impulses, the loops' drift correction in
+// DriftCorrection::loopCorrection).
 //
 // A joint's impulse on its child is J_b^T lambda summed over the rows of the joint: its block in
 // the tree (conditions and drive rows), and its extra rows (loop, limit, friction). Those rows
@@ -86,7 +87,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
     addExtra(mLoopBlocks, mDrift.loopCorrection());
     if (mRattleStep)
     {
-        addExtra(mEndBlocks, mEndLambda); // the velocity projection at the end of a rattle step
+        addExtra(mRattle.blocks(), mRattle.impulses()); // the velocity projection at the end of a rattle step
     }
     // Effort actuators pass their commanded (clipped) impulse through the joint as applied forces.
     const std::span<const ActuatorEffort> efforts = mActuation.efforts();
@@ -135,7 +136,7 @@ void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
     add(mProblem.blocks(), mProblem.impulses());
     if (mRattleStep)
     {
-        add(mEndBlocks, mEndLambda);
+        add(mRattle.blocks(), mRattle.impulses());
     }
 }
 
