@@ -3,14 +3,10 @@
 #include "core/simulator.h"
 
 #include "core/joints/coordinates.h"
-#include "core/penetration.h"
 #include "core/step/positions.h"
 #include "core/step/velocity_stage.h"
 
 #include <algorithm>
-#include <array>
-#include <cmath>
-#include <limits>
 #include <utility>
 
 namespace frontier::core
