@@ -79,6 +79,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     {
         summary.finite = false;
         summary.failure = error.what();
+        summary.failureDetails = error.failure();
         // The failing step detected its contacts before it failed: a run that fails at step 0
         // still reports the overlap it started with.
         summary.maxPenetrationM = std::max(summary.maxPenetrationM, simulator.lastStep().maxPenetrationM);

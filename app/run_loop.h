@@ -7,6 +7,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace frontier::app
@@ -38,7 +39,8 @@ struct RunSummary
     double maxActuatorEffort = 0.0; // largest |effort| of any actuator in any step (N or N m)
     long actuatorLimitSteps = 0;    // steps in which some actuator sat at its effort limit
     bool finite = true;
-    std::string failure; // the SimulationError message when the run blew up
+    std::string failure;                                   // the SimulationError message when the run blew up
+    std::optional<core::SimulationFailure> failureDetails; // and what it named
 };
 
 // Called with the initial state (`lastStep` null: no step yet) and with the state after every

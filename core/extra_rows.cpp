@@ -1,5 +1,5 @@
 // core/extra_rows.cpp: contact, limit and joint friction rows (their solve:
-// core/extra_rows_solve.cpp; loop rows: core::Simulator::buildLoopRows).
+// core/extra_rows_solve.cpp; loop rows: core::buildLoopBlocks).
 #include "core/extra_rows.h"
 
 #include "core/collision_response.h"

@@ -1,5 +1,5 @@
 // core/penetration.h: what keeps the position projection of overlaps and limit overruns
-// (Simulator::removePenetration) bounded.
+// (core/step/penetration_projection.h) bounded.
 //
 // The projection displaces bodies by d = H^-1 J_x^T mu (through the joints, mu >= 0) so that the
 // predicted overlap of every row goes. Two things can make that displacement huge:
@@ -11,7 +11,7 @@
 //   linear in the rotation: its joints come apart at second order, its contact points follow
 //   arcs instead of lines. Each step's displacement is scaled down to at most a translation and
 //   a rotation per body; the rest is removed in the following steps (and the joints' second-order
-//   gap is closed by displacement, Simulator::restoreJoints).
+//   gap is closed by displacement, PenetrationProjection::restoreJoints).
 #pragma once
 
 #include "core/free_rotation.h"

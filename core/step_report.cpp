@@ -1,7 +1,8 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
 // (the `--joints` and `--contacts` outputs). Nothing here runs inside step(): a step keeps its
-// impulses anyway (the joints' in mSolution, the extra rows' in mExtraLambda, the rattle
-// projection's in mEndLambda, the loops' drift correction in mLoopCorrection).
+// impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
+// projection's in RattleProjection::impulses, the loops' drift correction in
+// DriftCorrection::loopCorrection).
 //
 // A joint's impulse on its child is J_b^T lambda summed over the rows of the joint: its block in
 // the tree (conditions and drive rows), and its extra rows (loop, limit, friction). Those rows
@@ -82,11 +83,11 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
             addBlock(static_cast<int>(k), mSolution.joint[k]);
         }
     }
-    addExtra(mExtra, mExtraLambda);
-    addExtra(mLoopBlocks, mLoopCorrection);
+    addExtra(mProblem.blocks(), mProblem.impulses());
+    addExtra(mLoopBlocks, mDrift.loopCorrection());
     if (mRattleStep)
     {
-        addExtra(mEndBlocks, mEndLambda); // the velocity projection at the end of a rattle step
+        addExtra(mRattle.blocks(), mRattle.impulses()); // the velocity projection at the end of a rattle step
     }
     // Effort actuators pass their commanded (clipped) impulse through the joint as applied forces.
     const std::span<const ActuatorEffort> efforts = mActuation.efforts();
@@ -114,7 +115,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
 void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
 {
     out.clear();
-    for (const Contact& contact : mContacts)
+    for (const Contact& contact : mProblem.contacts())
     {
         out.push_back({contact, Vec3::Zero()});
     }
@@ -132,20 +133,20 @@ void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
             }
         }
     };
-    add(mExtra, mExtraLambda);
+    add(mProblem.blocks(), mProblem.impulses());
     if (mRattleStep)
     {
-        add(mEndBlocks, mEndLambda);
+        add(mRattle.blocks(), mRattle.impulses());
     }
 }
 
 int Simulator::pushingLimitRows() const
 {
     int count = 0;
-    for (const ExtraBlock& block : mExtra)
+    for (const ExtraBlock& block : mProblem.blocks())
     {
-        if (block.kind == ExtraBlock::Kind::Limit && block.offset < mExtraLambda.size() &&
-            mExtraLambda(block.offset) > 0.0)
+        if (block.kind == ExtraBlock::Kind::Limit && block.offset < mProblem.impulses().size() &&
+            mProblem.impulses()(block.offset) > 0.0)
         {
             ++count;
         }

@@ -160,30 +160,18 @@ std::string format(const char* pattern, double value)
     return text;
 }
 
-// From a core::SimulationError message: "came apart at t = 0.533 s (joint 'wrist_left', 0.033 rad)"
-// for a joint that let go, "blew up at t = ... s" for a runaway quantity.
-std::string failureNote(const std::string& message, double fallbackTime)
+// From a core::SimulationError: "came apart at t = 0.533 s (joint 'wrist_left', 0.033 rad)" for a
+// joint that let go, "blew up at t = ... s" for a runaway quantity.
+std::string failureNote(const std::optional<core::SimulationFailure>& failure, double fallbackTime)
 {
-    double time = fallbackTime;
-    const std::size_t at = message.find("(t = ");
-    if (at != std::string::npos)
-    {
-        time = std::strtod(message.c_str() + at + 5, nullptr);
-    }
+    const double time = failure ? failure->time : fallbackTime;
     std::string note = "at t = " + format("%.3g", time) + " s";
-    const std::size_t joint = message.find("at joint '");
-    const std::size_t error = message.find(" error ", joint == std::string::npos ? 0 : joint);
-    if (message.find("came off") == std::string::npos || joint == std::string::npos ||
-        error == std::string::npos)
+    if (!failure || !failure->joint || !failure->gap)
     {
         return "blew up " + note;
     }
-    const std::size_t nameEnd = message.find('\'', joint + 10);
-    char* end = nullptr;
-    const double gap = std::strtod(message.c_str() + error + 7, &end);
-    const std::string unit = (end != nullptr && std::string(end).rfind(" rad", 0) == 0) ? " rad" : " m";
-    return "came apart " + note + " (joint '" + message.substr(joint + 10, nameEnd - joint - 10) + "', " +
-           format("%.2g", gap) + unit + ")";
+    return "came apart " + note + " (joint '" + failure->jointName + "', " + format("%.2g", *failure->gap) +
+           (failure->gapInRadians() ? " rad" : " m") + ")";
 }
 
 } // namespace
@@ -395,7 +383,7 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         {
             cell.outcome = StabilityOutcome::Failed;
             cell.note =
-                failureNote(summary.failure, static_cast<double>(summary.steps) * model.simulation.dt);
+                failureNote(summary.failureDetails, static_cast<double>(summary.steps) * model.simulation.dt);
             cell.failure = summary.failure;
         }
     }

@@ -1,5 +1,5 @@
 // tests/contact/delassus_reuse_test.cpp: resting contact solved with a recent step's Delassus
-// matrix (core::Simulator::solveWithLastDelassus, StepOptions::reuseDelassus) against the same
+// matrix (core::ContactProblem, StepOptions::reuseDelassus) against the same
 // scenes with this step's matrix built every time. The route must be taken (most resting steps),
 // and it must not change the physics: the same rest poses to well under the contact tolerance's
 // reach, bodies at rest, no energy gained.

@@ -1,5 +1,5 @@
 // tests/contact/penetration_test.cpp: bodies that start inside the floor, inside each other or
-// beyond a joint limit are recovered boundedly (Simulator::removePenetration, core/penetration.h)
+// beyond a joint limit are recovered boundedly (core::PenetrationProjection, core/penetration.h)
 // and never explode; a run that does fail names the likely cause (core/failure_hint.h).
 //
 // The bounds, from what the projection is: a displacement H^-1 J^T mu that leaves velocities

@@ -319,7 +319,7 @@ TEST(ExtraRowsSolve, ConditionsMetAgreesWithTheLargestResidual)
     EXPECT_TRUE(std::isnan(core::conditionResidual(p.blocks, broken, lambda)));
 }
 
-// The carried impulses in the right-hand side of the step's first solve (Simulator::carryImpulses):
+// The carried impulses in the right-hand side of the step's first solve (ContactProblem::carryImpulses):
 // H^-1 (p + J_x^T lambda) in one solve equals H^-1 p plus applyExtraImpulses(lambda) to
 // round-off, and its row velocities are v_free + G lambda.
 TEST(ExtraRowsSolve, ImpulsesInTheRightHandSideEqualAppliedImpulses)

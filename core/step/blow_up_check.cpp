@@ -1,0 +1,129 @@
+// core/step/blow_up_check.cpp: the checks that stop a run that blew up, and their messages' hints.
+#include "core/step/blow_up_check.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace frontier::core
+{
+
+namespace
+{
+// Anything beyond these is a blow-up even while still finite.
+constexpr double cMaxSpeed = 1e5;        // m/s
+constexpr double cMaxAngularSpeed = 1e6; // rad/s
+
+bool finite(const Vec3& v)
+{
+    return v.allFinite();
+}
+} // namespace
+
+BlowUpCheck::BlowUpCheck(const Model& model, const StepOptions& options, double dt)
+    : mModel(model), mOptions(options), mDt(dt)
+{
+}
+
+void BlowUpCheck::recordStartDefects(const std::vector<Contact>& contacts,
+                                     const std::vector<ExtraBlock>& blocks, const State& state)
+{
+    if (!mStartRecorded)
+    {
+        mStartDefects = findStartDefects(contacts, blocks, mModel, state);
+        mStartRecorded = true;
+    }
+}
+
+// The hint of a failure at this state: the start defects while their recovery (at most
+// penetrationMaxSpeed, penetrationMaxAngularSpeed) could still be under way, with some steps to
+// spare, or while they are still there; else a smaller step when a body turned far within the
+// failing step.
+std::string BlowUpCheck::likelyCause(const State& state, const StepView& step) const
+{
+    constexpr double cSpareSteps = 10.0;
+    const double recoverySteps =
+        cSpareSteps + mStartDefects.overlapM / (mOptions.penetrationMaxSpeed * mDt) +
+        mStartDefects.limitExcess /
+            (std::min(mOptions.penetrationMaxSpeed, mOptions.penetrationMaxAngularSpeed) * mDt);
+    bool stillThere = step.maxPenetrationM > cDeepOverlap;
+    for (const ExtraBlock& block : step.blocks)
+    {
+        stillThere =
+            stillThere || (block.kind == ExtraBlock::Kind::Limit &&
+                           block.source == mStartDefects.limitJoint && block.error(0) > cDeepOverlap);
+    }
+    double rotation = 0.0;
+    int fastest = -1;
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        const double turn = step.start[i].angularVelocity_W.norm() * mDt;
+        if (!mModel.bodies[i].isStatic && turn > rotation)
+        {
+            rotation = turn;
+            fastest = static_cast<int>(i);
+        }
+    }
+    const bool recovering = stillThere || static_cast<double>(state.step) <= recoverySteps;
+    return failureHint(mModel, mStartDefects, recovering, rotation, fastest);
+}
+
+void BlowUpCheck::checkState(const State& state, const char* where, const StepView& step) const
+{
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        const BodyState& s = state.bodies[i];
+        const char* quantity = nullptr;
+        if (!finite(s.position_W))
+        {
+            quantity = "position";
+        }
+        else if (!s.orientation_WB.coeffs().allFinite())
+        {
+            quantity = "orientation";
+        }
+        else if (!finite(s.velocity_W) || s.velocity_W.norm() > cMaxSpeed)
+        {
+            quantity = "velocity";
+        }
+        else if (!finite(s.angularVelocity_W) || s.angularVelocity_W.norm() > cMaxAngularSpeed)
+        {
+            quantity = "angular velocity";
+        }
+        if (quantity != nullptr)
+        {
+            SimulationFailure failure;
+            failure.step = state.step;
+            failure.time = state.time;
+            failure.where = where;
+            failure.body = static_cast<int>(i);
+            failure.bodyName = mModel.bodies[i].name;
+            failure.quantity = quantity;
+            failure.maxSpeed = cMaxSpeed;
+            failure.maxAngularSpeed = cMaxAngularSpeed;
+            failure.hint = likelyCause(state, step);
+            throw SimulationError(std::move(failure));
+        }
+    }
+}
+
+void BlowUpCheck::jointCameApart(const State& state, const JointErrors& errors, const StepView& step) const
+{
+    const Joint& joint = mModel.joints[static_cast<std::size_t>(errors.worstJoint)];
+    SimulationFailure failure;
+    failure.step = state.step;
+    failure.time = state.time;
+    failure.body = joint.child;
+    failure.bodyName = mModel.bodies[static_cast<std::size_t>(joint.child)].name;
+    failure.joint = errors.worstJoint;
+    failure.jointName = joint.name;
+    if (joint.parent != cWorld)
+    {
+        failure.parentName = mModel.bodies[static_cast<std::size_t>(joint.parent)].name;
+    }
+    failure.quantity = errors.maxM >= errors.maxRad ? "position" : "orientation";
+    failure.gap = std::max(errors.maxM, errors.maxRad);
+    failure.hint = likelyCause(state, step);
+    throw SimulationError(std::move(failure));
+}
+
+} // namespace frontier::core

@@ -1,0 +1,161 @@
+// core/step/drift_correction.cpp: the SHAKE-type drift correction of the joints (docs/method.md §7).
+#include "core/step/drift_correction.h"
+
+#include "core/step/contact_problem.h"
+#include "core/step/positions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace frontier::core
+{
+
+JointErrors measureJointErrors(const RowSystem& rows, int worstBefore)
+{
+    JointErrors errors;
+    errors.worstJoint = worstBefore;
+    double worst = -1.0;
+    for (std::size_t k = 0; k < rows.joints.size(); ++k)
+    {
+        const JointRows& r = rows.joints[k];
+        for (int row = 0; row < r.count; ++row)
+        {
+            const double error = std::abs(r.error(row));
+            double& slot = row < r.positionRows ? errors.maxM : errors.maxRad;
+            slot = std::max(slot, error);
+            if (error > worst)
+            {
+                worst = error;
+                errors.worstJoint = static_cast<int>(k);
+            }
+        }
+    }
+    return errors;
+}
+
+DriftCorrection::DriftCorrection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
+                                 ImpulseSolver& solver)
+    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+{
+    mRhs.resize(model.bodies.size(), model.joints.size());
+    mRhs.setZero();
+    mCorrection.resize(model.bodies.size(), model.joints.size());
+}
+
+const JointErrors& DriftCorrection::measure(const RowSystem& rows)
+{
+    mErrors = measureJointErrors(rows, mErrors.worstJoint);
+    return mErrors;
+}
+
+DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<BodyState>& start,
+                                              const std::vector<PrincipalAxes>& principal,
+                                              const RowSystem& rows, RowSystem& rowsAfter,
+                                              std::vector<ExtraBlock>& loopBlocks, BlockVector& solution,
+                                              double dt, double driveStep, bool rattle,
+                                              const Actuation& actuation)
+{
+    constexpr double cSlowContraction = 0.1;
+    constexpr double cJointBlowUp = 1e-3; // m or rad
+    mIterations = 0;
+    double previous = std::numeric_limits<double>::infinity();
+    bool loopsFactored = false;
+    bool refactored = false;
+    constexpr double cRattleStall = 0.5;
+    constexpr int cRattleIterations = 12;
+    mLoopCorrection.setZero(loopBlocks.empty() ? 0 : loopBlocks.back().offset + loopBlocks.back().count);
+    for (int iteration = 0;; ++iteration)
+    {
+        assembleRows(mModel, mLayout, state, driveStep, rowsAfter, actuation.gains());
+        measure(rowsAfter);
+        const double error = std::max(mErrors.maxM, mErrors.maxRad);
+        if (error <= mOptions.stabilizationTolerance)
+        {
+            break;
+        }
+        if (rattle && (error > cRattleStall * previous || iteration >= cRattleIterations))
+        {
+            return Outcome::Stalled;
+        }
+        if (iteration >= mOptions.stabilizationIterations)
+        {
+            // A joint still apart by more than cJointBlowUp after the last iteration is a blow-up:
+            // the run stops naming the step, the joint and the gap, instead of going on with garbage.
+            return error > cJointBlowUp ? Outcome::CameApart : Outcome::Converged;
+        }
+        if (!refactored && error > cSlowContraction * previous)
+        {
+            refactored = true;
+            mRowsRefactored = rowsAfter;
+            mSolver.factor(mRowsRefactored);
+            buildLoopBlocks(mModel, mLayout, mRowsRefactored, loopBlocks);
+            loopsFactored = false;
+        }
+        if (!loopBlocks.empty() && !loopsFactored)
+        {
+            // Loop rows join the projection exactly: their Delassus block, once per factorization.
+            mSolver.delassus(loopBlocks, layoutExtraRows(loopBlocks), mLoopG);
+            addLoopCompliance(loopBlocks);
+            mLoopLdlt.compute(mLoopG);
+            loopsFactored = true;
+        }
+        mLoopError.resize(mLoopG.rows());
+        for (const ExtraBlock& loop : loopBlocks)
+        {
+            mLoopError.segment(loop.offset, loop.count) =
+                rowsAfter.joints[static_cast<std::size_t>(loop.source)].error.head(loop.count);
+        }
+        previous = error;
+        mIterations = iteration + 1;
+        for (Vec6& p : mRhs.body)
+        {
+            p.setZero();
+        }
+        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+        {
+            mRhs.joint[k] = -rowsAfter.joints[k].error / dt;
+        }
+        mSolver.solve(mRhs, mCorrection);
+        if (!loopBlocks.empty())
+        {
+            correctLoops(loopBlocks, dt);
+        }
+        for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+        {
+            if (!mModel.bodies[i].isStatic)
+            {
+                state.bodies[i].velocity_W += mCorrection.body[i].head<3>();
+                state.bodies[i].angularVelocity_W += mCorrection.body[i].tail<3>();
+            }
+        }
+        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+        {
+            solution.joint[k] += mCorrection.joint[k];
+        }
+        integratePositions(mModel, start, principal, rows, dt, rattle, state);
+    }
+    return Outcome::Converged;
+}
+
+// Loop rows in the projection: the tree correction du_0 leaves J_loop du_0 + C_loop / h; the loop
+// impulse mu = G_loop^-1 (-C_loop / h - J_loop du_0) removes it, and du += H^-1 J_loop^T mu.
+void DriftCorrection::correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt)
+{
+    extraRowVelocities(loopBlocks, mCorrection, mLoopVelocity);
+    const Eigen::VectorXd residual = -mLoopError / dt - mLoopVelocity;
+    const Eigen::VectorXd mu = mLoopLdlt.solve(residual);
+    mSolver.applyExtraImpulses(loopBlocks, mu, mCorrection);
+    mLoopCorrection += mu;
+}
+
+// Drive rows of loop joints are compliant in the projection too: G_loop gains E on their diagonal.
+void DriftCorrection::addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks)
+{
+    for (const ExtraBlock& loop : loopBlocks)
+    {
+        mLoopG.diagonal().segment(loop.offset, loop.count) += loop.compliance.head(loop.count);
+    }
+}
+
+} // namespace frontier::core

@@ -1,0 +1,82 @@
+// core/step/drift_correction.h: the SHAKE-type projection of the joints' position conditions
+// C(q) back to zero after the position update (docs/method.md §7), and the joint errors it reads.
+#pragma once
+
+#include "core/actuation.h"
+#include "core/free_rotation.h"
+#include "core/impulse_solver.h"
+#include "core/step/step_options.h"
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace frontier::core
+{
+
+// The largest joint violations of a set of rows: positional (m), angular (rad), and the joint of
+// the largest of either.
+struct JointErrors
+{
+    double maxM = 0.0;
+    double maxRad = 0.0;
+    int worstJoint = 0;
+};
+// `worstJoint` is the joint of the largest violation, or `worstBefore` when no row is violated.
+JointErrors measureJointErrors(const RowSystem& rows, int worstBefore);
+
+class DriftCorrection
+{
+  public:
+    DriftCorrection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
+                    ImpulseSolver& solver);
+
+    enum class Outcome
+    {
+        Converged, // to stabilizationTolerance, or within cJointBlowUp after the last iteration
+        Stalled,   // a rattle step whose iteration stalled (to be taken by euler)
+        CameApart, // a joint still apart by more than cJointBlowUp: errors() names it
+    };
+
+    // Impulses along J^T that bring C(q_{n+1}) to zero. Each iteration solves
+    // [M J^T; J 0][du; -dlambda] = [0; -C/h] and moves velocities by du and positions by h du
+    // (integratePositions from `start`). The first iterations reuse the step's factorization
+    // (quasi-Newton: J at the start of the step stands for J at the end); when an iteration
+    // contracts the error by less than cSlowContraction (fast rotation, thin bodies, large steps),
+    // the system is re-factored at the current configuration (once per step: re-factoring again
+    // made convergence worse in tests), the loop blocks rebuilt there. Loop joints join exactly
+    // through their Delassus block. rattle: the impulse direction stays J(q_n)^T (so the step is
+    // the symplectic map), never re-factored; Stalled when it contracts by less than cRattleStall
+    // or has not converged after cRattleIterations. Leaves `rowsAfter` at the final pose, adds
+    // the joint impulses to `solution`.
+    Outcome run(State& state, const std::vector<BodyState>& start,
+                const std::vector<PrincipalAxes>& principal, const RowSystem& rows, RowSystem& rowsAfter,
+                std::vector<ExtraBlock>& loopBlocks, BlockVector& solution, double dt, double driveStep,
+                bool rattle, const Actuation& actuation);
+
+    const JointErrors& errors() const { return mErrors; } // after the last iteration
+    int iterations() const { return mIterations; }        // iterations that moved the state
+    // The loop impulses of this step's correction (N s, N m s), by the rows of the loop blocks.
+    const Eigen::VectorXd& loopCorrection() const { return mLoopCorrection; }
+    // Joint violations of `rows` (a measurement outside the step: the worst joint is kept too).
+    const JointErrors& measure(const RowSystem& rows);
+
+  private:
+    void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
+    void addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks);
+
+    const Model& mModel;
+    const StepOptions& mOptions;
+    const FrontierLayout& mLayout;
+    ImpulseSolver& mSolver;
+    JointErrors mErrors;
+    int mIterations = 0;
+    RowSystem mRowsRefactored; // rows of a re-factorization when the quasi-Newton iteration is slow
+    BlockVector mRhs, mCorrection;
+    Eigen::MatrixXd mLoopG;
+    Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
+    Eigen::VectorXd mLoopError;      // C of the loop rows (m, rad)
+    Eigen::VectorXd mLoopVelocity;   // J_loop du of the tree correction
+    Eigen::VectorXd mLoopCorrection; // loop impulses of this step's correction (N s, N m s)
+};
+
+} // namespace frontier::core

@@ -1,0 +1,77 @@
+// core/step/positions.cpp: position update, displacements and the carried angular momentum.
+#include "core/step/positions.h"
+
+namespace frontier::core
+{
+
+namespace
+{
+// exp of a rotation vector (rad) as a unit quaternion.
+Quat rotationFromVector(const Vec3& theta)
+{
+    const double angle = theta.norm();
+    if (angle < 1e-12)
+    {
+        return Quat(1.0, 0.5 * theta.x(), 0.5 * theta.y(), 0.5 * theta.z()).normalized();
+    }
+    return Quat(Eigen::AngleAxisd(angle, theta / angle));
+}
+} // namespace
+
+void integratePositions(const Model& model, const std::vector<BodyState>& start,
+                        const std::vector<PrincipalAxes>& principal, const RowSystem& rows, double dt,
+                        bool rattle, State& state)
+{
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (model.bodies[i].isStatic)
+        {
+            continue;
+        }
+        BodyState& s = state.bodies[i];
+        s.position_W = start[i].position_W + dt * s.velocity_W;
+        s.orientation_WB =
+            rattle ? rotateFreely(start[i].orientation_WB, principal[i],
+                                  rows.inertia_W[i] * s.angularVelocity_W, dt)
+                   : (rotationFromVector(dt * s.angularVelocity_W) * start[i].orientation_WB).normalized();
+    }
+}
+
+void displacePositions(const Model& model, const BlockVector& displacement, State& state,
+                       std::vector<BodyState>& start)
+{
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (model.bodies[i].isStatic)
+        {
+            continue;
+        }
+        BodyState& s = state.bodies[i];
+        s.position_W += displacement.body[i].head<3>();
+        s.orientation_WB =
+            (rotationFromVector(displacement.body[i].tail<3>()) * s.orientation_WB).normalized();
+        start[i].position_W += displacement.body[i].head<3>();
+        start[i].orientation_WB =
+            (rotationFromVector(displacement.body[i].tail<3>()) * start[i].orientation_WB).normalized();
+    }
+}
+
+void carryAngularMomentum(const Model& model, const std::vector<PrincipalAxes>& principal,
+                          const RowSystem& rows, State& state)
+{
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const Body& body = model.bodies[i];
+        if (body.isStatic)
+        {
+            continue;
+        }
+        BodyState& s = state.bodies[i];
+        const Vec3 momentum = rows.inertia_W[i] * s.angularVelocity_W;
+        // I_W^-1 L in the principal frame P of the new orientation: w = R_WP diag(1/I) R_WP^T L.
+        const Quat toWorld = s.orientation_WB * principal[i].rotation_BP;
+        s.angularVelocity_W = toWorld * (toWorld.conjugate() * momentum).cwiseQuotient(principal[i].moments);
+    }
+}
+
+} // namespace frontier::core

@@ -1,0 +1,93 @@
+// core/step/rattle_projection.cpp: RATTLE's velocity projection at the end of the step.
+#include "core/step/rattle_projection.h"
+
+#include "core/step/velocity_stage.h"
+
+namespace frontier::core
+{
+
+RattleProjection::RattleProjection(const Model& model, const StepOptions& options,
+                                   const FrontierLayout& layout, ImpulseSolver& solver)
+    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+{
+    mCorrection.resize(model.bodies.size(), model.joints.size());
+}
+
+void RattleProjection::factorAtStart(const State& state, RowSystem& rows, double driveStep,
+                                     const Actuation& actuation)
+{
+    if (!(mFactoredPoseValid && samePose(mModel, state, mFactoredPose)))
+    {
+        assembleRows(mModel, mLayout, state, driveStep, rows, actuation.gains());
+        mSolver.factor(rows);
+    }
+    mFactoredPoseValid = false;
+}
+
+void RattleProjection::project(State& state, RowSystem& rows, RowSystem& rowsAfter,
+                               std::vector<ExtraBlock>& loopBlocks, ContactProblem& problem, BlockVector& rhs,
+                               BlockVector& solution, double dt, double driveStep, Actuation& actuation)
+{
+    std::swap(rows, rowsAfter);
+    for (;;)
+    {
+        mSolver.factor(rows);
+        buildLoopBlocks(mModel, mLayout, rows, loopBlocks);
+        mEndBlocks = loopBlocks;
+        for (const ExtraBlock& block : problem.blocks())
+        {
+            if (block.kind == ExtraBlock::Kind::Drive)
+            {
+                if (block.actuator < 0)
+                {
+                    mEndBlocks.push_back(block); // joint friction acts in both halves of the step
+                }
+                continue;
+            }
+            if (block.kind != ExtraBlock::Kind::Loop && problem.impulses()(block.offset) > 0.0)
+            {
+                ExtraBlock normal = block;
+                normal.count = block.kind == ExtraBlock::Kind::Contact ? block.count : 1;
+                normal.target.setZero();
+                mEndBlocks.push_back(normal);
+            }
+        }
+        // Actuators at their limits act in the second half too, with their targets at its end.
+        actuation.appendBoundedRows(state, state.time + dt, driveStep, mEndBlocks);
+        setMomentumRhs(mModel, rows, state, state.time + dt, driveStep, actuation, rhs);
+        mSolver.solve(rhs, mCorrection);
+        if (!mEndBlocks.empty())
+        {
+            const int n = layoutExtraRows(mEndBlocks);
+            mSolver.delassus(mEndBlocks, n, mEndG);
+            extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
+            mEndLambda.setZero(n);
+            coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
+            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda,
+                           problem.scratch(), &mEndCoupling);
+            mSolver.applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
+        }
+        if (actuation.acceptSolve(rows, mCorrection, mEndBlocks, mEndLambda, driveStep))
+        {
+            break;
+        }
+        // An actuator went beyond its limit: out of its block, the projection again.
+        assembleRows(mModel, mLayout, state, driveStep, rows, actuation.gains());
+    }
+    mFactoredPose = state.bodies;
+    mFactoredPoseValid = true;
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        if (!mModel.bodies[i].isStatic)
+        {
+            state.bodies[i].velocity_W = mCorrection.body[i].head<3>();
+            state.bodies[i].angularVelocity_W = mCorrection.body[i].tail<3>();
+        }
+    }
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        solution.joint[k] += mCorrection.joint[k];
+    }
+}
+
+} // namespace frontier::core
