@@ -380,9 +380,10 @@ struct SweepChange
 // follow (velocity += G(:, o ..) (next - old) over the block's runs). Fixed-size vectors (a
 // contact's three rows) keep the running maxima in registers.
 template <typename Vec>
-void commitBlock(const Eigen::MatrixXd& G, int o, const Vec& old, const Vec& next,
-                 const std::pair<int, int>* firstRun, const std::pair<int, int>* lastRun,
-                 Eigen::VectorXd& lambda, Eigen::VectorXd& velocity, SweepChange& sweep)
+[[gnu::always_inline]] inline void commitBlock(const Eigen::MatrixXd& G, int o, const Vec& old,
+                                               const Vec& next, const std::pair<int, int>* firstRun,
+                                               const std::pair<int, int>* lastRun, Eigen::VectorXd& lambda,
+                                               Eigen::VectorXd& velocity, SweepChange& sweep)
 {
     const int n = static_cast<int>(next.size());
     double delta[6];
@@ -394,7 +395,10 @@ void commitBlock(const Eigen::MatrixXd& G, int o, const Vec& old, const Vec& nex
     }
     if (step > 0.0)
     {
-        lambda.segment(o, n) = next;
+        if constexpr (Vec::RowsAtCompileTime == Eigen::Dynamic)
+            lambda.segment(o, n) = next;
+        else
+            lambda.template segment<Vec::RowsAtCompileTime>(o) = next;
         addColumns(G, o, n, delta, firstRun, lastRun, velocity);
     }
     sweep.largest = std::max(sweep.largest, next.cwiseAbs().maxCoeff());
