@@ -2,10 +2,13 @@
 // ODE, MuJoCo), each translated from the same Model through that engine's own API, so that every
 // engine runs the same bodies, joints, gravity and time step.
 //
-// Scope: moving bodies joined in one tree by ball, revolute and fixed joints, the tree's root either
-// joined to the world or free; no contacts (a scene's collision shapes are not given to the peers,
-// and Frontier runs without contact detection). A model outside that scope is refused with a
-// message that says what is missing.
+// Scope: moving bodies joined in trees by ball, revolute, angle (universal) and fixed joints
+// without limits, each tree's root joined to the world or free, each tree starting at rest or
+// with one rigid velocity; contacts between box, sphere, capsule and cylinder shapes (several per
+// body, posed in the body) and static bodies' shapes (a plane floor), on the pairs Frontier's
+// filter allows (contacts.h), with the scene's friction and restitution (MuJoCo: friction only).
+// A model outside that scope (meshes, other joints, limits, actuators, loads, joints to static
+// bodies) is refused with a message that says what is missing.
 #pragma once
 
 #include "core/model.h"

@@ -3,6 +3,14 @@
 // by sequential impulses (btSequentialImpulseConstraintSolver, 10 iterations), each with Bullet's
 // usual settings except damping, which is set to the scene's (none): btMultiBody's default of 0.04
 // would take energy out of a scene that has no damping.
+//
+// Contacts: each body's shapes as one Bullet shape (a btCompoundShape when it has several or one
+// off its centre of mass; a static plane as btStaticPlaneShape in the static body's frame), on a
+// btRigidBody or a btMultiBodyLinkCollider; static bodies as collision objects. Which pairs
+// collide is decided by Frontier's filter in an overlap filter callback. Bullet combines two
+// objects' friction and restitution as products, so each object gets the square roots of the
+// scene's: every pair then has the scene's values.
+#include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/tree.h"
 
@@ -10,6 +18,8 @@
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLink.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <algorithm>
 #include <btBulletDynamicsCommon.h>
 #include <cmath>
 
@@ -46,87 +56,297 @@ btVector3 principalInertia(const core::Body& body)
     return {I(0, 0), I(1, 1), I(2, 2)};
 }
 
-// Parts every Bullet world needs, owned together (Bullet keeps raw pointers to them).
+// Parts every Bullet world needs, owned together (Bullet keeps raw pointers to them), with the
+// collision geometry and the pair filter.
 struct BulletParts
 {
+    explicit BulletParts(const core::Model& m) : model(m), contacts(hasContacts(m))
+    {
+        if (contacts)
+            pairs = std::make_unique<CollisionPairs>(m);
+    }
+
+    // Frontier's pair filter; the collision objects' user index is their body's index.
+    struct Filter final : btOverlapFilterCallback
+    {
+        const CollisionPairs* pairs = nullptr;
+        bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override
+        {
+            const auto* a = static_cast<const btCollisionObject*>(p0->m_clientObject);
+            const auto* b = static_cast<const btCollisionObject*>(p1->m_clientObject);
+            return pairs->allowed(a->getUserIndex(), b->getUserIndex());
+        }
+    };
+
+    void installFilter(btCollisionWorld& world)
+    {
+        if (!contacts)
+            return;
+        filter.pairs = pairs.get();
+        world.getPairCache()->setOverlapFilterCallback(&filter);
+    }
+
+    // The body's shapes as one Bullet shape in its frame; null when it has none.
+    btCollisionShape* shapeOf(const core::Body& body)
+    {
+        if (!contacts || body.shapes.empty())
+            return nullptr;
+        std::vector<std::pair<btCollisionShape*, btTransform>> parts;
+        for (const core::Shape& shape : body.shapes)
+        {
+            btTransform pose(toBt(shape.rotation_BS), toBt(shape.position_BS));
+            std::unique_ptr<btCollisionShape> made;
+            switch (shape.type)
+            {
+            case core::ShapeType::Box:
+                made = std::make_unique<btBoxShape>(toBt(0.5 * shape.size));
+                break;
+            case core::ShapeType::Sphere:
+                made = std::make_unique<btSphereShape>(shape.radius);
+                break;
+            case core::ShapeType::Capsule: // radius, cylindrical length, along local z
+                made = std::make_unique<btCapsuleShapeZ>(shape.radius, shape.length);
+                break;
+            case core::ShapeType::Cylinder: // half extents (radius, radius, half the height)
+                made = std::make_unique<btCylinderShapeZ>(
+                    btVector3(shape.radius, shape.radius, 0.5 * shape.length));
+                break;
+            case core::ShapeType::Plane: // world n . x = offset, in the static body's frame
+            {
+                const core::Quat toBody = body.orientation_WB.conjugate();
+                made = std::make_unique<btStaticPlaneShape>(toBt(toBody * shape.normal),
+                                                            shape.offset - shape.normal.dot(body.position_W));
+                pose.setIdentity();
+                break;
+            }
+            default:
+                throw Unsupported("body '" + body.name + "': Bullet is not given meshes by the harness");
+            }
+            parts.emplace_back(made.get(), pose);
+            shapes.push_back(std::move(made));
+        }
+        if (parts.size() == 1 && parts.front().second == btTransform::getIdentity())
+            return parts.front().first;
+        auto compound = std::make_unique<btCompoundShape>();
+        for (auto& [shape, pose] : parts)
+            compound->addChildShape(pose, shape);
+        shapes.push_back(std::move(compound));
+        return shapes.back().get();
+    }
+
+    void setSurface(btCollisionObject& object, int body) const
+    {
+        object.setUserIndex(body);
+        object.setFriction(std::sqrt(model.contact.friction));
+        object.setRestitution(std::sqrt(model.contact.restitution));
+    }
+
+    // Static bodies as collision objects.
+    void addStatics(btCollisionWorld& world)
+    {
+        for (std::size_t b = 0; b < model.bodies.size(); ++b)
+        {
+            const core::Body& body = model.bodies[b];
+            btCollisionShape* shape = body.isStatic ? shapeOf(body) : nullptr;
+            if (!shape)
+                continue;
+            auto object = std::make_unique<btCollisionObject>();
+            object->setCollisionShape(shape);
+            object->setWorldTransform(btTransform(toBt(body.orientation_WB), toBt(body.position_W)));
+            setSurface(*object, static_cast<int>(b));
+            world.addCollisionObject(object.get(), btBroadphaseProxy::StaticFilter,
+                                     btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+            statics.push_back(std::move(object));
+        }
+    }
+
+    void removeStatics(btCollisionWorld& world)
+    {
+        for (auto& object : statics)
+            world.removeCollisionObject(object.get());
+    }
+
+    const core::Model& model;
+    bool contacts;
+    std::unique_ptr<CollisionPairs> pairs;
+    Filter filter;
+    std::vector<std::unique_ptr<btCollisionShape>> shapes;
+    std::vector<std::unique_ptr<btCollisionObject>> statics;
     btDefaultCollisionConfiguration configuration;
     btCollisionDispatcher dispatcher{&configuration};
     btDbvtBroadphase broadphase;
 };
 
+// One btMultiBody per tree (tree.h): a free root is its base, a tree joined to the world has a
+// massless fixed base. An angle (universal) joint is two revolute joints with a small link
+// between them (1e-3 of the child's mass and moments, at the anchor): btMultiBody has no
+// universal joint.
 class BulletMultibody final : public Engine
 {
   public:
-    explicit BulletMultibody(const core::Model& model) : mModel(model), mTree(jointTree(model))
+    explicit BulletMultibody(const core::Model& model) : mModel(model), mTree(jointTree(model)), mParts(model)
     {
         mWorld = std::make_unique<btMultiBodyDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                             &mParts.configuration);
         mWorld->setGravity(toBt(model.simulation.gravity));
-        const bool fixedBase = mTree.front().joint >= 0; // joined to the world: a massless fixed base
-        const int links = static_cast<int>(mTree.size()) - (fixedBase ? 0 : 1);
-        const core::Body& root = model.bodies[static_cast<std::size_t>(mTree.front().body)];
-        if (fixedBase)
-            mBody = std::make_unique<btMultiBody>(links, 0.0, btVector3(0, 0, 0), true, false);
-        else
+        mParts.installFilter(*mWorld);
+        mParts.addStatics(*mWorld);
+        mLinkOf.assign(model.bodies.size(), {-1, -1});
+        std::size_t k = 0;
+        while (k < mTree.size())
         {
-            mBody = std::make_unique<btMultiBody>(links, root.mass, principalInertia(root), false, false);
-            mBody->setBaseWorldTransform(btTransform(toBt(root.orientation_WB), toBt(root.position_W)));
+            std::size_t end = k + 1;
+            while (end < mTree.size() && !isRoot(mTree[end]))
+                ++end;
+            buildTree(k, end);
+            k = end;
         }
-        mLinkOf.assign(model.bodies.size(), -1); // body -> link index (-1: the base)
-        for (std::size_t k = fixedBase ? 0 : 1; k < mTree.size(); ++k)
-            mLinkOf[static_cast<std::size_t>(mTree[k].body)] = static_cast<int>(k) - (fixedBase ? 0 : 1);
-        for (std::size_t k = fixedBase ? 0 : 1; k < mTree.size(); ++k)
-            setupLink(mTree[k]);
-        mBody->finalizeMultiDof();
-        mBody->setLinearDamping(0.0);
-        mBody->setAngularDamping(0.0);
-        mBody->setCanSleep(false);
-        mWorld->addMultiBody(mBody.get());
     }
 
-    ~BulletMultibody() override { mWorld->removeMultiBody(mBody.get()); }
+    ~BulletMultibody() override
+    {
+        for (auto& c : mColliders)
+            mWorld->removeCollisionObject(c.get());
+        mParts.removeStatics(*mWorld);
+        for (auto& b : mBodies)
+            mWorld->removeMultiBody(b.get());
+    }
 
     void step() override { mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt); }
 
     void poses(std::vector<Pose>& out) override
     {
-        mBody->forwardKinematics(mScratchRotations, mScratchOrigins);
+        for (auto& b : mBodies)
+            b->forwardKinematics(mScratchRotations, mScratchOrigins);
         out.resize(mModel.bodies.size());
         for (std::size_t b = 0; b < out.size(); ++b)
         {
-            const int link = mLinkOf[b];
+            const auto [tree, link] = mLinkOf[b];
+            if (tree < 0)
+            {
+                out[b] = {mModel.bodies[b].position_W, mModel.bodies[b].orientation_WB};
+                continue;
+            }
+            const btMultiBody& body = *mBodies[static_cast<std::size_t>(tree)];
             const btTransform t =
-                link < 0 ? mBody->getBaseWorldTransform() : mBody->getLink(link).m_cachedWorldTransform;
+                link < 0 ? body.getBaseWorldTransform() : body.getLink(link).m_cachedWorldTransform;
             out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation())};
         }
     }
 
   private:
-    void setupLink(const TreeLink& link)
+    // The tree mTree[first, end).
+    void buildTree(std::size_t first, std::size_t end)
     {
+        const int tree = static_cast<int>(mBodies.size());
+        const bool fixedBase = mTree[first].joint >= 0; // joined to the world: a massless fixed base
+        int links = 0;
+        for (std::size_t k = first; k < end; ++k)
+        {
+            if (k == first && !fixedBase)
+                continue;
+            const core::Joint& joint = mModel.joints[static_cast<std::size_t>(mTree[k].joint)];
+            links += joint.type == core::JointType::Angle ? 2 : 1;
+        }
+        const core::Body& root = mModel.bodies[static_cast<std::size_t>(mTree[first].body)];
+        std::unique_ptr<btMultiBody> body;
+        if (fixedBase)
+            body = std::make_unique<btMultiBody>(links, 0.0, btVector3(0, 0, 0), true, false);
+        else
+        {
+            body = std::make_unique<btMultiBody>(links, root.mass, principalInertia(root), false, false);
+            body->setBaseWorldTransform(btTransform(toBt(root.orientation_WB), toBt(root.position_W)));
+            mLinkOf[static_cast<std::size_t>(mTree[first].body)] = {tree, -1};
+        }
+        mBodies.push_back(std::move(body));
+        int next = 0;
+        for (std::size_t k = fixedBase ? first : first + 1; k < end; ++k)
+            next = setupLink(tree, mTree[k], next);
+        btMultiBody& mb = *mBodies.back();
+        mb.finalizeMultiDof();
+        if (!fixedBase)
+        {
+            // The tree's rigid velocity (tree.h): the base's, in world axes; the joints at rest.
+            // (After finalizeMultiDof, which sizes the velocity buffer.)
+            mb.setBaseVel(toBt(root.velocity_W));
+            mb.setBaseOmega(toBt(root.angularVelocity_W));
+        }
+        mb.setLinearDamping(0.0);
+        mb.setAngularDamping(0.0);
+        mb.setCanSleep(false);
+        mWorld->addMultiBody(&mb);
+        addColliders(tree, first, end);
+    }
+
+    // Sets up the link(s) of one tree link from link index i; returns the next free index.
+    int setupLink(int tree, const TreeLink& link, int i)
+    {
+        btMultiBody& mb = *mBodies[static_cast<std::size_t>(tree)];
         const core::Body& body = mModel.bodies[static_cast<std::size_t>(link.body)];
         const core::Joint& joint = mModel.joints[static_cast<std::size_t>(link.joint)];
         const int parentLink =
-            link.parent == core::cWorld ? -1 : mLinkOf[static_cast<std::size_t>(link.parent)];
+            link.parent == core::cWorld ? -1 : mLinkOf[static_cast<std::size_t>(link.parent)].second;
         // rotParentToThis rotates a parent-frame vector into this frame: q_child^-1 q_parent.
         const btQuaternion parentToThis = toBt(relativeRotation(mModel, link.parent, link.body).conjugate());
         const btVector3 parentComToPivot = toBt(joint.anchorParent);
         const btVector3 pivotToCom = toBt(-joint.anchorChild);
-        const int i = mLinkOf[static_cast<std::size_t>(link.body)];
+        // Parent-child collisions are left to the overlap filter (Frontier's rule).
         switch (joint.type)
         {
         case core::JointType::Ball:
-            mBody->setupSpherical(i, body.mass, principalInertia(body), parentLink, parentToThis,
-                                  parentComToPivot, pivotToCom, true);
+            mb.setupSpherical(i, body.mass, principalInertia(body), parentLink, parentToThis,
+                              parentComToPivot, pivotToCom, false);
             break;
         case core::JointType::Revolute:
-            mBody->setupRevolute(i, body.mass, principalInertia(body), parentLink, parentToThis,
-                                 toBt(joint.axisChild), parentComToPivot, pivotToCom, true);
+            mb.setupRevolute(i, body.mass, principalInertia(body), parentLink, parentToThis,
+                             toBt(joint.axisChild), parentComToPivot, pivotToCom, false);
             break;
+        case core::JointType::Angle:
+        {
+            // The small link: the parent's orientation, its centre at the anchor, turning about a1.
+            const double scale = 1e-3;
+            const btVector3 inertia = principalInertia(body);
+            const double least = std::min({inertia.x(), inertia.y(), inertia.z()});
+            mb.setupRevolute(i, scale * body.mass, btVector3(1, 1, 1) * (scale * least), parentLink,
+                             btQuaternion::getIdentity(), toBt(joint.perpParent1), parentComToPivot,
+                             btVector3(0, 0, 0), false);
+            ++i;
+            mb.setupRevolute(i, body.mass, inertia, i - 1, parentToThis, toBt(joint.angleChildAxis),
+                             btVector3(0, 0, 0), pivotToCom, false);
+            break;
+        }
         default: // Fixed (jointTree refuses the rest)
-            mBody->setupFixed(i, body.mass, principalInertia(body), parentLink, parentToThis,
-                              parentComToPivot, pivotToCom, true);
+            mb.setupFixed(i, body.mass, principalInertia(body), parentLink, parentToThis, parentComToPivot,
+                          pivotToCom, false);
             break;
+        }
+        mLinkOf[static_cast<std::size_t>(link.body)] = {tree, i};
+        return i + 1;
+    }
+
+    void addColliders(int tree, std::size_t first, std::size_t end)
+    {
+        btMultiBody& mb = *mBodies[static_cast<std::size_t>(tree)];
+        mb.forwardKinematics(mScratchRotations, mScratchOrigins);
+        for (std::size_t k = first; k < end; ++k)
+        {
+            const int b = mTree[k].body;
+            const core::Body& body = mModel.bodies[static_cast<std::size_t>(b)];
+            btCollisionShape* shape = mParts.shapeOf(body);
+            if (!shape)
+                continue;
+            const int link = mLinkOf[static_cast<std::size_t>(b)].second;
+            auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, link);
+            collider->setCollisionShape(shape);
+            collider->setWorldTransform(btTransform(toBt(body.orientation_WB), toBt(body.position_W)));
+            mParts.setSurface(*collider, b);
+            mWorld->addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
+                                       btBroadphaseProxy::AllFilter);
+            if (link < 0)
+                mb.setBaseCollider(collider.get());
+            else
+                mb.getLink(link).m_collider = collider.get();
+            mColliders.push_back(std::move(collider));
         }
     }
 
@@ -135,8 +355,9 @@ class BulletMultibody final : public Engine
     BulletParts mParts;
     btMultiBodyConstraintSolver mSolver;
     std::unique_ptr<btMultiBodyDynamicsWorld> mWorld;
-    std::unique_ptr<btMultiBody> mBody;
-    std::vector<int> mLinkOf;
+    std::vector<std::unique_ptr<btMultiBody>> mBodies; // one per tree
+    std::vector<std::unique_ptr<btMultiBodyLinkCollider>> mColliders;
+    std::vector<std::pair<int, int>> mLinkOf; // body -> (tree, link; -1: the base); tree -1: static
     btAlignedObjectArray<btQuaternion> mScratchRotations;
     btAlignedObjectArray<btVector3> mScratchOrigins;
 };
@@ -144,20 +365,35 @@ class BulletMultibody final : public Engine
 class BulletSequentialImpulses final : public Engine
 {
   public:
-    explicit BulletSequentialImpulses(const core::Model& model) : mModel(model)
+    explicit BulletSequentialImpulses(const core::Model& model) : mModel(model), mParts(model)
     {
         jointTree(model); // the scope check
         mWorld = std::make_unique<btDiscreteDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                            &mParts.configuration);
         mWorld->setGravity(toBt(model.simulation.gravity));
-        for (const core::Body& body : model.bodies)
+        mParts.installFilter(*mWorld);
+        mParts.addStatics(*mWorld);
+        for (std::size_t b = 0; b < model.bodies.size(); ++b)
         {
-            btRigidBody::btRigidBodyConstructionInfo info(body.mass, nullptr, &mShape,
+            const core::Body& body = model.bodies[b];
+            if (body.isStatic)
+            {
+                mBodies.push_back(nullptr);
+                continue;
+            }
+            btCollisionShape* shape = mParts.shapeOf(body);
+            btRigidBody::btRigidBodyConstructionInfo info(body.mass, nullptr, shape ? shape : &mEmpty,
                                                           principalInertia(body));
             info.m_startWorldTransform = btTransform(toBt(body.orientation_WB), toBt(body.position_W));
             auto rigid = std::make_unique<btRigidBody>(info);
             rigid->setActivationState(DISABLE_DEACTIVATION);
-            mWorld->addRigidBody(rigid.get(), 0, 0); // no collision group or mask: no contacts
+            rigid->setLinearVelocity(toBt(body.velocity_W));
+            rigid->setAngularVelocity(toBt(body.angularVelocity_W));
+            mParts.setSurface(*rigid, static_cast<int>(b));
+            if (shape)
+                mWorld->addRigidBody(rigid.get());
+            else
+                mWorld->addRigidBody(rigid.get(), 0, 0); // no collision group or mask: no contacts
             mBodies.push_back(std::move(rigid));
         }
         for (const core::Joint& joint : model.joints)
@@ -169,7 +405,9 @@ class BulletSequentialImpulses final : public Engine
         for (auto& c : mConstraints)
             mWorld->removeConstraint(c.get());
         for (auto& b : mBodies)
-            mWorld->removeRigidBody(b.get());
+            if (b)
+                mWorld->removeRigidBody(b.get());
+        mParts.removeStatics(*mWorld);
     }
 
     void step() override { mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt); }
@@ -179,6 +417,11 @@ class BulletSequentialImpulses final : public Engine
         out.resize(mBodies.size());
         for (std::size_t b = 0; b < out.size(); ++b)
         {
+            if (!mBodies[b])
+            {
+                out[b] = {mModel.bodies[b].position_W, mModel.bodies[b].orientation_WB};
+                continue;
+            }
             const btTransform& t = mBodies[b]->getCenterOfMassTransform();
             out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation())};
         }
@@ -202,6 +445,22 @@ class BulletSequentialImpulses final : public Engine
             c = std::make_unique<btHingeConstraint>(a, b, pivotA, pivotB, toBt(joint.axisParent),
                                                     toBt(joint.axisChild));
             break;
+        case core::JointType::Angle:
+        {
+            // btUniversalConstraint takes world anchor and axes at the initial pose (a1 on the
+            // parent, b2 on the child). It is a 6-dof constraint with Euler-angle limits: the
+            // second angle stays within +-90 degrees.
+            const core::Body& child = mModel.bodies[static_cast<std::size_t>(joint.child)];
+            const core::Quat parentRotation =
+                joint.parent == core::cWorld
+                    ? core::Quat::Identity()
+                    : mModel.bodies[static_cast<std::size_t>(joint.parent)].orientation_WB;
+            const core::Vec3 anchor = child.position_W + child.orientation_WB * joint.anchorChild;
+            c = std::make_unique<btUniversalConstraint>(a, b, toBt(anchor),
+                                                        toBt(parentRotation * joint.perpParent1),
+                                                        toBt(child.orientation_WB * joint.angleChildAxis));
+            break;
+        }
         default: // Fixed: the frames at the initial pose
         {
             const core::Quat rotation = relativeRotation(mModel, joint.parent, joint.child);
@@ -217,9 +476,9 @@ class BulletSequentialImpulses final : public Engine
     const core::Model& mModel;
     BulletParts mParts;
     btSequentialImpulseConstraintSolver mSolver;
-    btEmptyShape mShape;
+    btEmptyShape mEmpty;
     std::unique_ptr<btDiscreteDynamicsWorld> mWorld;
-    std::vector<std::unique_ptr<btRigidBody>> mBodies;
+    std::vector<std::unique_ptr<btRigidBody>> mBodies; // per model body; null for static ones
     std::vector<std::unique_ptr<btTypedConstraint>> mConstraints;
 };
 

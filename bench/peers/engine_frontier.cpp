@@ -1,5 +1,7 @@
-// bench/peers/engine_frontier.cpp: Frontier itself, the `linear` (exact, O(n)) solver, without
-// contact detection (the harness's scope, engine.h).
+// bench/peers/engine_frontier.cpp: Frontier itself, the `linear` (exact, O(n)) solver, with its
+// contact detection (collision::ContactDetector at the frontier program's margin) when the scene's
+// bodies can collide.
+#include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "core/simulator.h"
 #include "core/state.h"
@@ -13,7 +15,11 @@ class FrontierEngine final : public Engine
 {
   public:
     FrontierEngine(const core::Model& model, core::IntegratorKind integrator)
-        : mModel(withIntegrator(model, integrator)), mSimulator(mModel), mState(core::initialState(mModel))
+        : mModel(withIntegrator(model, integrator)),
+          mDetector(hasContacts(mModel) ? std::make_unique<collision::ContactDetector>(
+                                              mModel, contactMargin(mModel.simulation.dt))
+                                        : nullptr),
+          mSimulator(mModel, {}, mDetector.get()), mState(core::initialState(mModel))
     {
     }
 
@@ -35,6 +41,7 @@ class FrontierEngine final : public Engine
     }
 
     core::Model mModel;
+    std::unique_ptr<collision::ContactDetector> mDetector; // null: no contacts
     core::Simulator mSimulator;
     core::State mState;
 };

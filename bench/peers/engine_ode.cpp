@@ -1,9 +1,14 @@
 // bench/peers/engine_ode.cpp: ODE 0.16 (double precision), with dWorldQuickStep (projected
 // Gauss-Seidel, 20 iterations) or dWorldStep (the direct "big matrix" LCP solver), ODE's usual
-// settings otherwise (ERP 0.2, its default CFM, gyroscopic term on).
+// settings otherwise (ERP 0.2, its default CFM, gyroscopic term on). Contacts: the shapes as ODE
+// geoms in one hash space (a static plane as dCreatePlane), dCollide on the pairs Frontier's filter
+// allows (up to 8 points a pair), contact joints with Coulomb friction (dContactApprox1, the
+// friction pyramid) of the scene's mu and its restitution as bounce.
+#include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/tree.h"
 
+#include <cstdint>
 #include <ode/ode.h>
 
 namespace frontier::peers
@@ -17,14 +22,28 @@ class OdeEngine final : public Engine
     OdeEngine(const core::Model& model, bool quickStep) : mModel(model), mQuickStep(quickStep)
     {
         jointTree(model); // the scope check
+        const bool contacts = hasContacts(model);
         static const bool initialised = dInitODE2(0) != 0;
         if (!initialised)
             throw Unsupported("ODE failed to initialise");
         mWorld = dWorldCreate();
         const core::Vec3& g = model.simulation.gravity;
         dWorldSetGravity(mWorld, g.x(), g.y(), g.z());
+        if (contacts)
+        {
+            mSpace = dHashSpaceCreate(nullptr);
+            mContactJoints = dJointGroupCreate(0);
+            mPairs = std::make_unique<CollisionPairs>(model);
+        }
         for (const core::Body& body : model.bodies)
         {
+            if (body.isStatic)
+            {
+                mBodies.push_back(nullptr);
+                if (contacts)
+                    addGeoms(body, nullptr);
+                continue;
+            }
             dBodyID b = dBodyCreate(mWorld);
             dMass mass;
             const core::Mat3& I = body.inertia_B;
@@ -39,19 +58,33 @@ class OdeEngine final : public Engine
             dBodySetAngularVel(b, body.angularVelocity_W.x(), body.angularVelocity_W.y(),
                                body.angularVelocity_W.z());
             mBodies.push_back(b);
+            if (contacts)
+                addGeoms(body, b);
         }
         for (const core::Joint& joint : model.joints)
             addJoint(joint);
     }
 
-    ~OdeEngine() override { dWorldDestroy(mWorld); }
+    ~OdeEngine() override
+    {
+        if (mSpace)
+        {
+            dJointGroupDestroy(mContactJoints);
+            dSpaceDestroy(mSpace); // and its geoms
+        }
+        dWorldDestroy(mWorld);
+    }
 
     void step() override
     {
+        if (mSpace)
+            dSpaceCollide(mSpace, this, &OdeEngine::nearCallback);
         if (mQuickStep)
             dWorldQuickStep(mWorld, mModel.simulation.dt);
         else
             dWorldStep(mWorld, mModel.simulation.dt);
+        if (mSpace)
+            dJointGroupEmpty(mContactJoints);
     }
 
     void poses(std::vector<Pose>& out) override
@@ -59,6 +92,11 @@ class OdeEngine final : public Engine
         out.resize(mBodies.size());
         for (std::size_t b = 0; b < out.size(); ++b)
         {
+            if (!mBodies[b])
+            {
+                out[b] = {mModel.bodies[b].position_W, mModel.bodies[b].orientation_WB};
+                continue;
+            }
             const dReal* x = dBodyGetPosition(mBodies[b]);
             const dReal* q = dBodyGetQuaternion(mBodies[b]);
             out[b] = {core::Vec3(x[0], x[1], x[2]), core::Quat(q[0], q[1], q[2], q[3])};
@@ -66,6 +104,79 @@ class OdeEngine final : public Engine
     }
 
   private:
+    // The body's shapes as geoms: on a moving body at their offset in its frame, or placed in
+    // the world for a static body (no ODE body).
+    void addGeoms(const core::Body& body, dBodyID b)
+    {
+        const auto index = static_cast<std::intptr_t>(&body - mModel.bodies.data());
+        for (const core::Shape& shape : body.shapes)
+        {
+            dGeomID geom = nullptr;
+            switch (shape.type)
+            {
+            case core::ShapeType::Box:
+                geom = dCreateBox(mSpace, shape.size.x(), shape.size.y(), shape.size.z());
+                break;
+            case core::ShapeType::Sphere:
+                geom = dCreateSphere(mSpace, shape.radius);
+                break;
+            case core::ShapeType::Capsule: // radius, cylindrical length, along local z
+                geom = dCreateCapsule(mSpace, shape.radius, shape.length);
+                break;
+            case core::ShapeType::Cylinder: // radius, full height, along local z
+                geom = dCreateCylinder(mSpace, shape.radius, shape.length);
+                break;
+            case core::ShapeType::Plane: // static only (the model's rule), world frame
+                geom =
+                    dCreatePlane(mSpace, shape.normal.x(), shape.normal.y(), shape.normal.z(), shape.offset);
+                break;
+            default:
+                throw Unsupported("body '" + body.name + "': ODE is not given meshes by the harness");
+            }
+            dGeomSetData(geom, reinterpret_cast<void*>(index));
+            if (shape.type == core::ShapeType::Plane)
+                continue;
+            const core::Quat& r = shape.rotation_BS;
+            const dQuaternion dr = {r.w(), r.x(), r.y(), r.z()};
+            if (b)
+            {
+                dGeomSetBody(geom, b);
+                dGeomSetOffsetPosition(geom, shape.position_BS.x(), shape.position_BS.y(),
+                                       shape.position_BS.z());
+                dGeomSetOffsetQuaternion(geom, dr);
+            }
+            else
+            {
+                const core::Vec3 x = body.position_W + body.orientation_WB * shape.position_BS;
+                const core::Quat q = body.orientation_WB * shape.rotation_BS;
+                const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
+                dGeomSetPosition(geom, x.x(), x.y(), x.z());
+                dGeomSetQuaternion(geom, dq);
+            }
+        }
+    }
+
+    static void nearCallback(void* data, dGeomID o1, dGeomID o2)
+    {
+        auto& self = *static_cast<OdeEngine*>(data);
+        const auto a = static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(o1)));
+        const auto b = static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(o2)));
+        if (a == b || !self.mPairs->allowed(a, b))
+            return;
+        constexpr int cMaxPoints = 8;
+        dContact contact[cMaxPoints];
+        const int n = dCollide(o1, o2, cMaxPoints, &contact[0].geom, sizeof(dContact));
+        for (int k = 0; k < n; ++k)
+        {
+            contact[k].surface.mode = dContactApprox1 | dContactBounce;
+            contact[k].surface.mu = self.mModel.contact.friction;
+            contact[k].surface.bounce = self.mModel.contact.restitution;
+            contact[k].surface.bounce_vel = 0.0;
+            dJointID j = dJointCreateContact(self.mWorld, self.mContactJoints, &contact[k]);
+            dJointAttach(j, dGeomGetBody(o1), dGeomGetBody(o2));
+        }
+    }
+
     void addJoint(const core::Joint& joint)
     {
         dBodyID parent =
@@ -90,6 +201,20 @@ class OdeEngine final : public Engine
             dJointSetHingeAxis(j, axis.x(), axis.y(), axis.z());
             break;
         }
+        case core::JointType::Angle: // universal: a1 fixed in the parent, b2 in the child
+        {
+            j = dJointCreateUniversal(mWorld, nullptr);
+            dJointAttach(j, parent, child);
+            dJointSetUniversalAnchor(j, anchor.x(), anchor.y(), anchor.z());
+            const core::Vec3 a1 = joint.parent == core::cWorld
+                                      ? joint.perpParent1
+                                      : mModel.bodies[static_cast<std::size_t>(joint.parent)].orientation_WB *
+                                            joint.perpParent1;
+            const core::Vec3 b2 = c.orientation_WB * joint.angleChildAxis;
+            dJointSetUniversalAxis1(j, a1.x(), a1.y(), a1.z());
+            dJointSetUniversalAxis2(j, b2.x(), b2.y(), b2.z());
+            break;
+        }
         default: // Fixed
             j = dJointCreateFixed(mWorld, nullptr);
             dJointAttach(j, parent, child);
@@ -101,7 +226,10 @@ class OdeEngine final : public Engine
     const core::Model& mModel;
     bool mQuickStep;
     dWorldID mWorld = nullptr;
-    std::vector<dBodyID> mBodies;
+    dSpaceID mSpace = nullptr;              // null: no contacts
+    dJointGroupID mContactJoints = nullptr; // this step's contact joints
+    std::unique_ptr<CollisionPairs> mPairs;
+    std::vector<dBodyID> mBodies; // per model body; null for static ones
 };
 
 } // namespace

@@ -8,8 +8,11 @@
 // after any step (m), the energy by central differences of its poses (engine-independent: the
 // change from the first to the last measurable step, in J and in % of the largest kinetic energy),
 // and the largest centre-of-mass distance at the end from a reference run (Frontier rattle at
-// dt / --reference-divisions). An engine that exceeds --max-seconds stops early and says so.
+// dt / --reference-divisions), and the deepest overlap between two bodies that may collide over
+// the run (m), found by Frontier's contact detection on the engine's poses after every step. An
+// engine that exceeds --max-seconds stops early and says so.
 #include "bench/peers/chain.h"
+#include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/measures.h"
 #include "io/scene.h"
@@ -38,6 +41,7 @@ struct Row
     long steps = 0;
     double secondsStepping = 0.0;
     double maxGapM = 0.0;
+    double maxPenetrationM = 0.0;
     double energyChangeJ = cNan;
     double energyChangePercent = cNan;
     double errorM = cNan;
@@ -99,6 +103,7 @@ Row run(const std::string& name, const core::Model& model, const std::vector<Pos
     std::vector<Pose> before, middle, after;
     engine->poses(after);
     checkStartPose(model, after, name);
+    PenetrationMeter penetration(model);
     double firstEnergy = cNan, lastEnergy = cNan, maxKinetic = 0.0;
     using Clock = std::chrono::steady_clock;
     for (long k = 0; k < steps; ++k)
@@ -111,6 +116,7 @@ Row run(const std::string& name, const core::Model& model, const std::vector<Pos
         std::swap(middle, after);
         engine->poses(after);
         row.maxGapM = std::max(row.maxGapM, jointGap(model, after));
+        row.maxPenetrationM = std::max(row.maxPenetrationM, penetration.deepest(after));
         if (!std::isfinite(row.maxGapM))
         {
             row.note = "blew up at step " + std::to_string(k + 1);
@@ -231,20 +237,25 @@ int runHarness(int argc, char** argv)
 
     const int n = static_cast<int>(model.bodies.size());
     std::ostringstream csv, md;
-    csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,energy_change_j,"
+    csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,max_penetration_m,"
+           "energy_change_j,"
            "energy_change_percent_of_max_kinetic,error_m,note\n";
-    md << "| engine | us/step | us/body-step | joint gap (m) | energy change (% of max kinetic) | error at "
-       << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|\n";
+    md << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of max "
+          "kinetic) "
+          "| error at "
+       << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
     {
         const double perStep = r.steps ? 1e6 * r.secondsStepping / r.steps : cNan;
         csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(model.simulation.dt, "%g")
             << "," << r.steps << "," << number(perStep) << "," << number(perStep / n) << ","
-            << number(r.steps ? r.maxGapM : cNan) << "," << number(r.energyChangeJ) << ","
-            << number(r.energyChangePercent) << "," << number(r.errorM) << "," << csvField(r.note) << "\n";
+            << number(r.steps ? r.maxGapM : cNan) << "," << number(r.steps ? r.maxPenetrationM : cNan) << ","
+            << number(r.energyChangeJ) << "," << number(r.energyChangePercent) << "," << number(r.errorM)
+            << "," << csvField(r.note) << "\n";
         md << "| " << r.engine << " | " << number(perStep) << " | " << number(perStep / n) << " | "
-           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.energyChangePercent) << " | "
-           << number(r.errorM) << " | " << r.note << " |\n";
+           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan)
+           << " | " << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note
+           << " |\n";
     }
     std::cout << "# " << model.name << " (" << n << " bodies), dt = " << model.simulation.dt << " s\n\n"
               << md.str();

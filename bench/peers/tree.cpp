@@ -8,67 +8,87 @@
 namespace frontier::peers
 {
 
+namespace
+{
+
+// A tree that starts moving must move as one rigid body (v_i = v_root + w x (x_i - x_root), one w):
+// its joints then start at rest and the root's velocity is the only one a reduced-coordinate
+// engine needs. A tree joined to the world must start at rest.
+void checkInitialVelocities(const core::Model& model, const std::vector<TreeLink>& order)
+{
+    constexpr double cTolerance = 1e-6; // m/s, rad/s (the scene files' rounding)
+    std::size_t k = 0;
+    while (k < order.size())
+    {
+        const core::Body& root = model.bodies[static_cast<std::size_t>(order[k].body)];
+        const bool joinedToWorld = order[k].joint >= 0;
+        for (++k; k < order.size() && !isRoot(order[k]); ++k)
+        {
+            const core::Body& body = model.bodies[static_cast<std::size_t>(order[k].body)];
+            const core::Vec3 rigid =
+                root.velocity_W + root.angularVelocity_W.cross(body.position_W - root.position_W);
+            if ((body.velocity_W - rigid).norm() > cTolerance ||
+                (body.angularVelocity_W - root.angularVelocity_W).norm() > cTolerance)
+                throw Unsupported("body '" + body.name +
+                                  "' does not start with its tree's rigid velocity: the harness starts "
+                                  "every joint at rest");
+        }
+        if (joinedToWorld && (!root.velocity_W.isZero() || !root.angularVelocity_W.isZero()))
+            throw Unsupported("body '" + root.name +
+                              "' is joined to the world and starts moving: the harness starts every "
+                              "joint at rest");
+    }
+}
+
+} // namespace
+
 std::vector<TreeLink> jointTree(const core::Model& model)
 {
     const int n = static_cast<int>(model.bodies.size());
-    for (const core::Body& body : model.bodies)
-    {
-        if (body.isStatic)
-            throw Unsupported("body '" + body.name + "' is static: the harness runs moving bodies only");
-        if (!body.velocity_W.isZero() || !body.angularVelocity_W.isZero())
-            throw Unsupported("body '" + body.name +
-                              "' starts moving: the harness starts every body at rest");
-    }
     if (!model.actuators.empty() || !model.loads.empty())
         throw Unsupported("the scene has actuators or loads: the harness does not translate them");
     std::vector<int> parentJoint(static_cast<std::size_t>(n), -1);
     std::vector<std::vector<int>> children(static_cast<std::size_t>(n));
-    int worldJoints = 0;
-    int rootJoint = -1;
     for (int j = 0; j < static_cast<int>(model.joints.size()); ++j)
     {
         const core::Joint& joint = model.joints[static_cast<std::size_t>(j)];
         if (joint.type != core::JointType::Ball && joint.type != core::JointType::Revolute &&
-            joint.type != core::JointType::Fixed)
+            joint.type != core::JointType::Fixed && joint.type != core::JointType::Angle)
             throw Unsupported("joint '" + joint.name +
-                              "': the harness translates ball, revolute and fixed joints");
+                              "': the harness translates ball, revolute, angle and fixed joints");
         if (joint.limits)
             throw Unsupported("joint '" + joint.name + "' has limits: the harness does not translate them");
+        if (joint.parent != core::cWorld && model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
+            throw Unsupported("joint '" + joint.name +
+                              "' has a static parent: the harness joins bodies to the world only");
         if (parentJoint[static_cast<std::size_t>(joint.child)] >= 0)
             throw Unsupported("body '" + model.bodies[static_cast<std::size_t>(joint.child)].name +
                               "' is the child of two joints (a loop)");
         parentJoint[static_cast<std::size_t>(joint.child)] = j;
-        if (joint.parent == core::cWorld)
-        {
-            ++worldJoints;
-            rootJoint = j;
-        }
-        else
+        if (joint.parent != core::cWorld)
             children[static_cast<std::size_t>(joint.parent)].push_back(joint.child);
     }
-    int root = -1;
-    int freeRoots = 0;
-    for (int b = 0; b < n; ++b)
-        if (parentJoint[static_cast<std::size_t>(b)] < 0)
-        {
-            ++freeRoots;
-            root = b;
-        }
-    if (worldJoints + freeRoots != 1)
-        throw Unsupported("the bodies form " + std::to_string(worldJoints + freeRoots) +
-                          " trees: the harness runs one");
-    if (worldJoints == 1)
-        root = model.joints[static_cast<std::size_t>(rootJoint)].child;
 
     std::vector<TreeLink> order;
     order.reserve(static_cast<std::size_t>(n));
-    order.push_back(
-        {root, parentJoint[static_cast<std::size_t>(root)], worldJoints == 1 ? core::cWorld : -1});
-    for (std::size_t k = 0; k < order.size(); ++k)
-        for (int c : children[static_cast<std::size_t>(order[k].body)])
-            order.push_back({c, parentJoint[static_cast<std::size_t>(c)], order[k].body});
-    if (static_cast<int>(order.size()) != n)
-        throw Unsupported("some bodies are not in the root's tree (a loop among them)");
+    int moving = 0;
+    for (int b = 0; b < n; ++b)
+    {
+        if (model.bodies[static_cast<std::size_t>(b)].isStatic)
+            continue;
+        ++moving;
+        const int j = parentJoint[static_cast<std::size_t>(b)];
+        if (j >= 0 && model.joints[static_cast<std::size_t>(j)].parent != core::cWorld)
+            continue; // not a root
+        const std::size_t first = order.size();
+        order.push_back({b, j, core::cWorld});
+        for (std::size_t k = first; k < order.size(); ++k)
+            for (int c : children[static_cast<std::size_t>(order[k].body)])
+                order.push_back({c, parentJoint[static_cast<std::size_t>(c)], order[k].body});
+    }
+    if (static_cast<int>(order.size()) != moving)
+        throw Unsupported("some bodies are not in a tree with a root (a loop among them)");
+    checkInitialVelocities(model, order);
     return order;
 }
 

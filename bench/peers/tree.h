@@ -1,4 +1,4 @@
-// bench/peers/tree.h: the model's joints as one tree, in the order the peers build it (every
+// bench/peers/tree.h: the model's joints as trees, in the order the peers build it (every
 // body after its parent), and the checks that the model fits the harness's scope (engine.h).
 #pragma once
 
@@ -13,12 +13,19 @@ struct TreeLink
 {
     int body = 0;    // Model::bodies index
     int joint = -1;  // Model::joints index of the joint to its parent; -1: a free root
-    int parent = -1; // body index of the parent; core::cWorld: joined to the world
+    int parent = -1; // body index of the parent; core::cWorld: a root (free or joined to the world)
 };
 
-// Bodies in parent-before-child order; the first is the root. Throws Unsupported when the model
-// has a loop, several trees, a static body, a body that starts moving, actuators or loads, or a
-// joint other than ball, revolute or fixed (or one with limits).
+inline bool isRoot(const TreeLink& link)
+{
+    return link.parent == core::cWorld;
+}
+
+// The moving bodies, tree by tree, each tree in parent-before-child order from its root (static
+// bodies are left out: they are collision geometry). Throws Unsupported when the model has a
+// loop, a joint to a static body, a tree that does not start with one rigid velocity (or is
+// joined to the world and starts moving), actuators or loads, or a joint other than ball,
+// revolute, angle or fixed (or one with limits).
 std::vector<TreeLink> jointTree(const core::Model& model);
 
 // Rotation and position of body b's frame relative to body a's frame at the model's initial pose

@@ -1,0 +1,96 @@
+// bench/peers/contacts.cpp
+#include "bench/peers/contacts.h"
+
+#include "collision/internal.h"
+
+#include <algorithm>
+
+namespace frontier::peers
+{
+
+double contactMargin(double dt)
+{
+    return std::clamp(5.0 * dt, 2e-3, 0.05);
+}
+
+bool hasContacts(const core::Model& model)
+{
+    const std::string* group = nullptr;
+    bool oneGroup = true;
+    int withShapes = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        for (const core::Shape& shape : body.shapes)
+            if (shape.type == core::ShapeType::Mesh)
+                throw Unsupported("body '" + body.name +
+                                  "' has a mesh: the harness translates boxes, spheres, capsules, "
+                                  "cylinders and planes");
+        if (body.shapes.empty())
+            continue;
+        ++withShapes;
+        if (body.isStatic || body.group.empty() || (group && *group != body.group))
+            oneGroup = false;
+        group = &body.group;
+    }
+    return withShapes >= 2 && !oneGroup;
+}
+
+struct CollisionPairs::Impl
+{
+    explicit Impl(const core::Model& m) : model(m), filter(m) {}
+    const core::Model& model;
+    collision::detail::PairFilter filter;
+};
+
+CollisionPairs::CollisionPairs(const core::Model& model) : mImpl(std::make_unique<Impl>(model)) {}
+
+CollisionPairs::~CollisionPairs() = default;
+
+bool CollisionPairs::allowed(int a, int b) const
+{
+    return mImpl->filter.allowed(a, b);
+}
+
+std::vector<std::pair<int, int>> CollisionPairs::excludedPairs() const
+{
+    std::vector<std::pair<int, int>> out;
+    const auto& bodies = mImpl->model.bodies;
+    const int n = static_cast<int>(bodies.size());
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+        {
+            const core::Body& a = bodies[static_cast<std::size_t>(i)];
+            const core::Body& b = bodies[static_cast<std::size_t>(j)];
+            if (a.shapes.empty() || b.shapes.empty() || (a.isStatic && b.isStatic))
+                continue;
+            if (!mImpl->filter.allowed(i, j))
+                out.emplace_back(i, j);
+        }
+    return out;
+}
+
+PenetrationMeter::PenetrationMeter(const core::Model& model)
+    : mModel(model), mContacts(hasContacts(model)), mState(core::initialState(model))
+{
+    if (mContacts)
+        mDetector = std::make_unique<collision::ContactDetector>(model, 1e-4);
+}
+
+double PenetrationMeter::deepest(const std::vector<Pose>& poses)
+{
+    if (!mContacts)
+        return 0.0;
+    for (std::size_t b = 0; b < mModel.bodies.size(); ++b)
+        if (!mModel.bodies[b].isStatic)
+        {
+            mState.bodies[b].position_W = poses[b].position_W;
+            mState.bodies[b].orientation_WB = poses[b].orientation_WB.normalized();
+        }
+    mDetector->detect(mState, mFound);
+    double depth = 0.0;
+    for (const collision::Contact& c : mFound)
+        depth = std::max(depth, c.depth);
+    return depth;
+}
+
+} // namespace frontier::peers

@@ -1,0 +1,60 @@
+// bench/peers/contacts.h: what every engine needs to give the scene's collision shapes to its own
+// contact machinery, and the engine-independent penetration measure.
+//
+// Which pairs collide is Frontier's rule (docs/method.md §10: not two static bodies, not two
+// bodies of one non-empty group, not contact.ignore pairs, not bodies joined by a joint unless it
+// says collideConnected), asked of Frontier's own filter for each pair.
+#pragma once
+
+#include "bench/peers/engine.h"
+#include "collision/contacts.h"
+#include "core/state.h"
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace frontier::peers
+{
+
+// Contacts are reported while shapes are closer than this (m), as the frontier program does:
+// far enough that a body at 5 m/s cannot cross it in one step unseen, at least 2 mm.
+double contactMargin(double dt);
+
+// False when no two bodies of the model can ever collide (no shapes, or every body with shapes
+// moving and in one group, as the generated chains): the engines then get no collision geometry.
+// Throws Unsupported for shapes the harness does not translate (meshes).
+bool hasContacts(const core::Model& model);
+
+class CollisionPairs
+{
+  public:
+    explicit CollisionPairs(const core::Model& model);
+    ~CollisionPairs();
+    // Body indices; either may be static.
+    bool allowed(int a, int b) const;
+    // Pairs (i < j) of bodies with shapes, not both static, that may not collide.
+    std::vector<std::pair<int, int>> excludedPairs() const;
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+// The deepest overlap (m, >= 0) between any two bodies that may collide, found by Frontier's
+// ContactDetector on an engine's poses.
+class PenetrationMeter
+{
+  public:
+    explicit PenetrationMeter(const core::Model& model);
+    double deepest(const std::vector<Pose>& poses);
+
+  private:
+    const core::Model& mModel;
+    bool mContacts;
+    std::unique_ptr<collision::ContactDetector> mDetector;
+    core::State mState;
+    std::vector<collision::Contact> mFound;
+};
+
+} // namespace frontier::peers
