@@ -83,6 +83,14 @@ std::vector<Pose> referenceEnd(const core::Model& model, const Settings& s)
     return end;
 }
 
+// A message as one line of a table cell: line breaks become spaces, '|' becomes '/'.
+std::string oneLine(std::string s)
+{
+    for (char& c : s)
+        c = c == '\n' || c == '\r' ? ' ' : c == '|' ? '/' : c;
+    return s;
+}
+
 Row run(const std::string& name, const core::Model& model, const std::vector<Pose>& reference,
         const Settings& s)
 {
@@ -95,7 +103,7 @@ Row run(const std::string& name, const core::Model& model, const std::vector<Pos
     }
     catch (const Unsupported& e)
     {
-        row.note = e.what();
+        row.note = oneLine(e.what());
         return row;
     }
     const double h = model.simulation.dt;
