@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <gtest/gtest.h>
-#include <regex>
 #include <sstream>
 
 namespace frontier::app
@@ -143,16 +142,58 @@ TEST(SweepChart, OneTickFormatPerLogAxisAndWholeDecades)
     EXPECT_NE(script.find("set yrange [1e-05:0.1]\n"), std::string::npos) << script;
 }
 
-double screenValue(const std::string& script, const std::string& what)
+// The number right after `prefix` in the script (plain string search: std::regex trips GCC 12's
+// maybe-uninitialized warning in the sanitizer build).
+double numberAfter(const std::string& script, const std::string& prefix)
 {
-    const std::regex pattern(what + " at screen ([-0-9.e]+)");
-    std::smatch match;
-    if (!std::regex_search(script, match, pattern))
+    const std::size_t at = script.find(prefix);
+    if (at == std::string::npos)
     {
-        ADD_FAILURE() << "no '" << what << "' in\n" << script;
+        ADD_FAILURE() << "no '" << prefix << "' in\n" << script;
         return 0.0;
     }
-    return std::stod(match[1]);
+    return std::stod(script.substr(at + prefix.size()));
+}
+
+double screenValue(const std::string& script, const std::string& what)
+{
+    return numberAfter(script, what + " at screen ");
+}
+
+// "set xrange [a:b]" -> {a, b}
+std::pair<double, double> rangeOf(const std::string& script, const std::string& axis)
+{
+    const std::string prefix = "set " + axis + "range [";
+    const double low = numberAfter(script, prefix);
+    const std::size_t colon = script.find(':', script.find(prefix));
+    return {low, std::stod(script.substr(colon + 1))};
+}
+
+struct ChartLabel
+{
+    std::string text;
+    double x = 0.0, y = 0.0;
+};
+
+// Every "set label N 'TEXT' at X, Y left" line.
+std::vector<ChartLabel> labelsOf(const std::string& script)
+{
+    std::vector<ChartLabel> labels;
+    std::istringstream lines(script);
+    for (std::string line; std::getline(lines, line);)
+    {
+        if (line.rfind("set label ", 0) != 0 || line.find(" left") == std::string::npos)
+            continue;
+        const std::size_t open = line.find('\'');
+        const std::size_t close = line.find('\'', open + 1);
+        const std::size_t at = line.find(" at ", close);
+        ChartLabel label;
+        label.text = line.substr(open + 1, close - open - 1);
+        label.x = std::stod(line.substr(at + 4));
+        label.y = std::stod(line.substr(line.find(',', at) + 1));
+        labels.push_back(label);
+    }
+    return labels;
 }
 
 TEST(SweepChart, LegendBelowThePlotAndLabelsApart)
@@ -167,37 +208,32 @@ TEST(SweepChart, LegendBelowThePlotAndLabelsApart)
 
     // The key hangs from a point below the plot's bottom margin.
     const double bottom = screenValue(script, "set bmargin");
-    const std::regex keyPattern("set key at screen 0.5, screen ([-0-9.e]+) center top");
-    std::smatch key;
-    ASSERT_TRUE(std::regex_search(script, key, keyPattern)) << script;
-    EXPECT_LT(std::stod(key[1]), bottom - 0.05);
-    EXPECT_GT(std::stod(key[1]), 0.05);
+    ASSERT_NE(script.find("set key at screen 0.5, screen "), std::string::npos) << script;
+    const double key = numberAfter(script, "set key at screen 0.5, screen ");
+    EXPECT_NE(script.find(" center top", script.find("set key at screen 0.5")), std::string::npos);
+    EXPECT_LT(key, bottom - 0.05);
+    EXPECT_GT(key, 0.05);
 
     // Labels, in pixels of the 1100 x 720 image, from the script's margins and ranges.
     const double left = screenValue(script, "set lmargin");
     const double right = screenValue(script, "set rmargin");
     const double top = screenValue(script, "set tmargin");
-    std::smatch range;
-    ASSERT_TRUE(std::regex_search(script, range, std::regex("set xrange \\[([^:]+):([^\\]]+)\\]")));
-    const double x0 = std::log10(std::stod(range[1]));
-    const double x1 = std::log10(std::stod(range[2]));
-    ASSERT_TRUE(std::regex_search(script, range, std::regex("set yrange \\[([^:]+):([^\\]]+)\\]")));
-    const double y0 = std::log10(std::stod(range[1]));
-    const double y1 = std::log10(std::stod(range[2]));
+    const auto [xLow, xHigh] = rangeOf(script, "x");
+    const auto [yLow, yHigh] = rangeOf(script, "y");
+    const double x0 = std::log10(xLow);
+    const double x1 = std::log10(xHigh);
+    const double y0 = std::log10(yLow);
+    const double y1 = std::log10(yHigh);
     struct Box
     {
         double x0, y0, x1, y1;
     };
     std::vector<Box> boxes;
-    const std::regex labelPattern("set label [0-9]+ '([^']*)' at ([-0-9.e]+), ([-0-9.e]+) left");
-    for (auto it = std::sregex_iterator(script.begin(), script.end(), labelPattern);
-         it != std::sregex_iterator(); ++it)
+    for (const ChartLabel& label : labelsOf(script))
     {
-        const double px =
-            1100.0 * (left + (std::log10(std::stod((*it)[2])) - x0) / (x1 - x0) * (right - left));
-        const double py =
-            720.0 * (bottom + (std::log10(std::stod((*it)[3])) - y0) / (y1 - y0) * (top - bottom));
-        const double width = 6.0 * static_cast<double>((*it)[1].length());
+        const double px = 1100.0 * (left + (std::log10(label.x) - x0) / (x1 - x0) * (right - left));
+        const double py = 720.0 * (bottom + (std::log10(label.y) - y0) / (y1 - y0) * (top - bottom));
+        const double width = 6.0 * static_cast<double>(label.text.length());
         boxes.push_back({px, py - 5.0, px + width, py + 5.0});
         EXPECT_GE(px, 1100.0 * left);
         EXPECT_LE(px + width, 1100.0 * right);
