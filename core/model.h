@@ -51,8 +51,8 @@ struct Shape
 struct Body
 {
     std::string name;
-    bool isStatic = false;         // static bodies do not move and are not nodes of the solver (docs/method.md §5)
-    double mass = 0.0;             // kg (> 0 for moving bodies)
+    bool isStatic = false; // static bodies do not move and are not nodes of the solver (docs/method.md §5)
+    double mass = 0.0;     // kg (> 0 for moving bodies)
     Mat3 inertia_B = Mat3::Zero(); // kg m^2, about the centre of mass, in the body frame
     std::vector<Shape> shapes;     // collision geometry, also drawn when `visuals` is empty (may be empty)
     std::vector<Shape> visuals;    // render-only geometry (URDF <visual>); no mass, no contacts
