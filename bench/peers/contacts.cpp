@@ -1,17 +1,10 @@
 // bench/peers/contacts.cpp
 #include "bench/peers/contacts.h"
 
-#include "collision/internal.h"
-
 #include <algorithm>
 
 namespace frontier::peers
 {
-
-double contactMargin(double dt)
-{
-    return std::clamp(5.0 * dt, 2e-3, 0.05);
-}
 
 bool hasContacts(const core::Model& model)
 {
@@ -35,35 +28,18 @@ bool hasContacts(const core::Model& model)
     return withShapes >= 2 && !oneGroup;
 }
 
-struct CollisionPairs::Impl
-{
-    explicit Impl(const core::Model& m) : model(m), filter(m) {}
-    const core::Model& model;
-    collision::detail::PairFilter filter;
-};
-
-CollisionPairs::CollisionPairs(const core::Model& model) : mImpl(std::make_unique<Impl>(model)) {}
-
-CollisionPairs::~CollisionPairs() = default;
-
-bool CollisionPairs::allowed(int a, int b) const
-{
-    return mImpl->filter.allowed(a, b);
-}
-
-std::vector<std::pair<int, int>> CollisionPairs::excludedPairs() const
+std::vector<std::pair<int, int>> excludedPairs(const core::Model& model, const collision::PairFilter& filter)
 {
     std::vector<std::pair<int, int>> out;
-    const auto& bodies = mImpl->model.bodies;
-    const int n = static_cast<int>(bodies.size());
+    const int n = static_cast<int>(model.bodies.size());
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j)
         {
-            const core::Body& a = bodies[static_cast<std::size_t>(i)];
-            const core::Body& b = bodies[static_cast<std::size_t>(j)];
+            const core::Body& a = model.bodies[static_cast<std::size_t>(i)];
+            const core::Body& b = model.bodies[static_cast<std::size_t>(j)];
             if (a.shapes.empty() || b.shapes.empty() || (a.isStatic && b.isStatic))
                 continue;
-            if (!mImpl->filter.allowed(i, j))
+            if (!filter.allowed(i, j))
                 out.emplace_back(i, j);
         }
     return out;

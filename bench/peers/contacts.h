@@ -8,6 +8,7 @@
 
 #include "bench/peers/engine.h"
 #include "collision/contacts.h"
+#include "collision/filter.h"
 #include "core/state.h"
 
 #include <memory>
@@ -17,29 +18,13 @@
 namespace frontier::peers
 {
 
-// Contacts are reported while shapes are closer than this (m), as the frontier program does:
-// far enough that a body at 5 m/s cannot cross it in one step unseen, at least 2 mm.
-double contactMargin(double dt);
-
 // False when no two bodies of the model can ever collide (no shapes, or every body with shapes
 // moving and in one group, as the generated chains): the engines then get no collision geometry.
 // Throws Unsupported for shapes the harness does not translate (meshes).
 bool hasContacts(const core::Model& model);
 
-class CollisionPairs
-{
-  public:
-    explicit CollisionPairs(const core::Model& model);
-    ~CollisionPairs();
-    // Body indices; either may be static.
-    bool allowed(int a, int b) const;
-    // Pairs (i < j) of bodies with shapes, not both static, that may not collide.
-    std::vector<std::pair<int, int>> excludedPairs() const;
-
-  private:
-    struct Impl;
-    std::unique_ptr<Impl> mImpl;
-};
+// Pairs (i < j) of bodies with shapes, not both static, that the filter keeps apart.
+std::vector<std::pair<int, int>> excludedPairs(const core::Model& model, const collision::PairFilter& filter);
 
 // The deepest overlap (m, >= 0) between any two bodies that may collide, found by Frontier's
 // ContactDetector on an engine's poses.

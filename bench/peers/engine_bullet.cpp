@@ -63,13 +63,13 @@ struct BulletParts
     explicit BulletParts(const core::Model& m) : model(m), contacts(hasContacts(m))
     {
         if (contacts)
-            pairs = std::make_unique<CollisionPairs>(m);
+            pairs = std::make_unique<collision::PairFilter>(m);
     }
 
     // Frontier's pair filter; the collision objects' user index is their body's index.
     struct Filter final : btOverlapFilterCallback
     {
-        const CollisionPairs* pairs = nullptr;
+        const collision::PairFilter* pairs = nullptr;
         bool needBroadphaseCollision(btBroadphaseProxy* p0, btBroadphaseProxy* p1) const override
         {
             const auto* a = static_cast<const btCollisionObject*>(p0->m_clientObject);
@@ -168,7 +168,7 @@ struct BulletParts
 
     const core::Model& model;
     bool contacts;
-    std::unique_ptr<CollisionPairs> pairs;
+    std::unique_ptr<collision::PairFilter> pairs;
     Filter filter;
     std::vector<std::unique_ptr<btCollisionShape>> shapes;
     std::vector<std::unique_ptr<btCollisionObject>> statics;

@@ -17,7 +17,7 @@ class FrontierEngine final : public Engine
     FrontierEngine(const core::Model& model, core::IntegratorKind integrator)
         : mModel(withIntegrator(model, integrator)),
           mDetector(hasContacts(mModel) ? std::make_unique<collision::ContactDetector>(
-                                              mModel, contactMargin(mModel.simulation.dt))
+                                              mModel, collision::contactMargin(mModel.simulation.dt))
                                         : nullptr),
           mSimulator(mModel, {}, mDetector.get()), mState(core::initialState(mModel))
     {

@@ -179,7 +179,7 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree)
     if (contacts)
     {
         out << "<contact>\n";
-        for (const auto& [i, j] : CollisionPairs(model).excludedPairs())
+        for (const auto& [i, j] : excludedPairs(model, collision::PairFilter(model)))
             out << "<exclude body1=\"b" << i << "\" body2=\"b" << j << "\"/>\n";
         out << "</contact>\n";
     }

@@ -33,7 +33,7 @@ class OdeEngine final : public Engine
         {
             mSpace = dHashSpaceCreate(nullptr);
             mContactJoints = dJointGroupCreate(0);
-            mPairs = std::make_unique<CollisionPairs>(model);
+            mPairs = std::make_unique<collision::PairFilter>(model);
         }
         for (const core::Body& body : model.bodies)
         {
@@ -228,7 +228,7 @@ class OdeEngine final : public Engine
     dWorldID mWorld = nullptr;
     dSpaceID mSpace = nullptr;              // null: no contacts
     dJointGroupID mContactJoints = nullptr; // this step's contact joints
-    std::unique_ptr<CollisionPairs> mPairs;
+    std::unique_ptr<collision::PairFilter> mPairs;
     std::vector<dBodyID> mBodies; // per model body; null for static ones
 };
 

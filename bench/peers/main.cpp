@@ -201,14 +201,14 @@ int runHarness(int argc, char** argv)
         std::cerr << "frontier_peers: give --scene FILE or --chain N (one of them)\n";
         return 2;
     }
-    std::vector<std::string> names = engineNames();
+    const std::vector<std::string> all = engineNames();
+    std::vector<std::string> names = all;
     if (!engines.empty())
     {
         names.clear();
         std::stringstream list(engines);
         for (std::string name; std::getline(list, name, ',');)
         {
-            const auto all = engineNames();
             if (std::find(all.begin(), all.end(), name) == all.end())
             {
                 std::cerr << "frontier_peers: unknown engine '" << name << "' (expected one of";
