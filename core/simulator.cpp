@@ -90,6 +90,7 @@ void Simulator::stepEuler(State& state)
         rowsAtStart(state);
         buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
         setMomentumRhs(state, state.time + mDt);
+        predictDrift(state);
         carryImpulses(); // the last step's impulses on those rows join the right-hand side
         // docs/method.md §3, eq. (5) (eliminate), once per step, and eq. (6) (substitute) for the joint
         // impulses of the free velocities and the carried extra impulses, fused into one pass.
@@ -269,6 +270,18 @@ void Simulator::buildExtraRows(const State& state)
 void Simulator::setMomentumRhs(const State& state, double tEnd)
 {
     core::setMomentumRhs(mModel, mRows, state, tEnd, driveStep(), mActuation, mRhs);
+}
+
+// docs/method.md §7, eq. (11a): the first solve asks J u = -C_pred / h so that the drift correction
+// starts near C = 0, on steps whose first solve is the exact tree solve alone: extra rows
+// (contacts, limits, loops) are solved on top of it and would see the bias in their impulses, and
+// pgs solves approximately.
+void Simulator::predictDrift(const State& state)
+{
+    if (mOptions.predictDrift && mStats.extraRows == 0 && mModel.simulation.solver != SolverKind::Pgs)
+    {
+        mDrift.addPredictedDrift(state, mRhs, mDt);
+    }
 }
 
 // The last step's impulses on this step's rows, their momentum into the right-hand side

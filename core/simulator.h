@@ -3,7 +3,8 @@
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
 // reads like the physics, in Simulator::stepEuler() (stage timings: StepStage, core/step/step_stats.h):
 //   checkState -> detectContacts                                                       [Detect]
-//   -> computeFreeVelocities -> rowsAtStart -> buildExtraRows -> setMomentumRhs -> carryImpulses
+//   -> computeFreeVelocities -> rowsAtStart -> buildExtraRows -> setMomentumRhs
+//   -> predictDrift -> carryImpulses
 //   -> factorAndSolve (O(n): elimination and the joint impulses in one pass)           [Factor]
 //   -> solveContactImpulses                                                            [Solve]
 //      (rowsAtStart .. solveContactImpulses again while an actuator went past its effort limit)
@@ -146,6 +147,7 @@ class Simulator
     void rowsAtStart(const State& state);
     void buildExtraRows(const State& state);
     void setMomentumRhs(const State& state, double tEnd);
+    void predictDrift(const State& state);
     void carryImpulses();
     void factorAtStart(const State& state);
     void projectVelocities(State& state);

@@ -25,6 +25,10 @@ struct State
     // continuous across +-pi (rad, 0 at the model's initial pose; core/joints/coordinates.h); 0
     // for the other types. Part of the state so that copies and restarts of a step agree.
     std::vector<double> jointAngles;
+    // Per Model::joints entry: the violation of its conditions the last step's position update
+    // left (m, rad), which the next step's first solve anticipates (docs/method.md §7, eq. (11a));
+    // empty when there is none. Part of the state so that copies and restarts of a step agree.
+    std::vector<Eigen::Matrix<double, 6, 1>> jointDrift;
 };
 
 State initialState(const Model& model);

@@ -43,6 +43,49 @@ DriftCorrection::DriftCorrection(const Model& model, const StepOptions& options,
     mCorrection.resize(model.bodies.size(), model.joints.size());
 }
 
+void DriftCorrection::addPredictedDrift(const State& state, BlockVector& rhs, double dt)
+{
+    if (state.jointDrift.size() == mModel.joints.size())
+    {
+        for (std::size_t k = 0; k < state.jointDrift.size(); ++k)
+        {
+            rhs.joint[k] -= state.jointDrift[k] / dt;
+        }
+    }
+    mPredictionApplied = true;
+}
+
+// docs/method.md §7, eq. (11a). After the position update of a step that asked J u = -D / h, the
+// rows measure what the prediction missed; D + that is the drift the free update would have left
+// (to first order), the next step's prediction. A miss larger than the prediction itself (an
+// impact, a changed drive) starts over; a step without the prediction leaves none.
+void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& state)
+{
+    const bool applied = mPredictionApplied;
+    mPredictionApplied = false;
+    if (!applied)
+    {
+        state.jointDrift.clear();
+        return;
+    }
+    state.jointDrift.resize(mModel.joints.size(), Vec6::Zero());
+    double missed = 0.0;    // m or rad
+    double predicted = 0.0; // m or rad
+    for (std::size_t k = 0; k < state.jointDrift.size(); ++k)
+    {
+        const JointRows& r = rowsAfter.joints[k];
+        Vec6 miss = Vec6::Zero(); // condition rows only
+        miss.head(r.constraintRows) = r.error.head(r.constraintRows);
+        missed = std::max(missed, miss.cwiseAbs().maxCoeff());
+        predicted = std::max(predicted, state.jointDrift[k].cwiseAbs().maxCoeff());
+        state.jointDrift[k] += miss;
+    }
+    if (predicted > 0.0 && missed > predicted)
+    {
+        state.jointDrift.clear();
+    }
+}
+
 const JointErrors& DriftCorrection::measure(const RowSystem& rows)
 {
     mErrors = measureJointErrors(rows, mErrors.worstJoint);
@@ -69,6 +112,10 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
     {
         assembleRows(mModel, mLayout, state, driveStep, rowsAfter, actuation.gains());
         measure(rowsAfter);
+        if (iteration == 0)
+        {
+            updatePredictedDrift(rowsAfter, state);
+        }
         const double error = std::max(mErrors.maxM, mErrors.maxRad);
         if (error <= mOptions.stabilizationTolerance)
         {

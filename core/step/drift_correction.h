@@ -53,6 +53,13 @@ class DriftCorrection
                 std::vector<ExtraBlock>& loopBlocks, BlockVector& solution, double dt, double driveStep,
                 bool rattle, const Actuation& actuation);
 
+    // The predicted drift (docs/method.md §7, eq. (11a)): the step's first velocity solve asks
+    // J u = -D / h of each joint's condition rows, D = State::jointDrift the violation the last
+    // step's position update left (a smooth function of time between impacts), so that the
+    // projection starts close to the manifold. It moves the iteration's starting point, not what
+    // it converges to. Adds -D / h to `rhs`; run() then updates State::jointDrift.
+    void addPredictedDrift(const State& state, BlockVector& rhs, double dt);
+
     const JointErrors& errors() const { return mErrors; } // after the last iteration
     int iterations() const { return mIterations; }        // iterations that moved the state
     // The loop impulses of this step's correction (N s, N m s), by the rows of the loop blocks.
@@ -62,6 +69,7 @@ class DriftCorrection
 
   private:
     void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
+    void updatePredictedDrift(const RowSystem& rowsAfter, State& state);
     void addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks);
 
     const Model& mModel;
@@ -70,7 +78,8 @@ class DriftCorrection
     ImpulseSolver& mSolver;
     JointErrors mErrors;
     int mIterations = 0;
-    RowSystem mRowsRefactored; // rows of a re-factorization when the quasi-Newton iteration is slow
+    bool mPredictionApplied = false; // addPredictedDrift was called for this step
+    RowSystem mRowsRefactored;       // rows of a re-factorization when the quasi-Newton iteration is slow
     BlockVector mRhs, mCorrection;
     Eigen::MatrixXd mLoopG;
     Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
