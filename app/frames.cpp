@@ -3,6 +3,7 @@
 
 #include "app/run_loop.h"
 #include "io/atomic_file.h"
+#include "io/scene.h"
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -37,6 +38,18 @@ bool FrameSampler::due(double time)
         ++mNext;
     }
     return true;
+}
+
+void checkFrameCount(double duration, double fps, double states, const std::string& source)
+{
+    const double frames = std::min(states, std::floor(duration * fps) + 1.0);
+    if (frames > cMaxFrames)
+    {
+        char text[200];
+        std::snprintf(text, sizeof text, "%.6g s at --fps %.6g makes %.6g frames; at most %.0e (lower --fps)",
+                      duration, fps, frames, cMaxFrames);
+        throw io::InputError(source, 0, 0, text);
+    }
 }
 
 void prepareFrameFolder(const std::string& folder)

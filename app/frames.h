@@ -27,6 +27,14 @@ class FrameSampler
     long mNext = 0;
 };
 
+// The most frames a run or a render may write (a million PNGs at 640 x 480 take hours and hundreds
+// of gigabytes; more is a typo in --fps or --duration).
+inline constexpr double cMaxFrames = 1e6;
+
+// The frames of `duration` (s) sampled at `fps` from `states` states: min(states, duration fps + 1).
+// Throws io::InputError naming `source` when above cMaxFrames.
+void checkFrameCount(double duration, double fps, double states, const std::string& source);
+
 struct FrameSettings
 {
     std::string folder;

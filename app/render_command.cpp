@@ -110,6 +110,7 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
                 frames.push_back(state);
             }
         }
+        checkFrameCount(states.back().time, options.fps, static_cast<double>(frames.size()), path);
         prepareFrameFolder(out.frames);
         const std::size_t rendered =
             renderFrames(model, frames, {out.frames, options.width, options.height, threads},

@@ -153,6 +153,10 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         model = std::move(loaded.model);
         steps = applyOverrides(options, model);
+        if (!out.frames.empty())
+        {
+            checkFrameCount(model.simulation.duration, options.fps, static_cast<double>(steps) + 1.0, scene);
+        }
         io::TrajectoryMetadata metadata =
             io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
         io::addUrdfOptions(metadata, options.urdf);

@@ -293,6 +293,13 @@ TEST(RunOutputs, HighFrameRateTakesAFramePerStep)
     EXPECT_TRUE(std::filesystem::exists(frames + "/frame_00003.png"));
     EXPECT_FALSE(std::filesystem::exists(frames + "/frame_00004.png"));
     EXPECT_FALSE(std::filesystem::exists(frames + "/INCOMPLETE"));
+
+    // More than a million frames is refused before the run.
+    const Result many = dir.run("run scenes/pendulum.yaml --quiet --duration 2000 --fps 1000 --frames " +
+                                shellQuote(dir.out("many")));
+    EXPECT_EQ(many.exitCode, 2) << many.err;
+    EXPECT_NE(many.err.find("frames; at most"), std::string::npos) << many.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.out("many")));
 }
 
 // limit_steps: the limits scene's rod and slider rest on their limits from about 1 s on, pressed
