@@ -409,7 +409,14 @@ TEST(Run, SignalStopsTheRunAndRemovesTemporaries)
                                               "--trajectory", dir.out("t.csv"), "--joints", dir.out("j.csv"),
                                               "--stats", dir.out("s.json")});
         ASSERT_GT(pid, 0);
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        // The run has started (its handlers are installed) once its temporary files exist.
+        const auto start = std::chrono::steady_clock::now();
+        while (temporaries(dir).size() < 2 &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60.0)
+        {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
         ::kill(pid, signal);
         EXPECT_EQ(waitForExit(pid, 30.0), 128 + signal) << name;
         const std::string err = readText(dir.path() / "stderr.txt");
