@@ -160,12 +160,16 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         io::TrajectoryMetadata metadata =
             io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
         io::addUrdfOptions(metadata, options.urdf);
-        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts})
+        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts, &out.stats})
         {
             if (!file->empty())
             {
                 makeFolderFor(*file);
             }
+        }
+        if (!out.stats.empty())
+        {
+            io::AtomicFile probe(out.stats); // the stats can be written (removed again, never committed)
         }
         if (!out.trajectory.empty())
         {
@@ -298,7 +302,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         if (!out.stats.empty())
         {
             io::RunStats stats = makeStats(scene, model, summary);
-            stats.completed = summary.completed;
+            stats.completed = ok;
             stats.failure = failure;
             stats.warnings = warnings;
             if (isPassive(model))

@@ -275,6 +275,13 @@ TEST(RunOutputs, LinksDevicesFoldersAndEmptyPathsAreRefusedBeforeTheRun)
         EXPECT_EQ(r.exitCode, 2) << flags << "\n" << r.err;
         EXPECT_NE(r.err.find(message), std::string::npos) << flags << "\n" << r.err;
     }
+    // A stats file that cannot be created is reported before the run, not after it.
+    const std::string blocker = dir.write("blocker", "a file, not a folder\n");
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = dir.run(longRun + " --stats " + shellQuote(blocker + "/s.json"));
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find(blocker), std::string::npos) << r.err;
     EXPECT_TRUE(std::filesystem::is_symlink(link));
     EXPECT_EQ(readText(target), "keep me\n");
     EXPECT_TRUE(std::filesystem::is_directory(dir.out("folder")));

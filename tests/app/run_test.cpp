@@ -319,6 +319,7 @@ TEST(Run, PassiveSceneThatGainsEnergyIsWarnedAndFailsWithStrict)
     EXPECT_TRUE(std::filesystem::exists(dir.out("t.failed.csv")));
     EXPECT_FALSE(std::filesystem::exists(dir.out("t.csv")));
     s = io::readStats(stats);
+    EXPECT_FALSE(s.completed);
     EXPECT_NE(s.failure.find("energy"), std::string::npos) << s.failure;
 
     const Result held =
