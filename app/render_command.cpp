@@ -168,15 +168,13 @@ int renderCommand(const RenderCommandOptions& options)
     // One trajectory: its frames on all render threads; several: one job per trajectory.
     installInterruptHandlers();
     const bool batch = options.trajectories.size() > 1;
-    const int code = runBatch(names, batch ? options.jobs : 1, options.quiet,
-                              [&](std::size_t job, const std::function<void(const std::string&)>& status,
-                                  std::string& summary, std::string& error)
-                              {
-                                  return renderOne(options, options.trajectories[job], outputs[job],
-                                                   batch ? 1 : options.jobs, status, summary, error);
-                              });
-    const int signal = interruptSignal();
-    return signal != 0 ? interruptedExitCode(signal) : code;
+    return runBatch(names, batch ? options.jobs : 1, options.quiet,
+                    [&](std::size_t job, const std::function<void(const std::string&)>& status,
+                        std::string& summary, std::string& error)
+                    {
+                        return renderOne(options, options.trajectories[job], outputs[job],
+                                         batch ? 1 : options.jobs, status, summary, error);
+                    });
 }
 
 } // namespace frontier::app

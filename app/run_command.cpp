@@ -424,13 +424,11 @@ int runCommand(const RunOptions& options)
     {
         names.push_back(jobName(scene));
     }
-    const int code =
-        runBatch(names, options.jobs, options.quiet,
-                 [&](std::size_t job, const std::function<void(const std::string&)>& status,
-                     std::string& summary, std::string& error)
-                 { return runOne(options, options.scenes[job], outputs[job], 1, status, summary, error); });
-    const int signal = interruptSignal();
-    return signal != 0 ? interruptedExitCode(signal) : code;
+    return runBatch(names, options.jobs, options.quiet,
+                    [&](std::size_t job, const std::function<void(const std::string&)>& status,
+                        std::string& summary, std::string& error) {
+                        return runOne(options, options.scenes[job], outputs[job], 1, status, summary, error);
+                    });
 }
 
 } // namespace frontier::app
