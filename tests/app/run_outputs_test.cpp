@@ -1,8 +1,9 @@
 // tests/app/run_outputs_test.cpp: `frontier run --joints` and `--contacts` end to end: their
 // comment and header lines, rows per recorded step; a pendulum's joint columns against the angle,
 // spin and momentum computed from the trajectory CSV; a hanging chain's joints carrying the
-// weight below them; batch names and colliding paths; the stats' limit and actuator keys. (A
-// failed run leaves none of them: run_test.cpp.)
+// weight below them; batch names; outputs refused before the run (colliding paths, an input, links,
+// devices, folders, empty paths, too many frames); the stats' limit and actuator keys. (A failed
+// run keeps them under .failed names: run_test.cpp.)
 #include "app_test_util.h"
 #include "csv_table.h"
 #include "io/stats.h"

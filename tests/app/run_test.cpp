@@ -1,6 +1,7 @@
 // tests/app/run_test.cpp: `frontier run`: trajectory rows, stats JSON against the printed summary
-// and against the energy recomputed from the trajectory, recording options, no trajectory left
-// behind by a failed run, byte-identical repeated runs.
+// and against the energy recomputed from the trajectory, recording options, a failed run's rows
+// under .failed names, singular joints in run and check, a passive scene that gains energy,
+// SIGINT/SIGTERM/SIGHUP during the run and while rendering, byte-identical repeated runs.
 #include "app_test_util.h"
 #include "core/state.h"
 #include "io/scene.h"
