@@ -5,6 +5,7 @@
 #include "app/progress.h"
 #include "app/run_loop.h"
 #include "app/scene_loading.h"
+#include "core/impulse_solver.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
 
@@ -287,7 +288,7 @@ int reportCheck(const CheckOptions& options, const Comparison& comparison, const
         std::printf("largest %s error %.3g %s (tolerance %.3g %s)%s%s\n", q.name, q.largest, q.unit,
                     q.tolerance, q.unit, q.largestBody.empty() ? "" : ", body ", q.largestBody.c_str());
     }
-    if (!summary.finite)
+    if (!summary.completed)
     {
         std::printf("FAILED: %s\n", summary.failure.c_str());
         return cExitFailed;
@@ -324,14 +325,29 @@ int checkCommand(const CheckOptions& options)
     const bool terminal = !options.quiet && stderrIsTerminal();
     settings.progress = checkProgress(terminal, reference.steps, reference.model.simulation.dt);
     RunSummary summary;
+    installInterruptHandlers();
     try
     {
         summary = runSimulation(reference.model, settings, compare);
+    }
+    catch (const core::SingularJointError& e) // singular at the start: the run fails, as in `run`
+    {
+        summary.completed = false;
+        summary.failure = e.what();
     }
     catch (const std::exception& e)
     {
         std::cerr << "frontier: " << options.scene << ": " << e.what() << "\n";
         return cExitBadInput;
+    }
+    if (summary.interruptedBy != 0)
+    {
+        if (terminal)
+        {
+            std::fprintf(stderr, "\r\033[K");
+        }
+        std::cerr << "frontier: " << summary.failure << "; the check did not finish\n";
+        return interruptedExitCode(summary.interruptedBy);
     }
     if (terminal)
     {

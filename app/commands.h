@@ -10,7 +10,8 @@
 namespace frontier::app
 {
 
-// Exit codes (README, "Commands"): 0 success, 1 the run failed on its own terms, 2 bad input or usage.
+// Exit codes (README, "Exit codes"): 0 success, 1 the run failed on its own terms, 2 bad input or
+// usage; 128 + the signal when SIGINT, SIGTERM or SIGHUP stopped it (app/run_loop.h).
 inline constexpr int cExitOk = 0;
 inline constexpr int cExitFailed = 1;
 inline constexpr int cExitBadInput = 2;
@@ -36,6 +37,7 @@ struct RunOptions
     std::string video; // MP4 assembled from the frames with ffmpeg
     int jobs = 2;      // parallel jobs (batch) or render threads
     bool quiet = false;
+    bool strict = false;  // warnings of the run (a passive scene that gained energy) fail it
     io::UrdfOptions urdf; // --package-path, --fixed-base, --free-base, --drop-height, --self-collision
 };
 

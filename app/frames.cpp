@@ -1,9 +1,12 @@
 // app/frames.cpp: frame sampling, parallel rendering, video assembly.
 #include "app/frames.h"
 
+#include "app/run_loop.h"
 #include "io/atomic_file.h"
+#include "io/scene.h"
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -20,15 +23,33 @@ namespace frontier::app
 bool FrameSampler::due(double time)
 {
     constexpr double cTimeTolerance = 1e-9; // s: round-off of accumulated step times
-    if (time + cTimeTolerance < static_cast<double>(mNext) / mFps)
+    const double reach = time + cTimeTolerance;
+    if (reach < static_cast<double>(mNext) / mFps)
     {
         return false;
     }
-    while (static_cast<double>(mNext) / mFps <= time + cTimeTolerance)
+    // Past every frame time k / fps <= reach in one jump (a long gap between states, or a high
+    // fps, must not count frame by frame), then to the first frame after it: the division decides,
+    // as it did when counting, so the frames picked do not depend on the jump.
+    const double ticks = std::min(std::floor(reach * mFps), 1e18); // within a long
+    mNext = std::max(mNext, static_cast<long>(ticks) - 1);
+    while (static_cast<double>(mNext) <= ticks + 1.0 && static_cast<double>(mNext) / mFps <= reach)
     {
         ++mNext;
     }
     return true;
+}
+
+void checkFrameCount(double duration, double fps, double states, const std::string& source)
+{
+    const double frames = std::min(states, std::floor(duration * fps) + 1.0);
+    if (frames > cMaxFrames)
+    {
+        char text[200];
+        std::snprintf(text, sizeof text, "%.6g s at --fps %.6g makes %.6g frames; at most %.0e (lower --fps)",
+                      duration, fps, frames, cMaxFrames);
+        throw io::InputError(source, 0, 0, text);
+    }
 }
 
 void prepareFrameFolder(const std::string& folder)
@@ -61,12 +82,22 @@ std::string framePath(const std::string& folder, std::size_t index)
 }
 } // namespace
 
-void renderFrames(const core::Model& model, const std::vector<core::State>& frames,
-                  const FrameSettings& settings, const std::function<void(std::size_t)>& progress)
+std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
+                         const FrameSettings& settings, const std::function<void(std::size_t)>& progress)
 {
     if (frames.empty())
     {
-        return;
+        return 0;
+    }
+    const std::string marker = settings.folder + "/" + cIncompleteMarker;
+    {
+        std::ofstream out(marker);
+        out << "frontier was writing the frames of this folder and stopped before the last one "
+               "(interrupted, killed or failed): they are incomplete\n";
+        if (!out)
+        {
+            throw io::OutputError(marker + ": cannot write in the frames folder");
+        }
     }
     render::RenderOptions options;
     options.width = settings.width;
@@ -81,7 +112,7 @@ void renderFrames(const core::Model& model, const std::vector<core::State>& fram
         {
             render::Renderer renderer(model, options);
             renderer.frameRun(frames); // every frame's bodies in view
-            for (std::size_t k = next++; k < frames.size(); k = next++)
+            for (std::size_t k = next++; k < frames.size() && interruptSignal() == 0; k = next++)
             {
                 render::writePng(framePath(settings.folder, k), renderer.render(frames[k]));
                 ++done;
@@ -129,6 +160,11 @@ void renderFrames(const core::Model& model, const std::vector<core::State>& fram
     {
         progress(done);
     }
+    if (done == frames.size())
+    {
+        std::filesystem::remove(marker);
+    }
+    return done;
 }
 
 namespace

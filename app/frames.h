@@ -27,6 +27,14 @@ class FrameSampler
     long mNext = 0;
 };
 
+// The most frames a run or a render may write (a million PNGs at 640 x 480 take hours and hundreds
+// of gigabytes; more is a typo in --fps or --duration).
+inline constexpr double cMaxFrames = 1e6;
+
+// The frames of `duration` (s) sampled at `fps` from `states` states: min(states, duration fps + 1).
+// Throws io::InputError naming `source` when above cMaxFrames.
+void checkFrameCount(double duration, double fps, double states, const std::string& source);
+
 struct FrameSettings
 {
     std::string folder;
@@ -38,11 +46,18 @@ struct FrameSettings
 // Creates the folder and checks it can be written (throws io::OutputError naming it).
 void prepareFrameFolder(const std::string& folder);
 
+// The file that marks a frames folder as incomplete: written before the first frame, removed after
+// the last, so a folder that holds it (a run interrupted or killed while rendering) does not look
+// complete.
+inline constexpr const char* cIncompleteMarker = "INCOMPLETE";
+
 // Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers whose camera is
 // framed once over all the frames (Renderer::frameRun): the bodies stay in view for the whole run,
-// and the camera does not move. progress(done) is called from the calling thread. Throws io::OutputError.
-void renderFrames(const core::Model& model, const std::vector<core::State>& frames,
-                  const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
+// and the camera does not move. progress(done) is called from the calling thread. Stops early when
+// a signal arrives (interruptSignal, app/run_loop.h), leaving cIncompleteMarker. Returns the frames
+// written. Throws io::OutputError.
+std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
+                         const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
 
 // Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
 // not installed or fails.

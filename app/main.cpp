@@ -2,11 +2,64 @@
 #include "app/commands.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 namespace
 {
 using namespace frontier::app;
+
+// The one rule of every numeric flag: a finite number (no nan, no inf) in its range; a count is a
+// whole number, rewritten in digits ("1e3" -> "1000") for the option's integer type. `positive`:
+// the range excludes its lower end `low`.
+CLI::Validator numberIn(double low, double high, bool positive, bool count)
+{
+    return CLI::Validator(
+        [=](std::string& value)
+        {
+            char* end = nullptr;
+            const double x = std::strtod(value.c_str(), &end);
+            const bool parsed = !value.empty() && end == value.c_str() + value.size();
+            if (!parsed || !std::isfinite(x))
+            {
+                return "expected a finite number, got '" + value + "'";
+            }
+            char range[96];
+            std::snprintf(range, sizeof range, "%s %s %.6g and at most %.6g",
+                          count ? "a whole number" : "a number", positive ? "above" : "from", low, high);
+            if (x < low || (positive && x == low) || x > high || (count && x != std::floor(x)))
+            {
+                return std::string("expected ") + range + ", got " + value;
+            }
+            if (count)
+            {
+                value = std::to_string(static_cast<long long>(x));
+            }
+            return std::string();
+        },
+        count ? "INTEGER" : "NUMBER");
+}
+
+// Ranges (README "Commands"): times in seconds, counts bounded where a larger one could only be a
+// typo (a run's step count is bounded again from --duration / --dt, app/run_loop.h).
+const CLI::Validator cTimeStep = numberIn(0.0, 1e6, true, false);       // s
+const CLI::Validator cDuration = numberIn(0.0, 1e12, true, false);      // s
+const CLI::Validator cStepCount = numberIn(1.0, 1e12, false, true);     // steps (app/run_loop.h cMaxSteps)
+const CLI::Validator cIterations = numberIn(1.0, 1e6, false, true);     // solver sweeps
+const CLI::Validator cEvery = numberIn(1.0, 2147483647.0, false, true); // steps between rows
+const CLI::Validator cFps = numberIn(0.0, 1e6, true, false);            // frames per simulated second
+const CLI::Validator cPixels = numberIn(16.0, 16384.0, false, true);    // frame width
+const CLI::Validator cJobs = numberIn(1.0, 256.0, false, true);
+const CLI::Validator cTolerance = numberIn(0.0, 1e12, true, false);    // m, rad, m/s, rad/s
+const CLI::Validator cDropHeight = numberIn(0.0, 1e6, false, false);   // m
+const CLI::Validator cRows = numberIn(1.0, 2147483647.0, false, true); // KKT rows
+
+// An output path given as '' would silently write nothing.
+const CLI::Validator cPath([](std::string& value)
+                           { return value.empty() ? std::string("expected a path, got ''") : std::string(); },
+                           "PATH");
 
 // --height is the frame height; a robot's start height is --drop-height (the names of both are kept
 // from the command-line contract), so a height in metres gets pointed there.
@@ -15,7 +68,7 @@ const CLI::Validator cFrameHeight(
     {
         int pixels = 0;
         const bool whole = CLI::detail::lexical_cast(value, pixels);
-        if (whole && pixels >= 16 && pixels <= 16384)
+        if (whole && pixels >= 16 && pixels <= 16384 && cPixels(value).empty())
         {
             return std::string();
         }
@@ -45,7 +98,7 @@ void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
         .add_option(
             "--drop-height", o.dropHeight,
             "a free-floating bare URDF starts with its lowest collision point this high above the floor (m)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(cDropHeight);
     command
         .add_option_function<std::string>(
             "--self-collision", [&o](const std::string& value) { o.selfCollision = value == "on"; },
@@ -61,33 +114,36 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_option("scenes", o.scenes, "scene .yaml or model .urdf; several make a batch run in parallel")
         ->required()
         ->expected(1, -1);
-    auto* duration =
-        run.add_option("--duration", o.duration, "simulated time (s)")->check(CLI::PositiveNumber);
-    run.add_option("--steps", o.steps, "number of steps")->check(CLI::PositiveNumber)->excludes(duration);
-    run.add_option("--dt", o.dt, "time step (s)")->check(CLI::PositiveNumber);
+    auto* duration = run.add_option("--duration", o.duration, "simulated time (s)")->check(cDuration);
+    run.add_option("--steps", o.steps, "number of steps")->transform(cStepCount)->excludes(duration);
+    run.add_option("--dt", o.dt, "time step (s)")->check(cTimeStep);
     run.add_option("--solver", o.solver, "linear | dense | pgs")
         ->check(CLI::IsMember({"linear", "dense", "pgs"}));
-    run.add_option("--pgs-iterations", o.pgsIterations, "sweeps of the pgs solver")
-        ->check(CLI::PositiveNumber);
+    run.add_option("--pgs-iterations", o.pgsIterations, "sweeps of the pgs solver")->transform(cIterations);
     run.add_option("--integrator", o.integrator, "euler | rattle")->check(CLI::IsMember({"euler", "rattle"}));
-    run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here");
+    run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here")->check(cPath);
     run.add_option("--record-every", o.recordEvery, "trajectory, joints and contacts rows every K steps")
-        ->check(CLI::PositiveNumber);
-    run.add_option("--stats", o.stats, "write the run statistics JSON here");
+        ->transform(cEvery);
+    run.add_option("--stats", o.stats, "write the run statistics JSON here")->check(cPath);
     run.add_option("--joints", o.joints,
                    "write the joints CSV here: per recorded step and joint coordinate, position, velocity, "
-                   "actuator effort, and the force and torque the joint passes to its child");
+                   "actuator effort, and the force and torque the joint passes to its child")
+        ->check(cPath);
     run.add_option(
-        "--contacts", o.contacts,
-        "write the contacts CSV here: per recorded step and contact, bodies, point, normal, depth, "
-        "normal and friction impulse");
-    run.add_option("--frames", o.frames, "write PNG frames into this folder");
-    run.add_option("--fps", o.fps, "frames per simulated second")->check(CLI::PositiveNumber);
-    run.add_option("--width", o.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
+           "--contacts", o.contacts,
+           "write the contacts CSV here: per recorded step and contact, bodies, point, normal, depth, "
+           "normal and friction impulse")
+        ->check(cPath);
+    run.add_option("--frames", o.frames, "write PNG frames into this folder")->check(cPath);
+    run.add_option("--fps", o.fps, "frames per simulated second")->check(cFps);
+    run.add_option("--width", o.width, "frame width (pixels)")->transform(cPixels);
     run.add_option("--height", o.height, "frame height (pixels)")->check(cFrameHeight);
-    run.add_option("--video", o.video, "assemble the frames into this MP4 with ffmpeg");
-    run.add_option("--jobs", o.jobs, "parallel jobs (a batch) or render threads")->check(CLI::Range(1, 256));
+    run.add_option("--video", o.video, "assemble the frames into this MP4 with ffmpeg")->check(cPath);
+    run.add_option("--jobs", o.jobs, "parallel jobs (a batch) or render threads")->transform(cJobs);
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
+    run.add_flag("--strict", o.strict,
+                 "a warning of the run fails it (exit 1): a passive scene (no actuators, no loads) whose "
+                 "energy rose by more than 1% of its scale");
     addRobotOptions(run, o.urdf);
 }
 void addSweepOptions(CLI::App& sweep, SweepOptions& o)
@@ -113,13 +169,14 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
     sweep
         .add_option("--duration", o.duration,
                     "simulated time of every run (s); default: the scene's duration, at most 2 s")
-        ->check(CLI::PositiveNumber);
+        ->check(cDuration);
     sweep
         .add_option(
             "--out", o.out,
             "folder for sweep.csv, the chart sweep.png (drawn by gnuplot; without it, sweep.gp to draw it "
             "later) and its data sweep.dat")
-        ->required();
+        ->required()
+        ->check(cPath);
     addRobotOptions(sweep, o.urdf);
     sweep.footer(
         "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
@@ -155,13 +212,16 @@ int main(int argc, char** argv)
         ->expected(1, -1);
     render->add_option("--scene", renderOptions.scene,
                        "the scene (default: the one named in each trajectory)");
-    render->add_option("--frames", renderOptions.frames, "folder for the PNG frames")->required();
-    render->add_option("--fps", renderOptions.fps, "frames per simulated second")->check(CLI::PositiveNumber);
-    render->add_option("--width", renderOptions.width, "frame width (pixels)")->check(CLI::Range(16, 16384));
+    render->add_option("--frames", renderOptions.frames, "folder for the PNG frames")
+        ->required()
+        ->check(cPath);
+    render->add_option("--fps", renderOptions.fps, "frames per simulated second")->check(cFps);
+    render->add_option("--width", renderOptions.width, "frame width (pixels)")->transform(cPixels);
     render->add_option("--height", renderOptions.height, "frame height (pixels)")->check(cFrameHeight);
-    render->add_option("--video", renderOptions.video, "assemble the frames into this MP4 with ffmpeg");
+    render->add_option("--video", renderOptions.video, "assemble the frames into this MP4 with ffmpeg")
+        ->check(cPath);
     render->add_option("--jobs", renderOptions.jobs, "parallel jobs (a batch) or render threads")
-        ->check(CLI::Range(1, 256));
+        ->transform(cJobs);
     render->add_flag("--quiet", renderOptions.quiet, "no summary, no progress");
     addPackagePathOption(*render, renderOptions.packagePaths);
 
@@ -170,16 +230,15 @@ int main(int argc, char** argv)
         app.add_subcommand("check", "re-simulate a scene and compare with a recorded reference trajectory");
     check->add_option("scene", checkOptions.scene, "scene .yaml or model .urdf")->required();
     check->add_option("--reference", checkOptions.reference, "reference trajectory CSV")->required();
-    check->add_option("--tol", checkOptions.positionTolerance, "position tolerance (m)")
-        ->check(CLI::PositiveNumber);
+    check->add_option("--tol", checkOptions.positionTolerance, "position tolerance (m)")->check(cTolerance);
     check->add_option("--tol-orientation", checkOptions.orientationTolerance, "orientation tolerance (rad)")
-        ->check(CLI::PositiveNumber);
+        ->check(cTolerance);
     check->add_option("--tol-velocity", checkOptions.velocityTolerance, "velocity tolerance (m/s)")
-        ->check(CLI::PositiveNumber);
+        ->check(cTolerance);
     check
         ->add_option("--tol-angular-velocity", checkOptions.angularVelocityTolerance,
                      "angular velocity tolerance (rad/s)")
-        ->check(CLI::PositiveNumber);
+        ->check(cTolerance);
     check->add_flag("--quiet", checkOptions.quiet, "no progress line");
     addPackagePathOption(*check, checkOptions.packagePaths);
 
@@ -194,16 +253,16 @@ int main(int argc, char** argv)
                      "solver[:iterations]/integrator, comma-separated (default: linear/euler,"
                      "linear/rattle,dense/euler,pgs:20/euler,pgs:100/euler)")
         ->delimiter(',');
-    stability->add_option("--out", stabilityOptions.out, "also write the markdown table here");
+    stability->add_option("--out", stabilityOptions.out, "also write the markdown table here")->check(cPath);
     stability
         ->add_option("--duration", stabilityOptions.duration, "simulated time instead of each scene's (s)")
-        ->check(CLI::PositiveNumber);
+        ->check(cDuration);
     stability->add_option("--dt", stabilityOptions.dt, "time step instead of each scene's (s)")
-        ->check(CLI::PositiveNumber);
+        ->check(cTimeStep);
     stability
         ->add_option("--max-dense-rows", stabilityOptions.maxDenseRows,
                      "skip dense runs of larger KKT matrices")
-        ->check(CLI::PositiveNumber);
+        ->transform(cRows);
     stability->add_flag("--quiet", stabilityOptions.quiet, "no progress lines");
 
     SweepOptions sweepOptions;

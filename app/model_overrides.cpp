@@ -3,9 +3,28 @@
 
 #include "app/method.h"
 #include "app/run_loop.h"
+#include "io/scene.h"
+
+#include <cmath>
+#include <cstdio>
 
 namespace frontier::app
 {
+
+long checkedStepCount(double duration, double dt, const std::string& source)
+{
+    const double count = duration / dt;
+    if (!(std::isfinite(dt) && dt > 0.0 && std::isfinite(duration) && duration > 0.0 && count <= cMaxSteps))
+    {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "duration %.6g s at dt %.6g s makes %.6g steps; a run takes 1 to %.0e steps of a "
+                      "finite positive dt",
+                      duration, dt, count, cMaxSteps);
+        throw io::InputError(source, 0, 0, text);
+    }
+    return std::max(1L, stepsFor(duration, dt));
+}
 
 long applyOverrides(const RunOptions& options, core::Model& model)
 {
@@ -31,13 +50,14 @@ long applyOverrides(const RunOptions& options, core::Model& model)
     if (options.steps)
     {
         sim.duration = static_cast<double>(*options.steps) * sim.dt;
+        checkedStepCount(sim.duration, sim.dt, model.sourceFile);
         return *options.steps;
     }
     if (options.duration)
     {
         sim.duration = *options.duration;
     }
-    return std::max(1L, stepsFor(sim.duration, sim.dt));
+    return checkedStepCount(sim.duration, sim.dt, model.sourceFile);
 }
 
 } // namespace frontier::app

@@ -4,10 +4,21 @@
 #include "app/commands.h"
 #include "core/model.h"
 
+#include <string>
+
 namespace frontier::app
 {
 
-// Applies --dt, --duration/--steps, --solver, --pgs-iterations, --integrator. Returns the step count.
+// The most steps a run may take: more could only come from a typo (1e12 steps take days at the
+// fastest step rates, and a count near 2^63 would overflow).
+inline constexpr double cMaxSteps = 1e12;
+
+// round(duration / dt), at least 1; throws io::InputError naming `source` (the scene or the flags)
+// when dt or duration is not a finite positive number or the count exceeds cMaxSteps.
+long checkedStepCount(double duration, double dt, const std::string& source);
+
+// Applies --dt, --duration/--steps, --solver, --pgs-iterations, --integrator. Returns the step
+// count; throws io::InputError when it is not a sane one (checkedStepCount).
 long applyOverrides(const RunOptions& options, core::Model& model);
 
 } // namespace frontier::app

@@ -1,6 +1,7 @@
 // app/outputs.cpp: output paths of single and batch jobs.
 #include "app/outputs.h"
 
+#include "io/atomic_file.h"
 #include "io/scene.h"
 
 #include <filesystem>
@@ -13,23 +14,65 @@ namespace frontier::app
 
 namespace
 {
-// Two files at one path would overwrite each other (the last one renamed into place wins), so
-// the run is refused before it starts. `written`: the files of the jobs planned so far, with the
-// flag that names each.
-void checkDistinctFiles(const JobOutputs& job, std::map<std::filesystem::path, std::string>& written)
+namespace fs = std::filesystem;
+
+// The path an output will have, for comparing: symbolic links of its folders resolved, "." and
+// ".." removed, so two spellings of one file compare equal.
+fs::path canonicalOutput(const std::string& path)
 {
-    const std::pair<const char*, const std::string*> files[] = {{"--trajectory", &job.trajectory},
-                                                                {"--stats", &job.stats},
-                                                                {"--joints", &job.joints},
-                                                                {"--contacts", &job.contacts},
-                                                                {"--video", &job.video}};
+    std::error_code error;
+    const fs::path absolute = fs::absolute(fs::path(path), error);
+    const fs::path canonical = fs::weakly_canonical(absolute, error);
+    return error ? absolute.lexically_normal() : canonical;
+}
+
+} // namespace
+
+void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& inputs,
+                     bool folder)
+{
+    std::error_code error;
+    if (folder)
+    {
+        if (fs::exists(fs::symlink_status(path, error)) && !fs::is_directory(path, error))
+        {
+            throw io::InputError(path, 0, 0, flag + " names a folder, and this is not one");
+        }
+    }
+    else if (const std::string problem = io::outputPathProblem(path); !problem.empty())
+    {
+        throw io::InputError(path, 0, 0, flag + ": " + problem);
+    }
+    for (const std::string& input : inputs)
+    {
+        if (fs::exists(input, error) && fs::exists(path, error) && fs::equivalent(input, path, error))
+        {
+            throw io::InputError(
+                path, 0, 0, flag + " names the input " + input + ": the run would replace the file it reads");
+        }
+    }
+}
+
+namespace
+{
+// Outputs are checked before the run starts (README "Exit codes"): each must be a regular file or
+// a new path (io::outputPathProblem), none may be one of the inputs (the run would replace the
+// file it reads), and no two may be one file (the last renamed into place would win). `written`:
+// the files of the jobs planned so far, with the flag that names each.
+void checkOutputs(const JobOutputs& job, const std::vector<std::string>& inputs,
+                  std::map<fs::path, std::string>& written)
+{
+    const std::pair<const char*, const std::string*> files[] = {
+        {"--trajectory", &job.trajectory}, {"--stats", &job.stats}, {"--joints", &job.joints},
+        {"--contacts", &job.contacts},     {"--video", &job.video}, {"--frames", &job.frames}};
     for (const auto& [flag, path] : files)
     {
         if (path->empty())
         {
             continue;
         }
-        const auto [at, added] = written.emplace(std::filesystem::path(*path).lexically_normal(), flag);
+        checkOutputPath(flag, *path, inputs, path == &job.frames);
+        const auto [at, added] = written.emplace(canonicalOutput(*path), flag);
         if (!added)
         {
             throw io::InputError(*path, 0, 0, at->second + " and " + flag + " would write the same file");
@@ -37,6 +80,14 @@ void checkDistinctFiles(const JobOutputs& job, std::map<std::filesystem::path, s
     }
 }
 } // namespace
+
+std::string failedPath(const std::string& path)
+{
+    const fs::path p(path);
+    fs::path out = p.parent_path() / (p.stem().string() + ".failed");
+    out += p.extension();
+    return out.string();
+}
 
 std::string jobName(const std::string& inputPath)
 {
@@ -48,7 +99,7 @@ std::vector<JobOutputs> planOutputs(const std::vector<std::string>& inputs, cons
     std::map<std::filesystem::path, std::string> written;
     if (inputs.size() == 1)
     {
-        checkDistinctFiles(given, written);
+        checkOutputs(given, inputs, written);
         return {given};
     }
     std::vector<JobOutputs> out;
@@ -71,7 +122,7 @@ std::vector<JobOutputs> planOutputs(const std::vector<std::string>& inputs, cons
         job.video = inFolder(given.video, name + ".mp4");
         job.joints = inFolder(given.joints, name + ".joints.csv");
         job.contacts = inFolder(given.contacts, name + ".contacts.csv");
-        checkDistinctFiles(job, written);
+        checkOutputs(job, inputs, written);
         out.push_back(job);
     }
     return out;

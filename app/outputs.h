@@ -22,8 +22,19 @@ struct JobOutputs
 
 std::string jobName(const std::string& inputPath); // file name without folder and extension
 
-// Throws io::InputError when two inputs of a batch share a name, or when two outputs of a job are
-// the same file (their files would collide).
+// Where a failed run keeps an output's rows up to the failure: "out.csv" -> "out.failed.csv"
+// (the extension stays last, so the file still opens as what it is).
+std::string failedPath(const std::string& path);
+
+// Throws io::InputError when two inputs of a batch share a name, when two outputs are the same
+// file (their files would collide), when an output is one of the inputs, or when an output path is
+// not a regular file or a new path (a symbolic link, a device, a fifo; a folder for a file, a file
+// for --frames).
+// One output path checked as planOutputs does (`folder`: --frames, a folder or a new path); throws
+// io::InputError naming `flag`.
+void checkOutputPath(const std::string& flag, const std::string& path, const std::vector<std::string>& inputs,
+                     bool folder = false);
+
 std::vector<JobOutputs> planOutputs(const std::vector<std::string>& inputs, const JobOutputs& given);
 
 } // namespace frontier::app

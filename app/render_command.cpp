@@ -4,6 +4,7 @@
 #include "app/job_board.h"
 #include "app/outputs.h"
 #include "app/progress.h"
+#include "app/run_loop.h"
 #include "app/scene_loading.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
@@ -109,12 +110,21 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
                 frames.push_back(state);
             }
         }
+        checkFrameCount(states.back().time, options.fps, static_cast<double>(frames.size()), path);
         prepareFrameFolder(out.frames);
-        renderFrames(model, frames, {out.frames, options.width, options.height, threads},
-                     [&](std::size_t done) {
-                         status("rendering " + std::to_string(done) + " / " + std::to_string(frames.size()) +
-                                " frames");
-                     });
+        const std::size_t rendered =
+            renderFrames(model, frames, {out.frames, options.width, options.height, threads},
+                         [&](std::size_t done) {
+                             status("rendering " + std::to_string(done) + " / " +
+                                    std::to_string(frames.size()) + " frames");
+                         });
+        if (const int signal = interruptSignal(); signal != 0)
+        {
+            error = "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) + " of " +
+                    std::to_string(frames.size()) + " frames; " + out.frames + "/" + cIncompleteMarker +
+                    " marks the folder as incomplete";
+            return interruptedExitCode(signal);
+        }
         if (!out.video.empty())
         {
             assembleVideo(out.frames, options.fps, out.video);
@@ -156,6 +166,7 @@ int renderCommand(const RenderCommandOptions& options)
         names.push_back(jobName(path));
     }
     // One trajectory: its frames on all render threads; several: one job per trajectory.
+    installInterruptHandlers();
     const bool batch = options.trajectories.size() > 1;
     return runBatch(names, batch ? options.jobs : 1, options.quiet,
                     [&](std::size_t job, const std::function<void(const std::string&)>& status,

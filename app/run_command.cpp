@@ -72,7 +72,7 @@ std::string formatSummary(const core::Model& model, const RunSummary& s)
         model.name.c_str(), s.steps, model.simulation.dt, simulated, s.wallSeconds, perStep * 1e6,
         s.wallSeconds > 0 ? simulated / s.wallSeconds : 0.0, movingBodies(model), model.joints.size(),
         constraintRows(model), s.maxJointErrorM, s.maxJointErrorRad, s.energyInitialJ, s.energyFinalJ,
-        changeText, s.maxContacts, s.maxPenetrationM, s.finite ? "." : "; the run FAILED.");
+        changeText, s.maxContacts, s.maxPenetrationM, s.completed ? "." : "; the run FAILED.");
     return text;
 }
 
@@ -153,15 +153,23 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         model = std::move(loaded.model);
         steps = applyOverrides(options, model);
+        if (!out.frames.empty())
+        {
+            checkFrameCount(model.simulation.duration, options.fps, static_cast<double>(steps) + 1.0, scene);
+        }
         io::TrajectoryMetadata metadata =
             io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
         io::addUrdfOptions(metadata, options.urdf);
-        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts})
+        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts, &out.stats})
         {
             if (!file->empty())
             {
                 makeFolderFor(*file);
             }
+        }
+        if (!out.stats.empty())
+        {
+            io::AtomicFile probe(out.stats); // the stats can be written (removed again, never committed)
         }
         if (!out.trajectory.empty())
         {
@@ -237,10 +245,10 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         error = scene + ": " + e.what();
         return cExitBadInput;
     }
-    catch (const core::SingularJointError& e)
+    catch (const core::SingularJointError& e) // singular at the start (the simulator's construction)
     {
-        error = scene + ": " + e.what();
-        return cExitFailed;
+        summary.completed = false;
+        summary.failure = e.what();
     }
     catch (const io::OutputError& e) // an output file could not be written on (a full disk)
     {
@@ -248,27 +256,78 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         return cExitBadInput;
     }
 
+    // A passive scene cannot gain energy; when it does, the step was too large for it (or worse).
+    const double rise = passiveEnergyRise(model, summary);
+    std::vector<std::string> warnings;
+    if (rise > cEnergyGainTolerance)
+    {
+        char text[256];
+        std::snprintf(
+            text, sizeof text,
+            "the energy of this passive scene (no actuators, no loads) rose by %.3g J, %.3g%% of its "
+            "scale %.3g J (tolerance %g%%): a smaller dt or --integrator rattle may hold it",
+            summary.energyMaxJ - summary.energyInitialJ, 100.0 * rise, summary.energyScaleJ,
+            100.0 * cEnergyGainTolerance);
+        warnings.push_back(text);
+    }
+    std::string failure = summary.failure;
+    if (summary.completed && options.strict && !warnings.empty())
+    {
+        failure = "--strict: " + warnings.front();
+    }
+    const bool ok = failure.empty();
+    // A run that failed keeps its rows up to the failure under names that say so (failedPath).
+    std::vector<std::string> written;
     try
     {
-        if (trajectory && summary.finite)
+        if (trajectory)
         {
-            trajectory->commit();
+            written.push_back(ok ? out.trajectory : failedPath(out.trajectory));
+            trajectory->commitAs(written.back());
         }
-        if (stepOutputs && summary.finite)
+        if (stepOutputs)
         {
-            stepOutputs->commit();
+            if (ok)
+            {
+                stepOutputs->commit();
+            }
+            else
+            {
+                for (const std::string& file : stepOutputs->commitFailed())
+                {
+                    written.push_back(file);
+                }
+            }
         }
         if (!out.stats.empty())
         {
-            io::writeStats(out.stats, makeStats(scene, model, summary));
+            io::RunStats stats = makeStats(scene, model, summary);
+            stats.completed = ok;
+            stats.failure = failure;
+            stats.warnings = warnings;
+            if (isPassive(model))
+            {
+                stats.extra["energy_rise_fraction"] = rise; // of energy_scale_j
+                stats.extra["energy_scale_j"] = summary.energyScaleJ;
+            }
+            io::writeStats(out.stats, stats);
+            written.push_back(out.stats);
         }
-        if (!out.frames.empty() && summary.finite)
+        if (!out.frames.empty() && ok)
         {
-            renderFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
-                         [&](std::size_t done) {
-                             status("rendering " + std::to_string(done) + " / " +
-                                    std::to_string(frames.size()) + " frames");
-                         });
+            const std::size_t rendered =
+                renderFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
+                             [&](std::size_t done) {
+                                 status("rendering " + std::to_string(done) + " / " +
+                                        std::to_string(frames.size()) + " frames");
+                             });
+            if (const int signal = interruptSignal(); signal != 0)
+            {
+                error = "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) +
+                        " of " + std::to_string(frames.size()) + " frames; " + out.frames + "/" +
+                        cIncompleteMarker + " marks the folder as incomplete";
+                return interruptedExitCode(signal);
+            }
             if (!out.video.empty())
             {
                 assembleVideo(out.frames, options.fps, out.video);
@@ -281,14 +340,27 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         return cExitBadInput;
     }
     summaryText = formatSummary(model, summary);
-    if (!out.frames.empty() && summary.finite)
+    for (const std::string& warning : warnings)
+    {
+        summaryText += " Warning: " + warning + ".";
+    }
+    if (!out.frames.empty() && ok)
     {
         summaryText += " Wrote " + std::to_string(frames.size()) + " frames to " + out.frames + ".";
     }
-    if (!summary.finite)
+    if (!ok)
     {
-        error = summary.failure;
-        return cExitFailed;
+        // Every file of a failed run says so: rows under .failed names, stats with "completed": false.
+        error = (summary.interruptedBy != 0 ? "" : scene + ": ") + failure;
+        for (std::size_t k = 0; k < written.size(); ++k)
+        {
+            error += (k == 0 ? "; partial outputs kept in " : ", ") + written[k];
+        }
+        if (written.empty())
+        {
+            error += "; nothing written";
+        }
+        return summary.interruptedBy != 0 ? interruptedExitCode(summary.interruptedBy) : cExitFailed;
     }
     return cExitOk;
 }
@@ -315,6 +387,7 @@ int runCommand(const RunOptions& options)
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
     }
+    installInterruptHandlers();
     const bool terminal = !options.quiet && stderrIsTerminal();
     if (options.scenes.size() == 1)
     {

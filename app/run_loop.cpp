@@ -3,14 +3,113 @@
 
 #include "app/actuator_efforts.h"
 #include "collision/contacts.h"
+#include "core/impulse_solver.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <vector>
 
 namespace frontier::app
 {
+
+namespace
+{
+volatile std::sig_atomic_t gSignal = 0;
+
+extern "C" void onInterrupt(int signal)
+{
+    gSignal = signal;
+}
+} // namespace
+
+void installInterruptHandlers()
+{
+    struct sigaction action
+    {
+    };
+    action.sa_handler = onInterrupt;
+    sigemptyset(&action.sa_mask);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP})
+    {
+        sigaction(signal, &action, nullptr);
+    }
+}
+
+int interruptSignal()
+{
+    return gSignal;
+}
+
+std::string signalName(int signal)
+{
+    switch (signal)
+    {
+    case SIGINT:
+        return "SIGINT";
+    case SIGTERM:
+        return "SIGTERM";
+    case SIGHUP:
+        return "SIGHUP";
+    default:
+        return "signal " + std::to_string(signal);
+    }
+}
+
+bool isPassive(const core::Model& model)
+{
+    return model.actuators.empty() && model.loads.empty();
+}
+
+namespace
+{
+// Kinetic energy and |potential| of one moving body (J).
+double bodyEnergyScale(const core::Model& model, std::size_t i, const core::BodyState& state)
+{
+    const core::Body& body = model.bodies[i];
+    const double kinetic =
+        0.5 * body.mass * state.velocity_W.squaredNorm() +
+        0.5 * state.angularVelocity_W.dot(core::worldInertia(body, state) * state.angularVelocity_W);
+    return kinetic + std::abs(body.mass * model.simulation.gravity.dot(state.position_W));
+}
+} // namespace
+
+double energyScale(const core::Model& model, const core::State& state)
+{
+    double scale = 0.0;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (!model.bodies[i].isStatic)
+        {
+            scale += bodyEnergyScale(model, i, state.bodies[i]);
+        }
+    }
+    return scale;
+}
+
+double passiveEnergyRise(const core::Model& model, const RunSummary& summary)
+{
+    if (!isPassive(model))
+    {
+        return 0.0;
+    }
+    return (summary.energyMaxJ - summary.energyInitialJ) / std::max(summary.energyScaleJ, cEnergyScaleFloorJ);
+}
+
+int bodyWithInfiniteEnergy(const core::Model& model)
+{
+    const core::State state = core::initialState(model);
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (!model.bodies[i].isStatic && !std::isfinite(bodyEnergyScale(model, i, state.bodies[i])))
+        {
+            return static_cast<int>(i);
+        }
+    }
+    return -1;
+}
 
 long stepsFor(double duration, double dt)
 {
@@ -26,6 +125,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     summary.energyInitialJ = core::totalEnergy(model, state);
     summary.energyMaxJ = summary.energyInitialJ;
     summary.energyMinJ = summary.energyInitialJ;
+    summary.energyScaleJ = energyScale(model, state);
     const auto [errorM, errorRad] = simulator.jointErrors(state);
     summary.maxJointErrorM = errorM;
     summary.maxJointErrorRad = errorRad;
@@ -39,6 +139,16 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     {
         for (long k = 0; k < settings.steps; ++k)
         {
+            if (const int signal = interruptSignal(); signal != 0)
+            {
+                char text[160];
+                std::snprintf(text, sizeof text, "interrupted by %s at t = %.9g s (step %ld of %ld)",
+                              signalName(signal).c_str(), state.time, k, settings.steps);
+                summary.completed = false;
+                summary.interruptedBy = signal;
+                summary.failure = text;
+                break;
+            }
             simulator.step(state);
             const core::StepStats& stats = simulator.lastStep();
             summary.maxJointErrorM = std::max(summary.maxJointErrorM, stats.maxJointErrorM);
@@ -75,9 +185,15 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             }
         }
     }
+    catch (const core::SingularJointError& error)
+    {
+        summary.completed = false;
+        summary.failure = error.what();
+    }
     catch (const core::SimulationError& error)
     {
         summary.finite = false;
+        summary.completed = false;
         summary.failure = error.what();
         summary.failureDetails = error.failure();
         // The failing step detected its contacts before it failed: a run that fails at step 0

@@ -27,8 +27,9 @@ struct RunSummary
     double maxJointErrorRad = 0.0; // largest angular joint violation over the run (rad)
     double energyInitialJ = 0.0;
     double energyFinalJ = 0.0;
-    double energyMaxJ = 0.0; // largest total energy over the run (J)
-    double energyMinJ = 0.0; // smallest total energy over the run (J)
+    double energyMaxJ = 0.0;   // largest total energy over the run (J)
+    double energyMinJ = 0.0;   // smallest total energy over the run (J)
+    double energyScaleJ = 0.0; // energyScale of the initial state (J)
     double maxPenetrationM = 0.0;
     std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;
@@ -38,8 +39,10 @@ struct RunSummary
     long limitSteps = 0;            // steps in which some joint-limit row pushed
     double maxActuatorEffort = 0.0; // largest |effort| of any actuator in any step (N or N m)
     long actuatorLimitSteps = 0;    // steps in which some actuator sat at its effort limit
-    bool finite = true;
-    std::string failure;                                   // the SimulationError message when the run blew up
+    bool finite = true;             // every state stayed finite (false: the run blew up)
+    bool completed = true;          // every step was taken (false: blow-up, singular joint or interrupt)
+    int interruptedBy = 0;          // the signal that stopped the run (interruptSignal), 0: none
+    std::string failure;            // why the run did not complete (the error's message)
     std::optional<core::SimulationFailure> failureDetails; // and what it named
 };
 
@@ -47,7 +50,42 @@ struct RunSummary
 // step, with the simulator that took it (its impulses and contacts are then that step's).
 using Recorder = std::function<void(const core::State&, const core::Simulator* lastStep)>;
 
+// Runs settings.steps steps. A blow-up (core::SimulationError), a singular joint
+// (core::SingularJointError) or a signal (interruptSignal, read between steps) ends the run early
+// with completed false and `failure` saying why; the states recorded so far were the last good ones.
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record);
+
+// A passive scene: no actuators and no loads, so nothing in it adds energy (gravity is in the
+// potential; contacts, limits, joint damping and friction only take energy away).
+bool isPassive(const core::Model& model);
+
+// The size of a state's energy (J): the sum over moving bodies of the kinetic energy and the
+// magnitude of the gravitational potential (zero at the origin, as in core::totalEnergy). A
+// passive run whose energy rises above its start by more than cEnergyGainTolerance of this has
+// gained energy it cannot have: the run summary warns, the stats list it, --strict fails the run.
+double energyScale(const core::Model& model, const core::State& state);
+inline constexpr double cEnergyGainTolerance = 0.01;
+inline constexpr double cEnergyScaleFloorJ = 1e-6; // J: the scale of a scene at rest at the origin
+// The rise of a passive run's energy as a fraction of its scale, or 0 for a scene that is not passive.
+double passiveEnergyRise(const core::Model& model, const RunSummary& summary);
+
+// The index of the first moving body whose initial energy (kinetic or potential) is not finite
+// (a position like -1e308 m: its potential overflows), or -1.
+int bodyWithInfiniteEnergy(const core::Model& model);
+
+// SIGINT, SIGTERM and SIGHUP set a flag instead of killing the process, so a run stops between
+// steps and removes its temporary files (README "Exit codes"). Installed by the commands that
+// read the flag (run, render, check).
+void installInterruptHandlers();
+// The signal received since installInterruptHandlers, 0: none.
+int interruptSignal();
+// "SIGINT", "SIGTERM", "SIGHUP".
+std::string signalName(int signal);
+// The exit code of a process stopped by `signal`: 128 + its number (130, 143, 129).
+inline int interruptedExitCode(int signal)
+{
+    return 128 + signal;
+}
 
 long stepsFor(double duration, double dt);
 

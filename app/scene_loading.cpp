@@ -1,6 +1,7 @@
 // app/scene_loading.cpp: loading a scene for a command.
 #include "app/scene_loading.h"
 
+#include "app/run_loop.h"
 #include "collision/contacts.h"
 
 #include <iostream>
@@ -8,10 +9,24 @@
 namespace frontier::app
 {
 
+void checkFiniteEnergy(const core::Model& model, const std::string& path)
+{
+    const int body = bodyWithInfiniteEnergy(model);
+    if (body >= 0)
+    {
+        const core::Body& b = model.bodies[static_cast<std::size_t>(body)];
+        throw io::InputError(path, 0, 0,
+                             "body '" + b.name +
+                                 "': its initial energy is not finite (position, velocity or mass too large "
+                                 "for doubles); no run could report its energy");
+    }
+}
+
 LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& options)
 {
     LoadedScene out;
     out.model = io::loadScene(path, options, &out.report);
+    checkFiniteEnergy(out.model, path);
     for (const auto& [a, b] : collision::startingOverlaps(out.model))
     {
         out.model.contact.ignore.push_back({a, b});

@@ -17,7 +17,10 @@ struct LoadedScene
     io::LoadReport report;
 };
 
-// Throws io::InputError.
+// Throws io::InputError naming the first moving body whose initial energy is not finite.
+void checkFiniteEnergy(const core::Model& model, const std::string& path);
+
+// Throws io::InputError (also from checkFiniteEnergy).
 LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& options);
 
 // Warnings of the load to stderr ("frontier: FILE:LINE: warning: ...").

@@ -1,5 +1,8 @@
 // app/stability_command.cpp: `frontier stability`: the stability suite's table (study/stability.h).
 #include "app/commands.h"
+#include "app/model_overrides.h"
+#include "app/outputs.h"
+#include "app/scene_loading.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "study/study.h"
@@ -34,10 +37,17 @@ int stabilityCommand(const StabilityOptions& options)
     std::vector<std::string> names;
     try
     {
+        if (!options.out.empty())
+        {
+            checkOutputPath("--out", options.out, options.scenes);
+        }
         for (const std::string& path : options.scenes)
         {
             scenes.push_back(io::loadScene(path));
+            checkFiniteEnergy(scenes.back(), path);
             names.push_back(std::filesystem::path(path).stem().string());
+            const core::SimulationSettings& sim = scenes.back().simulation;
+            checkedStepCount(options.duration.value_or(sim.duration), options.dt.value_or(sim.dt), path);
         }
     }
     catch (const io::InputError& e)

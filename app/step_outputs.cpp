@@ -1,11 +1,14 @@
 // app/step_outputs.cpp: joint loads and contact impulses of a step, to the joints and contacts files.
 #include "app/step_outputs.h"
 
+#include "app/outputs.h"
+
 namespace frontier::app
 {
 
 StepOutputs::StepOutputs(const std::string& jointsPath, const std::string& contactsPath,
                          const io::FileMetadata& metadata)
+    : mJointsPath(jointsPath), mContactsPath(contactsPath)
 {
     if (!jointsPath.empty())
     {
@@ -44,6 +47,22 @@ void StepOutputs::record(const core::Model& model, const core::State& state, con
         lastStep->contactImpulses(mContactImpulses);
         mContacts->writeStep(model, state.time, mContactImpulses);
     }
+}
+
+std::vector<std::string> StepOutputs::commitFailed()
+{
+    std::vector<std::string> written;
+    if (mJoints)
+    {
+        written.push_back(failedPath(mJointsPath));
+        mJoints->commitAs(written.back());
+    }
+    if (mContacts)
+    {
+        written.push_back(failedPath(mContactsPath));
+        mContacts->commitAs(written.back());
+    }
+    return written;
 }
 
 void StepOutputs::commit()

@@ -26,10 +26,14 @@ class StepOutputs
     // The rows of a recorded state; `lastStep`: the simulator whose last step produced it, null
     // for the initial state.
     void record(const core::Model& model, const core::State& state, const core::Simulator* lastStep);
-    // Renames the files into place (a run that failed does not call it: nothing is left behind).
+    // Renames the files into place.
     void commit();
+    // A failed run's rows up to the failure, under failedPath names (app/outputs.h); returns them.
+    std::vector<std::string> commitFailed();
 
   private:
+    std::string mJointsPath;
+    std::string mContactsPath;
     std::unique_ptr<io::JointsWriter> mJoints;
     std::unique_ptr<io::ContactsWriter> mContacts;
     // Scratch, kept between steps.

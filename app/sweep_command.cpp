@@ -1,6 +1,7 @@
 // app/sweep_command.cpp: `frontier sweep`: parse the lists, run the grid (study/sweep.h), write
 // DIR/sweep.csv, print the table, draw DIR/sweep.png (app/sweep_chart.h).
 #include "app/commands.h"
+#include "app/model_overrides.h"
 #include "app/progress.h"
 #include "app/scene_loading.h"
 #include "app/sweep_chart.h"
@@ -43,6 +44,10 @@ int sweepCommand(const SweepOptions& options)
         grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
         requestedS = study::sweepDuration(model, options.duration);
         schedule = study::planSchedule(grid.dts, requestedS);
+        // The reference run takes the most steps: at the finest dt / study::cReferenceRefinement.
+        checkedStepCount(schedule.durationS(),
+                         *std::min_element(grid.dts.begin(), grid.dts.end()) / study::cReferenceRefinement,
+                         options.scene);
         // The folder must take our files before minutes of simulation are spent.
         fs::create_directories(folder);
         io::AtomicFile probe((folder / "sweep.csv").string()); // removed again, never committed

@@ -20,8 +20,38 @@ std::string errnoText()
 }
 } // namespace
 
+std::string outputPathProblem(const std::string& path)
+{
+    if (path.empty())
+    {
+        return "an empty output path";
+    }
+    struct stat info
+    {
+    };
+    if (::lstat(path.c_str(), &info) != 0)
+    {
+        return std::string(); // a new path (a missing folder is reported when the file is created)
+    }
+    const char* what = S_ISREG(info.st_mode)    ? nullptr
+                       : S_ISLNK(info.st_mode)  ? "a symbolic link"
+                       : S_ISDIR(info.st_mode)  ? "a folder"
+                       : S_ISFIFO(info.st_mode) ? "a fifo"
+                       : S_ISSOCK(info.st_mode) ? "a socket"
+                                                : "a device";
+    if (what == nullptr)
+    {
+        return std::string();
+    }
+    return path + " is " + what + ": an output must be a regular file (replaced) or a new path";
+}
+
 AtomicFile::AtomicFile(std::string path) : mPath(std::move(path))
 {
+    if (const std::string problem = outputPathProblem(mPath); !problem.empty())
+    {
+        throw OutputError(problem);
+    }
     std::string pattern = mPath + ".tmp-XXXXXX";
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
@@ -71,6 +101,11 @@ void AtomicFile::write(const char* data, std::size_t size)
 
 void AtomicFile::commit()
 {
+    commitAs(mPath);
+}
+
+void AtomicFile::commitAs(const std::string& path)
+{
     if (mStream == nullptr)
     {
         throw OutputError(mPath + ": committed twice");
@@ -81,12 +116,17 @@ void AtomicFile::commit()
     const std::string flushError = flushed ? std::string() : errnoText();
     if (std::fclose(stream) != 0 || !flushed)
     {
-        throw OutputError(mPath + ": cannot write: " + (flushed ? errnoText() : flushError));
+        throw OutputError(path + ": cannot write: " + (flushed ? errnoText() : flushError));
     }
-    if (std::rename(mTempPath.c_str(), mPath.c_str()) != 0)
+    if (const std::string problem = outputPathProblem(path); !problem.empty())
     {
-        throw OutputError(mPath + ": cannot rename " + mTempPath + ": " + errnoText());
+        throw OutputError(problem);
     }
+    if (std::rename(mTempPath.c_str(), path.c_str()) != 0)
+    {
+        throw OutputError(path + ": cannot rename " + mTempPath + ": " + errnoText());
+    }
+    mPath = path;
     mCommitted = true;
 }
 

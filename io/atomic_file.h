@@ -19,10 +19,16 @@ class OutputError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+// Why `path` cannot be an output file, or "" when it can: outputs are regular files (replaced)
+// or new paths. A symbolic link, a folder, a device, a fifo or a socket at the path is refused
+// (renaming onto it would replace the link or the node itself, not write through it).
+std::string outputPathProblem(const std::string& path);
+
 class AtomicFile
 {
   public:
-    explicit AtomicFile(std::string path); // throws OutputError
+    explicit AtomicFile(std::string path); // throws OutputError, also for outputPathProblem
+
     ~AtomicFile();
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
@@ -31,6 +37,8 @@ class AtomicFile
     void write(const char* data, std::size_t size); // throws OutputError
     void write(const std::string& text) { write(text.data(), text.size()); }
     void commit(); // throws OutputError; the file is then at path()
+    // Renames onto `path` instead (a failed run's partial file under a name that says so).
+    void commitAs(const std::string& path); // throws OutputError
     bool committed() const { return mCommitted; }
     const std::string& path() const { return mPath; }
     const std::string& tempPath() const { return mTempPath; }

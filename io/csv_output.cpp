@@ -127,4 +127,9 @@ void CsvFile::commit()
     mFile->commit();
 }
 
+void CsvFile::commitAs(const std::string& path)
+{
+    mFile->commitAs(path);
+}
+
 } // namespace frontier::io

@@ -49,6 +49,7 @@ class CsvFile
     void writeRow(const std::string& line);
     // Flushes and renames the file into place (atomic); throws OutputError.
     void commit();
+    void commitAs(const std::string& path); // into place under another name
     long rowsWritten() const { return mRows; }
 
   private:
@@ -64,6 +65,8 @@ class CsvWriter
     // Flushes and renames the file into place (atomic); throws OutputError. Without it the
     // temporary file is removed.
     void commit() { mFile.commit(); }
+    // Under another name: a failed run's rows up to the failure (app/outputs.h failedPath).
+    void commitAs(const std::string& path) { mFile.commitAs(path); }
     long rowsWritten() const { return mFile.rowsWritten(); }
 
   protected:

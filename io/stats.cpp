@@ -43,7 +43,10 @@ const std::vector<std::string>& knownKeys()
                                                   "energy_initial_j",
                                                   "energy_final_j",
                                                   "max_contacts",
-                                                  "finite"};
+                                                  "finite",
+                                                  "completed",
+                                                  "failure",
+                                                  "warnings"};
     return keys;
 }
 
@@ -149,6 +152,12 @@ void writeStats(const std::string& path, const RunStats& stats)
     json["energy_final_j"] = number(stats.energyFinalJ);
     json["max_contacts"] = stats.maxContacts;
     json["finite"] = stats.finite;
+    json["completed"] = stats.completed;
+    if (!stats.failure.empty())
+    {
+        json["failure"] = stats.failure;
+    }
+    json["warnings"] = stats.warnings;
     for (const auto& [key, value] : stats.extra)
     {
         if (!json.contains(key))
@@ -200,6 +209,29 @@ RunStats readStats(const std::string& path)
     s.energyFinalJ = r.number("energy_final_j");
     s.maxContacts = static_cast<int>(r.integer("max_contacts"));
     s.finite = r.boolean("finite");
+    s.completed = !json.contains("completed") || r.boolean("completed");
+    if (json.contains("failure"))
+    {
+        s.failure = r.string("failure");
+    }
+    if (json.contains("warnings"))
+    {
+        const nlohmann::json& warnings = json["warnings"];
+        if (!warnings.is_array())
+        {
+            throw InputError(path, 0, 0,
+                             "expected an array of strings for 'warnings', got " + warnings.dump());
+        }
+        for (const nlohmann::json& w : warnings)
+        {
+            if (!w.is_string())
+            {
+                throw InputError(path, 0, 0,
+                                 "expected an array of strings for 'warnings', got " + warnings.dump());
+            }
+            s.warnings.push_back(w.get<std::string>());
+        }
+    }
     for (const auto& [key, value] : json.items())
     {
         const auto& known = knownKeys();

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace frontier::io
 {
@@ -33,6 +34,10 @@ struct RunStats
     double energyFinalJ = 0.0;           // "energy_final_j" (J)
     int maxContacts = 0;                 // "max_contacts": most contacts in one step
     bool finite = true;                  // "finite": every state stayed finite
+    bool completed = true;               // "completed": the run ended without failing (false: a blow-up,
+                                         // a singular joint, a signal, a --strict warning; true if absent)
+    std::string failure;                 // "failure": why the run failed; written when not empty
+    std::vector<std::string> warnings;   // "warnings": what looks wrong in a run that ended (an array)
     std::map<std::string, double> extra; // further numeric keys, written at the top level
 };
 

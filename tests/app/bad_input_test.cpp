@@ -1,6 +1,7 @@
 // tests/app/bad_input_test.cpp: bad scenes and bad usage exit with code 2 and a message that names
 // the file and line (scenes) or the flag (usage), and write nothing.
 #include "app_test_util.h"
+#include "io/trajectory.h"
 
 #include <gtest/gtest.h>
 #include <ostream>
@@ -116,6 +117,82 @@ TEST(BadInput, DurationTogetherWithStepsIsAUsageError)
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_NE(r.err.find("--steps"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
+    EXPECT_TRUE(dir.outputs().empty());
+}
+
+// Every numeric flag of every command follows one rule: a finite number in its range, a whole
+// number for a count. Each of these is refused with exit 2 naming the flag, before anything runs
+// or is written (a nan used to pass the positive checks; 1e20 steps used to run forever).
+TEST(BadInput, NumericFlagsAreFiniteInRangeAndWholeForCounts)
+{
+    const TestDir dir;
+    const std::string t = " --trajectory " + shellQuote(dir.out("t.csv"));
+    const std::string f = " --frames " + shellQuote(dir.out("f"));
+    const std::pair<std::string, std::string> cases[] = {
+        {"run scenes/pendulum.yaml --dt nan" + t, "--dt"},
+        {"run scenes/pendulum.yaml --duration nan" + t, "--duration"},
+        {"run scenes/pendulum.yaml --duration 1e16" + t, "--duration"},
+        {"run scenes/pendulum.yaml --steps 99999999999999999999" + t, "--steps"},
+        {"run scenes/pendulum.yaml --steps 2.5" + t, "--steps"},
+        {"run scenes/pendulum.yaml --fps nan" + f, "--fps"},
+        {"run scenes/pendulum.yaml --fps 1e308" + f, "--fps"},
+        {"run scenes/pendulum.yaml --jobs 0.5" + t, "--jobs"},
+        {"render x.csv --fps nan" + f, "--fps"},
+        {"stability scenes/pendulum.yaml --dt nan --out " + shellQuote(dir.out("s.md")), "--dt"},
+        {"check scenes/pendulum.yaml --reference x.csv --tol nan", "--tol"},
+        {"sweep scenes/pendulum.yaml --duration nan --out " + shellQuote(dir.out("sw")), "--duration"},
+    };
+    for (const auto& [args, flag] : cases)
+    {
+        const Result r = dir.run(args);
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find(flag), std::string::npos) << args << "\n" << r.err;
+        EXPECT_TRUE(dir.outputs().empty()) << args;
+    }
+    // A count given in exponent notation is a whole number all the same.
+    const Result r = dir.run("run scenes/pendulum.yaml --quiet --steps 1e1" + t);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(io::readTrajectory(dir.out("t.csv")).rows.size(), 11u);
+}
+
+// duration / dt beyond 1e12 steps (or past a long's range, which used to wrap to one step) is
+// refused, for the flags and for the scene's own settings alike.
+TEST(BadInput, StepCountsBeyondTheBoundAreRefused)
+{
+    const TestDir dir;
+    for (const std::string& args : {std::string("run scenes/pendulum.yaml --dt 1e-300"),
+                                    std::string("run scenes/pendulum.yaml --duration 1e11 --dt 1e-3"),
+                                    std::string("stability scenes/pendulum.yaml --dt 1e-300")})
+    {
+        const Result r = dir.run(args + " --quiet");
+        EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find("steps"), std::string::npos) << args << "\n" << r.err;
+    }
+    const std::string scene = dir.write("long.yaml", R"(
+simulation: {dt: 1.0e-300, duration: 1.0}
+bodies:
+  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}
+)");
+    const Result r = dir.run("run " + shellQuote(scene) + " --quiet");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find(scene), std::string::npos) << r.err;
+}
+
+// A body whose initial energy overflows (a position of -1e308 m: m g z is -inf) is refused at load,
+// by name, instead of running with a null initial energy and a -nan% change.
+TEST(BadInput, InfiniteInitialEnergyIsRefusedNamingTheBody)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("deep.yaml", R"(
+simulation: {dt: 0.001, duration: 0.01}
+bodies:
+  - {name: ok, mass: 1, shape: {type: sphere, radius: 0.1}}
+  - {name: abyss, mass: 1, shape: {type: sphere, radius: 0.1}, position: [0, 0, -1.0e308]}
+)");
+    const Result r = dir.run("run " + shellQuote(scene) + " --stats " + shellQuote(dir.out("s.json")));
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("'abyss'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("energy"), std::string::npos) << r.err;
     EXPECT_TRUE(dir.outputs().empty());
 }
 

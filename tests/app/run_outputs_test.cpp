@@ -1,14 +1,17 @@
 // tests/app/run_outputs_test.cpp: `frontier run --joints` and `--contacts` end to end: their
 // comment and header lines, rows per recorded step; a pendulum's joint columns against the angle,
 // spin and momentum computed from the trajectory CSV; a hanging chain's joints carrying the
-// weight below them; batch names and colliding paths; the stats' limit and actuator keys. (A
-// failed run leaves none of them: run_test.cpp.)
+// weight below them; batch names; outputs refused before the run (colliding paths, an input, links,
+// devices, folders, empty paths, too many frames); the stats' limit and actuator keys. (A failed
+// run keeps them under .failed names: run_test.cpp.)
 #include "app_test_util.h"
 #include "csv_table.h"
 #include "io/stats.h"
 #include "io/trajectory.h"
 
+#include <chrono>
 #include <cmath>
+#include <fstream>
 #include <gtest/gtest.h>
 #include <set>
 
@@ -202,16 +205,109 @@ TEST(RunOutputs, BatchWritesJointsAndContactsPerScene)
     EXPECT_FALSE(readCsvTable(dir.out("joints/box_stack.contacts.csv")).rows.empty());
 }
 
-// Two outputs of one run at one path would overwrite each other: refused before the run.
+// Two outputs of one run at one path would overwrite each other: refused before the run, however
+// the path is spelled, whichever two outputs they are (the frames folder too).
 TEST(RunOutputs, TwoOutputsAtOnePathAreRefused)
 {
     const TestDir dir;
     const std::string same = dir.out("same.csv");
-    const Result r = dir.run("run scenes/pendulum.yaml --steps 5 --trajectory " + shellQuote(same) +
-                             " --joints " + shellQuote(dir.out("./same.csv")));
+    const std::pair<std::string, std::string> cases[] = {
+        {" --trajectory " + shellQuote(same) + " --joints " + shellQuote(dir.out("./same.csv")),
+         "--trajectory and --joints would write the same file"},
+        {" --trajectory " + shellQuote(same) + " --stats " + shellQuote(same),
+         "--trajectory and --stats would write the same file"},
+        {" --stats " + shellQuote(same) + " --contacts " + shellQuote(dir.out("../out/same.csv")),
+         "--stats and --contacts would write the same file"},
+        {" --trajectory " + shellQuote(same) + " --frames " + shellQuote(same),
+         "--trajectory and --frames would write the same file"},
+    };
+    for (const auto& [flags, message] : cases)
+    {
+        const Result r = dir.run("run scenes/pendulum.yaml --steps 5" + flags);
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_TRUE(dir.outputs().empty());
+    }
+}
+
+// An output that is one of the inputs would replace the scene being simulated: refused, and the
+// scene is left as it was.
+TEST(RunOutputs, AnOutputThatIsAnInputIsRefused)
+{
+    const TestDir dir;
+    const std::string sceneText = readText(sourcePath("scenes/pendulum.yaml"));
+    const std::string scene = dir.out("victim.yaml");
+    std::ofstream(scene) << sceneText;
+    for (const std::string flag : {"--trajectory", "--stats", "--joints"})
+    {
+        const Result r = dir.run("run " + shellQuote(scene) + " --steps 5 " + flag + " " +
+                                 shellQuote(dir.out("../out/victim.yaml")));
+        EXPECT_EQ(r.exitCode, 2) << r.err;
+        EXPECT_NE(r.err.find(flag + std::string(" names the input")), std::string::npos) << r.err;
+        EXPECT_EQ(readText(scene), sceneText);
+    }
+}
+
+// Outputs are regular files or new paths. A symbolic link (renaming onto it would replace the
+// link, not write through it), a device, a folder and an empty path are refused before the run:
+// the run asked for here would take hours, so an exit 2 at once shows nothing ran first.
+TEST(RunOutputs, LinksDevicesFoldersAndEmptyPathsAreRefusedBeforeTheRun)
+{
+    const TestDir dir;
+    const std::string target = dir.write("target.csv", "keep me\n");
+    const std::string link = dir.out("link.csv");
+    std::filesystem::create_symlink(target, link);
+    std::filesystem::create_directories(dir.out("folder"));
+    const std::string longRun = "run scenes/pendulum.yaml --duration 1e6 --quiet";
+    const std::pair<std::string, std::string> cases[] = {
+        {" --trajectory " + shellQuote(link), "is a symbolic link"},
+        {" --stats " + shellQuote(link), "is a symbolic link"},
+        {" --trajectory /dev/null", "is a device"},
+        {" --stats " + shellQuote(dir.out("folder")), "is a folder"},
+        {" --frames " + shellQuote(target), "--frames names a folder"},
+        {" --trajectory ''", "expected a path"},
+        {" --stats ''", "expected a path"},
+    };
+    for (const auto& [flags, message] : cases)
+    {
+        const auto start = std::chrono::steady_clock::now();
+        const Result r = dir.run(longRun + flags);
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+        EXPECT_EQ(r.exitCode, 2) << flags << "\n" << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << flags << "\n" << r.err;
+    }
+    // A stats file that cannot be created is reported before the run, not after it.
+    const std::string blocker = dir.write("blocker", "a file, not a folder\n");
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = dir.run(longRun + " --stats " + shellQuote(blocker + "/s.json"));
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
     EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_NE(r.err.find("--trajectory and --joints would write the same file"), std::string::npos) << r.err;
-    EXPECT_TRUE(dir.outputs().empty());
+    EXPECT_NE(r.err.find(blocker), std::string::npos) << r.err;
+    EXPECT_TRUE(std::filesystem::is_symlink(link));
+    EXPECT_EQ(readText(target), "keep me\n");
+    EXPECT_TRUE(std::filesystem::is_directory(dir.out("folder")));
+}
+
+// --fps up to its bound with frames: the sampler jumps over the frame times a step covers instead of
+// counting them one by one (1e6 fps over 0.01 s used to take 1e4 ticks per step; 1e308, forever).
+TEST(RunOutputs, HighFrameRateTakesAFramePerStep)
+{
+    const TestDir dir;
+    const std::string frames = dir.out("frames");
+    const Result r =
+        dir.run("run scenes/pendulum.yaml --quiet --steps 3 --fps 1e6 --width 32 --height 32 --frames " +
+                shellQuote(frames));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(frames + "/frame_00003.png"));
+    EXPECT_FALSE(std::filesystem::exists(frames + "/frame_00004.png"));
+    EXPECT_FALSE(std::filesystem::exists(frames + "/INCOMPLETE"));
+
+    // More than a million frames is refused before the run.
+    const Result many = dir.run("run scenes/pendulum.yaml --quiet --duration 2000 --fps 1000 --frames " +
+                                shellQuote(dir.out("many")));
+    EXPECT_EQ(many.exitCode, 2) << many.err;
+    EXPECT_NE(many.err.find("frames; at most"), std::string::npos) << many.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.out("many")));
 }
 
 // limit_steps: the limits scene's rod and slider rest on their limits from about 1 s on, pressed

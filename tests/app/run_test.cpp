@@ -1,16 +1,25 @@
 // tests/app/run_test.cpp: `frontier run`: trajectory rows, stats JSON against the printed summary
-// and against the energy recomputed from the trajectory, recording options, no trajectory left
-// behind by a failed run, byte-identical repeated runs.
+// and against the energy recomputed from the trajectory, recording options, a failed run's rows
+// under .failed names, singular joints in run and check, a passive scene that gains energy,
+// SIGINT/SIGTERM/SIGHUP during the run and while rendering, byte-identical repeated runs.
 #include "app_test_util.h"
 #include "core/state.h"
 #include "io/scene.h"
 #include "io/stats.h"
 #include "io/trajectory.h"
 
+#include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <set>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
 
 namespace frontier::app::test
 {
@@ -209,7 +218,10 @@ INSTANTIATE_TEST_SUITE_P(Run, RowCount,
 // A ball under 2e6 m/s^2 passes the simulator's runaway speed within ~50 steps: exit 1, the
 // message names the step and the body, and neither the trajectory, the joints and contacts files
 // nor a temporary file remains.
-TEST(Run, FailedRunLeavesNoTrajectory)
+// A run that blows up keeps its rows up to the failure under names that cannot pass for a complete
+// run's (out.failed.csv), writes the stats with "completed": false and the message, names the
+// files, and leaves no temporary file and nothing under the final names.
+TEST(Run, FailedRunKeepsItsRowsUnderFailedNames)
 {
     const TestDir dir;
     const std::string scene = dir.write("runaway.yaml", R"(
@@ -222,13 +234,234 @@ joints:
 )");
     const std::string traj = dir.out("runaway.csv");
     const Result r = dir.run("run " + shellQuote(scene) + " --trajectory " + shellQuote(traj) + " --joints " +
-                             shellQuote(dir.out("j.csv")) + " --contacts " + shellQuote(dir.out("c.csv")));
+                             shellQuote(dir.out("j.csv")) + " --contacts " + shellQuote(dir.out("c.csv")) +
+                             " --stats " + shellQuote(dir.out("s.json")));
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_TRUE(namesAStep(r.err)) << r.err;
     EXPECT_NE(r.err.find("'cannonball'"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("velocity"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(dir.out("runaway.failed.csv")), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(dir.out("s.json")), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(traj));
-    EXPECT_TRUE(dir.outputs().empty()) << "left behind: " << dir.outputs().front();
+    const std::vector<std::string> names = dir.outputs();
+    EXPECT_EQ(std::set<std::string>(names.begin(), names.end()),
+              (std::set<std::string>{"runaway.failed.csv", "j.failed.csv", "c.failed.csv", "s.json"}));
+    const io::Trajectory rows = io::readTrajectory(dir.out("runaway.failed.csv"));
+    ASSERT_FALSE(rows.rows.empty());
+    EXPECT_LT(rows.rows.back().time, 1.0) << "the rows end at the failure";
+    const io::RunStats stats = io::readStats(dir.out("s.json"));
+    EXPECT_FALSE(stats.completed);
+    EXPECT_FALSE(stats.finite);
+    EXPECT_NE(stats.failure.find("cannonball"), std::string::npos) << stats.failure;
+}
+
+// A joint that turns singular is a failure of the run, exit 1 in `run` and in `check` alike: a
+// 1e-320 kg link cannot be pivoted (its hinge's rows degenerate at the first step). `run` keeps
+// the stats with the message; `check` of a clean reference reports FAILED.
+TEST(Run, SingularJointFailsTheRunInRunAndCheck)
+{
+    const TestDir dir;
+    const std::string sceneText = R"(
+simulation: {dt: 0.001, duration: 0.05}
+bodies:
+  - {name: a, mass: 1, shape: {type: sphere, radius: 0.1}, position: [1, 0, 1]}
+  - {name: bob, mass: MASS, shape: {type: sphere, radius: 0.1}, position: [1, 0, 0.5]}
+joints:
+  - {name: pivot, type: ball, parent: world, child: a, anchor: [1, 0, 2]}
+  - {name: hinge, type: revolute, parent: a, child: bob, anchor: [1, 0, 0.75], axis: [0, 1, 0]}
+)";
+    auto withMass = [&](const std::string& mass)
+    {
+        std::string text = sceneText;
+        text.replace(text.find("MASS"), 4, mass);
+        return text;
+    };
+    const std::string good = dir.write("good.yaml", withMass("1"));
+    const std::string bad = dir.write("bad.yaml", withMass("1e-320"));
+    const std::string ref = dir.out("ref.csv");
+    ASSERT_EQ(dir.run("run " + shellQuote(good) + " --quiet --trajectory " + shellQuote(ref)).exitCode, 0);
+
+    const Result run = dir.run("run " + shellQuote(bad) + " --stats " + shellQuote(dir.out("s.json")));
+    EXPECT_EQ(run.exitCode, 1) << run.err;
+    EXPECT_NE(run.err.find("'hinge'"), std::string::npos) << run.err;
+    const io::RunStats stats = io::readStats(dir.out("s.json"));
+    EXPECT_FALSE(stats.completed);
+    EXPECT_TRUE(stats.finite);
+    EXPECT_NE(stats.failure.find("'hinge'"), std::string::npos) << stats.failure;
+
+    const Result check = dir.run("check " + shellQuote(bad) + " --quiet --reference " + shellQuote(ref));
+    EXPECT_EQ(check.exitCode, 1) << check.out << check.err;
+    EXPECT_NE(check.out.find("FAILED"), std::string::npos) << check.out;
+    EXPECT_NE(check.out.find("'hinge'"), std::string::npos) << check.out;
+}
+
+// A passive scene cannot gain energy. The T-handle (one body spinning near its intermediate axis,
+// no gravity) at dt 0.5 s with euler gains several times its energy: the summary warns, the stats
+// list the warning and the rise; --strict fails the run (exit 1, rows under .failed names). With
+// rattle at the scene's dt the energy holds: no warning.
+TEST(Run, PassiveSceneThatGainsEnergyIsWarnedAndFailsWithStrict)
+{
+    const TestDir dir;
+    const std::string stats = dir.out("s.json");
+    const Result warned = dir.run("run scenes/stability/t_handle.yaml --dt 0.5 --integrator euler --stats " +
+                                  shellQuote(stats));
+    ASSERT_EQ(warned.exitCode, 0) << warned.err;
+    EXPECT_NE(warned.out.find("Warning: the energy of this passive scene"), std::string::npos) << warned.out;
+    io::RunStats s = io::readStats(stats);
+    EXPECT_EQ(s.warnings.size(), 1u);
+    EXPECT_GT(s.extra.at("energy_rise_fraction"), 1.0);
+    EXPECT_TRUE(s.completed);
+
+    const Result strict = dir.run("run scenes/stability/t_handle.yaml --dt 0.5 --integrator euler --strict "
+                                  "--trajectory " +
+                                  shellQuote(dir.out("t.csv")) + " --stats " + shellQuote(stats));
+    EXPECT_EQ(strict.exitCode, 1) << strict.err;
+    EXPECT_NE(strict.err.find("--strict"), std::string::npos) << strict.err;
+    EXPECT_TRUE(std::filesystem::exists(dir.out("t.failed.csv")));
+    EXPECT_FALSE(std::filesystem::exists(dir.out("t.csv")));
+    s = io::readStats(stats);
+    EXPECT_FALSE(s.completed);
+    EXPECT_NE(s.failure.find("energy"), std::string::npos) << s.failure;
+
+    const Result held =
+        dir.run("run scenes/stability/t_handle.yaml --integrator rattle --duration 2 --strict --stats " +
+                shellQuote(stats));
+    EXPECT_EQ(held.exitCode, 0) << held.out << held.err;
+    EXPECT_EQ(held.out.find("Warning"), std::string::npos) << held.out;
+    s = io::readStats(stats);
+    EXPECT_TRUE(s.warnings.empty());
+    EXPECT_LT(s.extra.at("energy_rise_fraction"), 0.01);
+}
+
+// Starts `frontier ARGS` in the source folder (as TestDir::run does), stdout and stderr to
+// stdout.txt and stderr.txt of the test folder; returns the child's pid.
+pid_t spawnFrontier(const TestDir& dir, const std::vector<std::string>& args)
+{
+    const std::string binary = std::string(FRONTIER_BINARY_DIR) + "/app/frontier";
+    const std::string out = (dir.path() / "stdout.txt").string();
+    const std::string err = (dir.path() / "stderr.txt").string();
+    std::vector<std::string> words = {binary};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& word : words)
+    {
+        argv.push_back(word.data());
+    }
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0)
+    {
+        const int outFd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int errFd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (outFd < 0 || errFd < 0 || ::chdir(FRONTIER_SOURCE_DIR) != 0)
+        {
+            ::_exit(127);
+        }
+        ::dup2(outFd, 1);
+        ::dup2(errFd, 2);
+        ::execv(binary.c_str(), argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// The exit code of the child, waiting at most `seconds` (then it is killed: -1).
+int waitForExit(pid_t pid, double seconds)
+{
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    while (::waitpid(pid, &status, WNOHANG) == 0)
+    {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+        {
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            return -1;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Files anywhere under out/ whose name holds ".tmp-" (io/atomic_file.h temporaries).
+std::vector<std::string> temporaries(const TestDir& dir)
+{
+    std::vector<std::string> found;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.path() / "out"))
+    {
+        if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+        {
+            found.push_back(entry.path().string());
+        }
+    }
+    return found;
+}
+
+// SIGINT, SIGTERM and SIGHUP stop a long run between steps: exit 128 + the signal, one line naming
+// the signal, the time and the step; no temporary file left, nothing under the final names, the
+// rows so far under .failed names and the stats with "completed": false.
+TEST(Run, SignalStopsTheRunAndRemovesTemporaries)
+{
+    const std::pair<int, const char*> signals[] = {
+        {SIGINT, "SIGINT"}, {SIGTERM, "SIGTERM"}, {SIGHUP, "SIGHUP"}};
+    for (const auto& [signal, name] : signals)
+    {
+        const TestDir dir;
+        const pid_t pid = spawnFrontier(dir, {"run", "scenes/pendulum.yaml", "--duration", "1e6", "--quiet",
+                                              "--trajectory", dir.out("t.csv"), "--joints", dir.out("j.csv"),
+                                              "--stats", dir.out("s.json")});
+        ASSERT_GT(pid, 0);
+        // The run has started (its handlers are installed) once its temporary files exist.
+        const auto start = std::chrono::steady_clock::now();
+        while (temporaries(dir).size() < 2 &&
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60.0)
+        {
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        ::kill(pid, signal);
+        EXPECT_EQ(waitForExit(pid, 30.0), 128 + signal) << name;
+        const std::string err = readText(dir.path() / "stderr.txt");
+        EXPECT_EQ(err.rfind(std::string("frontier: interrupted by ") + name + " at t = ", 0), 0u) << err;
+        EXPECT_NE(err.find("(step "), std::string::npos) << err;
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        EXPECT_TRUE(temporaries(dir).empty()) << temporaries(dir).front();
+        const std::vector<std::string> names = dir.outputs();
+        EXPECT_EQ(std::set<std::string>(names.begin(), names.end()),
+                  (std::set<std::string>{"t.failed.csv", "j.failed.csv", "s.json"}))
+            << name;
+        const io::RunStats stats = io::readStats(dir.out("s.json"));
+        EXPECT_FALSE(stats.completed);
+        EXPECT_TRUE(stats.finite);
+        EXPECT_GT(stats.steps, 0);
+        EXPECT_LT(stats.steps, 1000000000L);
+        EXPECT_EQ(io::readTrajectory(dir.out("t.failed.csv")).rows.size(),
+                  static_cast<std::size_t>(stats.steps + 1));
+    }
+}
+
+// A signal while the frames are written stops the renderers; the folder keeps its INCOMPLETE
+// marker (written before the first frame, removed after the last), so it does not look complete.
+TEST(Run, SignalWhileRenderingLeavesTheFramesFolderMarkedIncomplete)
+{
+    const TestDir dir;
+    const std::string frames = dir.out("frames");
+    const pid_t pid = spawnFrontier(dir, {"run", "scenes/pendulum.yaml", "--duration", "30", "--fps", "1000",
+                                          "--jobs", "1", "--quiet", "--frames", frames});
+    ASSERT_GT(pid, 0);
+    const auto start = std::chrono::steady_clock::now();
+    while (!std::filesystem::exists(frames + "/frame_00000.png") &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60.0)
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ::kill(pid, SIGINT);
+    EXPECT_EQ(waitForExit(pid, 60.0), 130);
+    const std::string err = readText(dir.path() / "stderr.txt");
+    EXPECT_NE(err.find("interrupted by SIGINT after "), std::string::npos) << err;
+    EXPECT_TRUE(std::filesystem::exists(frames + "/INCOMPLETE"));
+    EXPECT_FALSE(std::filesystem::exists(frames + "/frame_30000.png"));
+    EXPECT_TRUE(temporaries(dir).empty());
 }
 
 // The stats count how each step's contact problem was solved: the five boxes touch from the first
