@@ -40,12 +40,31 @@ std::string describeNode(const YAML::Node& node)
     return "'" + node.Scalar() + "'";
 }
 
+namespace
+{
+// A number may carry no tag, or the standard !!int / !!float: a local tag ("!units 3") means
+// something this reader does not know, so it is refused rather than silently dropped.
+void checkNumberTag(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const std::string& tag = node.Tag();
+    if (tag.empty() || tag == "?" || tag == "!" || tag == "tag:yaml.org,2002:int" ||
+        tag == "tag:yaml.org,2002:float")
+    {
+        return;
+    }
+    failAt(source, node,
+           "expected a number for " + what + ", got one tagged '" + tag +
+               "' (only the standard tags !!int and !!float are understood)");
+}
+} // namespace
+
 double toNumber(const YamlSource& source, const YAML::Node& node, const std::string& what)
 {
     if (!node.IsScalar())
     {
         failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
     }
+    checkNumberTag(source, node, what);
     double value = 0.0;
     try
     {
@@ -78,6 +97,7 @@ int toInteger(const YamlSource& source, const YAML::Node& node, const std::strin
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
+    checkNumberTag(source, node, what);
     try
     {
         return node.as<int>();

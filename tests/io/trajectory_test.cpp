@@ -216,9 +216,9 @@ TEST(Trajectory, ReadErrorsAreLocated)
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1,0,0,0,0,0,0,0,0,0,9\n"),
                           dir.file("t.csv"), 2, 31, "expected 15 fields, got 16");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2.5x,3,1,0,0,0,0,0,0,0,0,0\n"),
-                          dir.file("t.csv"), 2, 7, "expected a number for 'py', got '2.5x'");
+                          dir.file("t.csv"), 2, 7, "expected a finite number for 'py', got '2.5x'");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,,3,1,0,0,0,0,0,0,0,0,0\n"), dir.file("t.csv"),
-                          2, 7, "expected a number for 'py', got ''");
+                          2, 7, "expected a finite number for 'py', got ''");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, "# just a comment\n"), dir.file("t.csv"), 1, 0,
                           "no header line");
     EXPECT_INPUT_ERROR_AT(captureInputError([] { readTrajectory("/nonexistent/t.csv"); }),

@@ -710,7 +710,9 @@ TEST(YamlErrors, WrongNodeKinds)
 
 TEST(YamlErrors, EmptySceneAndNoBodies)
 {
-    EXPECT_INPUT_ERROR_AT(yamlError(""), "scene.yaml", 0, 0, "empty scene");
+    EXPECT_INPUT_ERROR_AT(yamlError(""), "scene.yaml", 1, 1, "the file is empty; expected a scene");
+    EXPECT_INPUT_ERROR_AT(yamlError("\n# only a comment\n"), "scene.yaml", 1, 1,
+                          "the file holds no YAML content (only comments or an empty document)");
     EXPECT_INPUT_ERROR_AT(yamlError("name: nothing\n"), "scene.yaml", 1, 1, "the scene has no bodies");
 }
 
