@@ -768,7 +768,7 @@ void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
         {
             if (!onPath.insert(link).second)
             {
-                const JointLinks& closing = *parentJoint.at(link);
+                const JointLinks& closing = *parentJoint.at(path.back()); // the joint that led back
                 throw InputError(file, closing.at.line, closing.at.column,
                                  "joint '" + closing.joint + "' closes a loop of joints through link '" +
                                      link + "'; the links must form a tree");
