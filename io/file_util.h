@@ -34,6 +34,10 @@ std::optional<double> parseFiniteNumber(std::string_view text);
 // [min, max]; std::nullopt otherwise ("3.0", "1e3" and out-of-range values included).
 std::optional<long long> parseWholeNumber(std::string_view text, long long min, long long max);
 
+// The most PGS iterations per step a file may ask for (a scene's simulation.pgs_iterations, a
+// trajectory's pgs_iterations): more is a typo that would make every step take minutes.
+inline constexpr int cMaxPgsIterations = 1000000;
+
 // The directory holding `file` ("" for a bare file name).
 std::string directoryOf(const std::string& file);
 

@@ -55,7 +55,6 @@ std::vector<Field> splitFields(std::string_view line, char separator)
 
 constexpr double cMaxPosition = 1e6;          // m: farther from the origin is a corrupt row
 constexpr double cQuaternionTolerance = 1e-6; // |q| - 1 the writer's normalised quaternions stay within
-constexpr long long cMaxPgsIterations = 1000000;
 
 // What is wrong with the value of a known pair of the comment line ("" when nothing is, or the key
 // is not one of the settings).
@@ -73,9 +72,9 @@ std::string settingProblem(const std::string& key, const std::string& value)
     }
     if (key == "pgs_iterations")
     {
-        return detail::parseWholeNumber(value, 1, cMaxPgsIterations)
+        return detail::parseWholeNumber(value, 1, detail::cMaxPgsIterations)
                    ? ""
-                   : "expected a whole number from 1 to " + std::to_string(cMaxPgsIterations);
+                   : "expected a whole number from 1 to " + std::to_string(detail::cMaxPgsIterations);
     }
     if (key == "steps")
     {
@@ -428,8 +427,8 @@ TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const st
         throw InputError(path, line, 0, "unknown solver '" + solver + "' in the header line");
     }
     sim.solver = *core::solverFromName(solver);
-    sim.pgsIterations = static_cast<int>(
-        *detail::parseWholeNumber(requireKey(trajectory, path, "pgs_iterations"), 1, cMaxPgsIterations));
+    sim.pgsIterations = static_cast<int>(*detail::parseWholeNumber(
+        requireKey(trajectory, path, "pgs_iterations"), 1, detail::cMaxPgsIterations));
     const std::string& integrator = requireKey(trajectory, path, "integrator");
     if (!core::integratorFromName(integrator))
     {

@@ -46,10 +46,11 @@ void readSimulation(const YamlSource& source, const YAML::Node& node, core::Simu
     if (map.has("pgs_iterations"))
     {
         sim.pgsIterations = *map.optInteger("pgs_iterations");
-        if (sim.pgsIterations < 1)
+        if (sim.pgsIterations < 1 || sim.pgsIterations > cMaxPgsIterations)
         {
-            map.failAtValue("pgs_iterations",
-                            "expected a positive integer for " + map.what("pgs_iterations"));
+            map.failAtValue("pgs_iterations", "expected an integer from 1 to " +
+                                                  std::to_string(cMaxPgsIterations) + " for " +
+                                                  map.what("pgs_iterations"));
         }
     }
     if (map.has("integrator"))

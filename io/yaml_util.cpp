@@ -1,10 +1,13 @@
 // io/yaml_util.cpp: typed, located reading of yaml-cpp nodes.
 #include "io/yaml_util.h"
 
+#include "io/file_util.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace frontier::io::detail
 {
@@ -65,20 +68,24 @@ double toNumber(const YamlSource& source, const YAML::Node& node, const std::str
         failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
     }
     checkNumberTag(source, node, what);
-    double value = 0.0;
-    try
+    // The rule of every text input file (io/file_util.h), so that a scene and a trajectory agree on
+    // what a number is.
+    const std::optional<double> value = parseFiniteNumber(node.Scalar());
+    if (!value)
     {
-        value = node.as<double>();
+        bool nonFinite = false; // YAML's .inf and .nan: say why they are refused
+        try
+        {
+            nonFinite = !std::isfinite(node.as<double>());
+        }
+        catch (const YAML::Exception&)
+        {
+        }
+        failAt(source, node,
+               std::string(nonFinite ? "expected a finite number for " : "expected a number for ") + what +
+                   ", got " + describeNode(node));
     }
-    catch (const YAML::Exception&)
-    {
-        failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
-    }
-    if (!std::isfinite(value))
-    {
-        failAt(source, node, "expected a finite number for " + what + ", got " + describeNode(node));
-    }
-    return value;
+    return *value;
 }
 
 double toPositive(const YamlSource& source, const YAML::Node& node, const std::string& what)
@@ -98,14 +105,13 @@ int toInteger(const YamlSource& source, const YAML::Node& node, const std::strin
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
     checkNumberTag(source, node, what);
-    try
-    {
-        return node.as<int>();
-    }
-    catch (const YAML::Exception&)
+    const std::optional<long long> value =
+        parseWholeNumber(node.Scalar(), std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    if (!value)
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
+    return static_cast<int>(*value);
 }
 
 bool toBool(const YamlSource& source, const YAML::Node& node, const std::string& what)

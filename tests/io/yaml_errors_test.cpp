@@ -862,5 +862,19 @@ TEST(YamlErrors, InputFilesAboveTheSizeLimitAreRefused)
     EXPECT_NO_THROW(loadScene(scene));
 }
 
+// One rule for numbers in every input file (io/file_util.h): counts are whole numbers in range.
+TEST(YamlErrors, CountsAreWholeNumbersInRange)
+{
+    const std::string ball = "bodies:\n  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}\n";
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 2.5}\n" + ball), "scene.yaml", 1, 30,
+                          "expected an integer for 'pgs_iterations' in 'simulation', got '2.5'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 99999999999}\n" + ball), "scene.yaml", 1,
+                          30, "expected an integer for 'pgs_iterations'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 2000000}\n" + ball), "scene.yaml", 1, 30,
+                          "expected an integer from 1 to 1000000 for 'pgs_iterations'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {dt: .inf}\n" + ball), "scene.yaml", 1, 18,
+                          "expected a finite number for 'dt' in 'simulation', got '.inf'");
+}
+
 } // namespace
 } // namespace frontier::io::test
