@@ -1,4 +1,5 @@
-// io/file_util.cpp: reading whole files and resolving paths relative to a scene file.
+// io/file_util.cpp: reading whole input files (regular files of bounded size only) and resolving paths
+// relative to a scene file.
 #include "io/file_util.h"
 
 #include "io/scene.h"
@@ -6,34 +7,181 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace frontier::io::detail
 {
 
-std::string readTextFile(const std::string& path)
+namespace
 {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
+
+constexpr std::uintmax_t cDefaultMaxInputBytes = std::uintmax_t{256} << 20; // 256 MiB
+constexpr const char* cMaxInputVariable = "FRONTIER_MAX_INPUT_BYTES";
+
+[[noreturn]] void failTooLarge(const std::string& path, const std::string& what, std::uintmax_t bytes,
+                               std::uintmax_t limit, bool exact)
+{
+    throw InputError(path, 0, 0,
+                     what + " has " + (exact ? "" : "more than ") + std::to_string(bytes) +
+                         " bytes, above the limit of " + std::to_string(limit) + " bytes (set " +
+                         cMaxInputVariable + " to raise it)");
+}
+
+// Refuses what is not a regular file: type from stat() or fstat().
+void checkType(const std::string& path, const std::string& what, mode_t mode)
+{
+    if (S_ISDIR(mode))
     {
-        throw InputError(path, 0, 0, "is a directory, expected a file");
+        throw InputError(path, 0, 0, "is a directory, expected a " + what);
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
+    if (!S_ISREG(mode))
+    {
+        const char* kind = S_ISFIFO(mode)                   ? " (a FIFO)"
+                           : S_ISCHR(mode) || S_ISBLK(mode) ? " (a device)"
+                           : S_ISSOCK(mode)                 ? " (a socket)"
+                                                            : "";
+        throw InputError(path, 0, 0, std::string("is not a regular file") + kind + ", expected a " + what);
+    }
+}
+
+[[noreturn]] void failErrno(const std::string& path, const std::string& verb, int err)
+{
+    throw InputError(path, 0, 0, "cannot " + verb + " file: " + std::strerror(err));
+}
+
+} // namespace
+
+std::uintmax_t maxInputBytes()
+{
+    const char* text = std::getenv(cMaxInputVariable);
+    if (text == nullptr || *text == '\0')
+    {
+        return cDefaultMaxInputBytes;
+    }
+    std::uintmax_t value = 0;
+    const char* last = text + std::strlen(text);
+    const auto result = std::from_chars(text, last, value);
+    if (result.ec != std::errc() || result.ptr != last || value == 0)
+    {
+        throw InputError(cMaxInputVariable, 0, 0,
+                         std::string("expected a positive whole number of bytes, got '") + text + "'");
+    }
+    return value;
+}
+
+void checkInputFile(const std::string& path, const std::string& what)
+{
+    struct stat info
+    {
+    };
+    if (::stat(path.c_str(), &info) != 0)
     {
         const int err = errno;
-        throw InputError(path, 0, 0, std::string("cannot open file: ") + std::strerror(err));
+        if (err == ENOENT)
+        {
+            throw InputError(path, 0, 0, "no such " + what);
+        }
+        failErrno(path, "open", err);
     }
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad())
+    checkType(path, what, info.st_mode);
+    const std::uintmax_t limit = maxInputBytes();
+    if (static_cast<std::uintmax_t>(info.st_size) > limit)
     {
-        throw InputError(path, 0, 0, "cannot read file");
+        failTooLarge(path, what, static_cast<std::uintmax_t>(info.st_size), limit, true);
     }
-    return buffer.str();
+}
+
+std::string readTextFile(const std::string& path, const std::string& what)
+{
+    const std::uintmax_t limit = maxInputBytes();
+    // O_NONBLOCK: opening a FIFO without a writer would block; the type check below refuses it.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0)
+    {
+        failErrno(path, "open", errno);
+    }
+    struct Closer
+    {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat info
+    {
+    };
+    if (::fstat(fd, &info) != 0)
+    {
+        failErrno(path, "read", errno);
+    }
+    checkType(path, what, info.st_mode);
+    const auto size = static_cast<std::uintmax_t>(info.st_size);
+    if (size > limit)
+    {
+        failTooLarge(path, what, size, limit, true);
+    }
+    // Read until end of file but never past the limit (the file may grow while it is read).
+    std::string out;
+    out.reserve(static_cast<std::size_t>(size));
+    char buffer[1 << 16];
+    while (true)
+    {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0)
+        {
+            if (errno == EINTR)
+            {
+                continue;
+            }
+            failErrno(path, "read", errno);
+        }
+        if (n == 0)
+        {
+            return out;
+        }
+        out.append(buffer, static_cast<std::size_t>(n));
+        if (out.size() > limit)
+        {
+            failTooLarge(path, what, limit, limit, false);
+        }
+    }
+}
+
+std::optional<double> parseFiniteNumber(std::string_view text)
+{
+    if (text.size() > 1 && text.front() == '+' && text[1] != '-' && text[1] != '+')
+    {
+        text.remove_prefix(1);
+    }
+    double value = 0.0;
+    const char* last = text.data() + text.size();
+    const auto result = std::from_chars(text.data(), last, value);
+    if (text.empty() || result.ec != std::errc() || result.ptr != last || !std::isfinite(value))
+    {
+        return std::nullopt;
+    }
+    return value;
+}
+
+std::optional<long long> parseWholeNumber(std::string_view text, long long min, long long max)
+{
+    if (text.size() > 1 && text.front() == '+' && text[1] != '-' && text[1] != '+')
+    {
+        text.remove_prefix(1);
+    }
+    long long value = 0;
+    const char* last = text.data() + text.size();
+    const auto result = std::from_chars(text.data(), last, value);
+    if (text.empty() || result.ec != std::errc() || result.ptr != last || value < min || value > max)
+    {
+        return std::nullopt;
+    }
+    return value;
 }
 
 std::string directoryOf(const std::string& file)

@@ -1,13 +1,42 @@
 // io/file_util.h: reading whole files and resolving paths relative to a scene file.
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 namespace frontier::io::detail
 {
 
-// The file's bytes; throws InputError(path, 0, 0, ...) when it cannot be read.
-std::string readTextFile(const std::string& path);
+// The one place input files are read from (scenes, URDF, meshes, trajectories, target tables):
+// only a regular file is read, and only up to maxInputBytes(), so that a device (/dev/zero), a
+// FIFO or a huge file named by mistake fails at once instead of hanging or filling memory.
+
+// Bytes an input file may have: FRONTIER_MAX_INPUT_BYTES when set (a positive whole number; anything
+// else throws InputError naming the variable), else 256 MiB.
+std::uintmax_t maxInputBytes();
+
+// Throws InputError(path, 0, 0, ...) unless `path` names a regular file (symbolic links followed)
+// of at most maxInputBytes(); `what` names the file in messages ("mesh file"). For readers that
+// open the file themselves (assimp).
+void checkInputFile(const std::string& path, const std::string& what = "file");
+
+// The file's bytes, under the same rules as checkInputFile (checked on the open file, so that a
+// FIFO never blocks); throws InputError(path, 0, 0, ...) when it cannot be read.
+std::string readTextFile(const std::string& path, const std::string& what = "file");
+
+// The one rule for numbers in text input files (trajectory headers and rows, target tables): the
+// whole field is a finite decimal number ("-1.5e3", an optional leading '+'); std::nullopt otherwise
+// (empty, trailing text, nan, inf, out of double range).
+std::optional<double> parseFiniteNumber(std::string_view text);
+// A count: the whole field is a whole number written in digits (optional sign) within
+// [min, max]; std::nullopt otherwise ("3.0", "1e3" and out-of-range values included).
+std::optional<long long> parseWholeNumber(std::string_view text, long long min, long long max);
+
+// The most PGS iterations per step a file may ask for (a scene's simulation.pgs_iterations, a
+// trajectory's pgs_iterations): more is a typo that would make every step take minutes.
+inline constexpr int cMaxPgsIterations = 1000000;
 
 // The directory holding `file` ("" for a bare file name).
 std::string directoryOf(const std::string& file);

@@ -1,14 +1,13 @@
 // io/mesh_file.cpp: mesh files through assimp, flattened into one triangle list in the shape frame.
 #include "io/mesh_file.h"
 
+#include "io/file_util.h"
 #include "io/scene.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <cstdint>
-#include <filesystem>
 #include <unordered_map>
 #include <utility>
 
@@ -17,47 +16,6 @@ namespace frontier::io::detail
 
 namespace
 {
-
-// Far above any robot part (a 1e6-triangle binary STL is 50 MB), low enough that a wrong path
-// (a disk image, a video) fails at once instead of filling memory.
-constexpr std::uintmax_t cMaxMeshBytes = std::uintmax_t{512} << 20;
-
-// Assimp is handed only a regular file of bounded size: it would wait forever on a FIFO and read
-// /dev/zero until memory runs out.
-void checkMeshPath(const std::string& path)
-{
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (status.type() == fs::file_type::not_found)
-    {
-        throw InputError(path, 0, 0, "no such mesh file");
-    }
-    if (ec)
-    {
-        throw InputError(path, 0, 0, "cannot read mesh file: " + ec.message());
-    }
-    if (fs::is_directory(status))
-    {
-        throw InputError(path, 0, 0, "is a directory, expected a mesh file");
-    }
-    if (!fs::is_regular_file(status))
-    {
-        throw InputError(path, 0, 0,
-                         "is not a regular file (a device, FIFO or socket), expected a mesh file");
-    }
-    const std::uintmax_t bytes = fs::file_size(path, ec);
-    if (ec)
-    {
-        throw InputError(path, 0, 0, "cannot read mesh file: " + ec.message());
-    }
-    if (bytes > cMaxMeshBytes)
-    {
-        throw InputError(path, 0, 0,
-                         "mesh file has " + std::to_string(bytes) + " bytes, above the limit of " +
-                             std::to_string(cMaxMeshBytes >> 20) + " MiB");
-    }
-}
 
 // Exact coordinates, so that merging never moves a vertex.
 struct VertexKey
@@ -189,7 +147,9 @@ class MeshCollector
 
 core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
 {
-    checkMeshPath(path);
+    // Assimp is handed only a regular file of bounded size (io/file_util.h): it would wait forever
+    // on a FIFO and read /dev/zero until memory runs out.
+    checkInputFile(path, "mesh file");
     Assimp::Importer importer;
     // Robot files give a link's COLLADA and STL meshes in the same frame: a COLLADA file's
     // coordinates are used as written, whatever its <up_axis>, not rotated into y-up.

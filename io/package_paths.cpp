@@ -36,7 +36,14 @@ bool pathExists(const fs::path& p)
 // <name>...</name> of a package.xml, trimmed; "" when there is none.
 std::string manifestName(const fs::path& dir)
 {
-    std::ifstream in(dir / "package.xml");
+    // A regular file only: a FIFO of that name would block the open (io/file_util.h).
+    std::error_code ec;
+    const fs::path manifest = dir / "package.xml";
+    if (!fs::is_regular_file(manifest, ec))
+    {
+        return {};
+    }
+    std::ifstream in(manifest);
     if (!in)
     {
         return {};

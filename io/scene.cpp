@@ -24,7 +24,7 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadR
                 "--fixed-base, --free-base and --drop-height place a bare .urdf; a scene places its "
                 "models itself (keys 'fixed', 'free_base' and 'position' of each entry of 'models')");
         }
-        return detail::loadYamlScene(detail::readTextFile(path), path, options, report);
+        return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }
     throw InputError(
         path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");

@@ -5,8 +5,7 @@
 #include "io/scene.h"
 #include "io/suggest.h"
 
-#include <cmath>
-#include <cstdlib>
+#include <optional>
 #include <sstream>
 
 namespace frontier::io::detail
@@ -56,7 +55,7 @@ int indexOf(const std::vector<std::string>& names, const std::string& name)
 
 TargetColumn readTargetColumn(const std::string& path, const std::string& column)
 {
-    const std::string text = readTextFile(path);
+    const std::string text = readTextFile(path, "target table file");
     std::stringstream in(text);
     std::string line;
     int lineNumber = 0;
@@ -105,9 +104,9 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
         for (int k = 0; k < 2; ++k)
         {
             const std::string& field = row[static_cast<std::size_t>(indices[k])];
-            char* end = nullptr;
-            numbers[k] = std::strtod(field.c_str(), &end);
-            if (field.empty() || *end != '\0' || !std::isfinite(numbers[k]))
+            const std::optional<double> number = parseFiniteNumber(field);
+            numbers[k] = number.value_or(0.0);
+            if (!number)
             {
                 throw InputError(path, lineNumber, 1,
                                  "expected a finite number in column '" +

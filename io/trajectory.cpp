@@ -4,10 +4,11 @@
 #include "io/file_util.h"
 #include "io/scene.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -50,6 +51,44 @@ std::vector<Field> splitFields(std::string_view line, char separator)
         }
         start = end + 1;
     }
+}
+
+constexpr double cMaxPosition = 1e6;          // m: farther from the origin is a corrupt row
+constexpr double cQuaternionTolerance = 1e-6; // |q| - 1 the writer's normalised quaternions stay within
+
+// What is wrong with the value of a known pair of the comment line ("" when nothing is, or the key
+// is not one of the settings).
+std::string settingProblem(const std::string& key, const std::string& value)
+{
+    if (key == "dt")
+    {
+        const std::optional<double> dt = detail::parseFiniteNumber(value);
+        return dt && *dt > 0.0 ? "" : "expected a positive number of seconds";
+    }
+    if (key == "duration")
+    {
+        const std::optional<double> duration = detail::parseFiniteNumber(value);
+        return duration && *duration >= 0.0 ? "" : "expected a non-negative number of seconds";
+    }
+    if (key == "pgs_iterations")
+    {
+        return detail::parseWholeNumber(value, 1, detail::cMaxPgsIterations)
+                   ? ""
+                   : "expected a whole number from 1 to " + std::to_string(detail::cMaxPgsIterations);
+    }
+    if (key == "steps")
+    {
+        return detail::parseWholeNumber(value, 0, std::numeric_limits<long>::max())
+                   ? ""
+                   : "expected a whole number of steps >= 0";
+    }
+    if (key == "record_every")
+    {
+        return detail::parseWholeNumber(value, 1, std::numeric_limits<int>::max())
+                   ? ""
+                   : "expected a whole number of steps >= 1";
+    }
+    return {};
 }
 
 } // namespace
@@ -116,8 +155,9 @@ core::BodyState TrajectoryRow::state() const
 
 Trajectory readTrajectory(const std::string& path)
 {
-    const std::string text = detail::readTextFile(path);
+    const std::string text = detail::readTextFile(path, "trajectory file");
     Trajectory out;
+    std::map<std::string, double> lastTime; // s, of each body's latest row
     bool haveHeader = false;
     int lineNumber = 0;
     std::size_t pos = 0;
@@ -153,9 +193,19 @@ Trajectory readTrajectory(const std::string& path)
                                          "expected key=value in the trajectory comment, got '" +
                                              std::string(pair.text) + "'");
                     }
-                    out.metadata[decodeMetadataField(pair.text.substr(0, eq))] =
-                        decodeMetadataField(pair.text.substr(eq + 1));
+                    const std::string key = decodeMetadataField(pair.text.substr(0, eq));
+                    const std::string value = decodeMetadataField(pair.text.substr(eq + 1));
+                    const std::string problem = settingProblem(key, value);
+                    if (!problem.empty())
+                    {
+                        throw InputError(path, lineNumber,
+                                         static_cast<int>(offset) + pair.column + static_cast<int>(eq) + 1,
+                                         "'" + key + "' in the trajectory comment is '" + value + "'; " +
+                                             problem);
+                    }
+                    out.metadata[key] = value;
                 }
+                out.metadataLine = lineNumber;
             }
             continue;
         }
@@ -198,17 +248,14 @@ Trajectory readTrajectory(const std::string& path)
         const auto number = [&](std::size_t index)
         {
             const Field& field = fields[index];
-            double value = 0.0;
-            const char* first = field.text.data();
-            const char* last = first + field.text.size();
-            const auto result = std::from_chars(first, last, value);
-            if (field.text.empty() || result.ec != std::errc() || result.ptr != last)
+            const std::optional<double> value = detail::parseFiniteNumber(field.text);
+            if (!value)
             {
                 throw InputError(path, lineNumber, field.column,
-                                 std::string("expected a number for '") + cColumns[index] + "', got '" +
-                                     std::string(field.text) + "'");
+                                 std::string("expected a finite number for '") + cColumns[index] +
+                                     "', got '" + std::string(field.text) + "'");
             }
-            return value;
+            return *value;
         };
         row.time = number(0);
         if (fields[1].text.empty())
@@ -219,6 +266,37 @@ Trajectory readTrajectory(const std::string& path)
         for (std::size_t i = 0; i < row.values.size(); ++i)
         {
             row.values[i] = number(i + 2);
+        }
+        const core::BodyState state = row.state();
+        if (!(state.position_W.norm() <= cMaxPosition))
+        {
+            throw InputError(path, lineNumber, fields[2].column,
+                             "position (" + formatNumber(row.values[0]) + ", " + formatNumber(row.values[1]) +
+                                 ", " + formatNumber(row.values[2]) + ") m is farther than " +
+                                 formatNumber(cMaxPosition) + " m from the origin");
+        }
+        if (!(std::abs(state.orientation_WB.norm() - 1.0) <= cQuaternionTolerance))
+        {
+            throw InputError(path, lineNumber, fields[5].column,
+                             "orientation quaternion has norm " + formatNumber(state.orientation_WB.norm()) +
+                                 "; expected a unit quaternion (norm 1 within 1e-6)");
+        }
+        if (!out.rows.empty() && row.time < out.rows.back().time)
+        {
+            throw InputError(path, lineNumber, fields[0].column,
+                             "time " + formatNumber(row.time) + " s is earlier than the row before (" +
+                                 formatNumber(out.rows.back().time) + " s); times must increase");
+        }
+        const auto [last, first] = lastTime.try_emplace(row.body, row.time);
+        if (!first)
+        {
+            if (!(row.time > last->second))
+            {
+                throw InputError(path, lineNumber, fields[0].column,
+                                 "body '" + row.body + "' has a second row at time " +
+                                     formatNumber(row.time) + " s; each body's times must strictly increase");
+            }
+            last->second = row.time;
         }
         out.rows.push_back(std::move(row));
     }
@@ -289,11 +367,10 @@ UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, 
     options.hold = value(cHold) && *value(cHold) == "1";
     if (const std::string* height = value(cDropHeight))
     {
-        char* end = nullptr;
-        options.dropHeight = std::strtod(height->c_str(), &end);
-        if (height->empty() || *end != '\0')
+        options.dropHeight = detail::parseFiniteNumber(*height);
+        if (!options.dropHeight)
         {
-            throw InputError(path, 1, 0, "the header's drop_height=" + *height + " is not a number");
+            throw InputError(path, 1, 0, "the header's drop_height=" + *height + " is not a finite number");
         }
     }
     if (const std::string* self = value(cSelfCollision))
@@ -317,59 +394,51 @@ UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, 
 
 namespace
 {
-const std::string& requireKey(const std::map<std::string, std::string>& metadata, const std::string& path,
-                              const std::string& key)
+// The value of a setting of the comment line, checked by the rule readTrajectory applies.
+const std::string& requireKey(const Trajectory& trajectory, const std::string& path, const std::string& key)
 {
-    const auto found = metadata.find(key);
-    if (found == metadata.end())
+    const auto found = trajectory.metadata.find(key);
+    if (found == trajectory.metadata.end())
     {
         throw InputError(
-            path, 1, 0,
+            path, trajectory.metadataLine, 0,
             "the reference's header line has no '" + key +
                 "': record references with `frontier run --trajectory` (it writes the settings)");
     }
-    return found->second;
-}
-
-double parseNumber(const std::string& text, const std::string& path, const std::string& key)
-{
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
+    const std::string problem = settingProblem(key, found->second);
+    if (!problem.empty())
     {
-        throw InputError(path, 1, 0, "'" + key + "' in the header line is not a number: '" + text + "'");
+        throw InputError(path, trajectory.metadataLine, 0,
+                         "'" + key + "' in the header line is '" + found->second + "'; " + problem);
     }
-    return value;
+    return found->second;
 }
 } // namespace
 
 TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const std::string& path)
 {
-    const std::map<std::string, std::string>& metadata = trajectory.metadata;
     TrajectorySettings out;
     core::SimulationSettings& sim = out.simulation;
-    sim.dt = parseNumber(requireKey(metadata, path, "dt"), path, "dt");
-    const std::string& solver = requireKey(metadata, path, "solver");
+    const int line = trajectory.metadataLine;
+    sim.dt = *detail::parseFiniteNumber(requireKey(trajectory, path, "dt"));
+    const std::string& solver = requireKey(trajectory, path, "solver");
     if (!core::solverFromName(solver))
     {
-        throw InputError(path, 1, 0, "unknown solver '" + solver + "' in the header line");
+        throw InputError(path, line, 0, "unknown solver '" + solver + "' in the header line");
     }
     sim.solver = *core::solverFromName(solver);
-    sim.pgsIterations =
-        static_cast<int>(parseNumber(requireKey(metadata, path, "pgs_iterations"), path, "pgs_iterations"));
-    const std::string& integrator = requireKey(metadata, path, "integrator");
+    sim.pgsIterations = static_cast<int>(*detail::parseWholeNumber(
+        requireKey(trajectory, path, "pgs_iterations"), 1, detail::cMaxPgsIterations));
+    const std::string& integrator = requireKey(trajectory, path, "integrator");
     if (!core::integratorFromName(integrator))
     {
-        throw InputError(path, 1, 0, "unknown integrator '" + integrator + "' in the header line");
+        throw InputError(path, line, 0, "unknown integrator '" + integrator + "' in the header line");
     }
     sim.integrator = *core::integratorFromName(integrator);
-    out.steps = static_cast<long>(parseNumber(requireKey(metadata, path, "steps"), path, "steps"));
-    out.recordEvery =
-        static_cast<int>(parseNumber(requireKey(metadata, path, "record_every"), path, "record_every"));
-    if (out.steps < 0 || out.recordEvery < 1)
-    {
-        throw InputError(path, 1, 0, "'steps' or 'record_every' in the header line is out of range");
-    }
+    out.steps = static_cast<long>(*detail::parseWholeNumber(requireKey(trajectory, path, "steps"), 0,
+                                                            std::numeric_limits<long>::max()));
+    out.recordEvery = static_cast<int>(*detail::parseWholeNumber(requireKey(trajectory, path, "record_every"),
+                                                                 1, std::numeric_limits<int>::max()));
     return out;
 }
 

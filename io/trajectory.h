@@ -63,11 +63,16 @@ struct TrajectoryRow
 struct Trajectory
 {
     std::map<std::string, std::string> metadata; // from the "# frontier trajectory:" line (decoded)
+    int metadataLine = 1;                        // that line's number (1-based)
     std::vector<TrajectoryRow> rows;
 };
 
 // Throws InputError (file, line, column of the offending field) on malformed content: a missing
-// or misnamed header column, a wrong number of fields, an unreadable number.
+// or misnamed header column, a wrong number of fields, a field that is not a finite number, a
+// position farther than 1e6 m from the origin, an orientation quaternion whose norm is not 1
+// (within 1e-6), a time earlier than the row before or not after the same body's previous one;
+// and in the comment line a dt that is not positive, or a pgs_iterations (1 to 1e6), steps or
+// record_every (>= 1) that is not a whole number in range.
 Trajectory readTrajectory(const std::string& path);
 
 // The settings a trajectory was recorded with, read back from its header line (the pairs
@@ -79,7 +84,7 @@ struct TrajectorySettings
     int recordEvery = 1;                 // a row block every recordEvery steps
 };
 
-// Throws InputError (path, line 1) when a pair is missing or its value cannot be read.
+// Throws InputError (path, the comment line) when a pair is missing or its value cannot be read.
 TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const std::string& path);
 
 // The robot flags addUrdfOptions wrote (absent ones keep UrdfOptions' defaults). Throws InputError

@@ -732,6 +732,59 @@ class UrdfConverter
     UrdfFragment mOut;
 };
 
+// The joints must join the links into a tree, checked on the file's text before urdfdom reads it
+// (urdfdom accepts some loops, and its "failed to find root link" names no place): no joint from
+// a link to itself, no link that is the child of two joints, no loop of joints.
+void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
+{
+    using JointLinks = UrdfXmlIndex::JointLinks;
+    std::map<std::string, const JointLinks*> parentJoint; // child link -> the joint above it
+    for (const JointLinks& j : index.jointLinks())
+    {
+        if (j.parent == j.child)
+        {
+            throw InputError(file, j.at.line, j.at.column,
+                             "joint '" + j.joint + "' joins link '" + j.child +
+                                 "' to itself; expected a parent and a child link that differ");
+        }
+        const auto [it, inserted] = parentJoint.try_emplace(j.child, &j);
+        if (!inserted)
+        {
+            throw InputError(file, j.at.line, j.at.column,
+                             "link '" + j.child + "' is the child of joint '" + it->second->joint +
+                                 "' and of joint '" + j.joint +
+                                 "'; a link has one parent joint (the links must form a tree)");
+        }
+    }
+    // Each link has at most one parent now: walk up from every link; a walk that comes back to a
+    // link of its own is a loop. `done` links are known to lead to a root.
+    std::set<std::string> done;
+    for (const JointLinks& start : index.jointLinks())
+    {
+        std::vector<std::string> path;
+        std::set<std::string> onPath; // the links of `path`
+        std::string link = start.child;
+        while (!done.contains(link))
+        {
+            if (!onPath.insert(link).second)
+            {
+                const JointLinks& closing = *parentJoint.at(path.back()); // the joint that led back
+                throw InputError(file, closing.at.line, closing.at.column,
+                                 "joint '" + closing.joint + "' closes a loop of joints through link '" +
+                                     link + "'; the links must form a tree");
+            }
+            path.push_back(link);
+            const auto up = parentJoint.find(link);
+            if (up == parentJoint.end())
+            {
+                break; // a root
+            }
+            link = up->second->parent;
+        }
+        done.insert(path.begin(), path.end());
+    }
+}
+
 } // namespace
 
 std::string formatNumber(double value)
@@ -749,8 +802,9 @@ std::string formatVector(const core::Vec3& v)
 UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
                               const PackagePaths& packages)
 {
-    const std::string text = readTextFile(path);
+    const std::string text = readTextFile(path, "URDF file");
     const UrdfXmlIndex index(path, text); // XML syntax errors with row and column
+    checkJointTree(path, index);
     CapturedLog log;
     const urdf::ModelInterfaceSharedPtr robot = parseCapturingErrors(text, log);
     if (!log.errors.empty() || !robot)
@@ -768,6 +822,10 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
             {
                 break;
             }
+        }
+        if (at.line == 0)
+        {
+            at = index.robot(); // a message about the whole robot ("No link elements found")
         }
         throw InputError(path, at.line, at.column, message);
     }

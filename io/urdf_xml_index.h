@@ -17,7 +17,8 @@ namespace frontier::io::detail
 class UrdfXmlIndex
 {
   public:
-    // Throws InputError(file, row, column, ...) when the text is not well-formed XML.
+    // Throws InputError(file, row, column, ...) when the text is not well-formed XML, holds a
+    // <!DOCTYPE>, or nests elements more than 1000 deep (checked by a linear scan before parsing).
     UrdfXmlIndex(const std::string& file, const std::string& text);
 
     // Position of <link name="name"> (kind "link") or <joint> (kind "joint"), or of a child
@@ -34,15 +35,30 @@ class UrdfXmlIndex
     // a link or joint (when the message says "link"/"joint") or appears as an attribute value.
     TextPosition locateMessage(const std::string& message) const;
 
+    // Position of the <robot> element.
+    TextPosition robot() const { return mRobot; }
+
     // Names of <link> and <joint> elements in document order.
     const std::vector<std::string>& linkNames() const { return mLinkNames; }
     const std::vector<std::string>& jointNames() const { return mJointNames; }
 
+    // The parent and child link of each <joint> that names both, in document order.
+    struct JointLinks
+    {
+        std::string joint;
+        std::string parent;
+        std::string child;
+        TextPosition at; // the <joint> element
+    };
+    const std::vector<JointLinks>& jointLinks() const { return mJointLinks; }
+
   private:
     std::string mText;
+    TextPosition mRobot;
     std::map<std::string, TextPosition> mElements; // "link:NAME/inertial/mass" -> position
     std::vector<std::string> mLinkNames;
     std::vector<std::string> mJointNames;
+    std::vector<JointLinks> mJointLinks;
 };
 
 } // namespace frontier::io::detail

@@ -46,10 +46,11 @@ void readSimulation(const YamlSource& source, const YAML::Node& node, core::Simu
     if (map.has("pgs_iterations"))
     {
         sim.pgsIterations = *map.optInteger("pgs_iterations");
-        if (sim.pgsIterations < 1)
+        if (sim.pgsIterations < 1 || sim.pgsIterations > cMaxPgsIterations)
         {
-            map.failAtValue("pgs_iterations",
-                            "expected a positive integer for " + map.what("pgs_iterations"));
+            map.failAtValue("pgs_iterations", "expected an integer from 1 to " +
+                                                  std::to_string(cMaxPgsIterations) + " for " +
+                                                  map.what("pgs_iterations"));
         }
     }
     if (map.has("integrator"))
@@ -202,9 +203,13 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
         }
         catch (const InputError& e)
         {
-            if (e.file() == path && e.line() == 0 && e.message().starts_with("cannot open file"))
+            // A file that cannot be read at all is named at the scene's line.
+            if (e.file() == path && e.line() == 0)
             {
-                failAt(source, urdfNode, "cannot open URDF file '" + path + "'");
+                failAt(source, urdfNode,
+                       (e.message().starts_with("cannot open file") ? "cannot open URDF file '"
+                                                                    : "cannot read URDF file '") +
+                           path + "': " + e.message());
             }
             throw;
         }
@@ -268,6 +273,30 @@ std::string tabHint(const std::string& text, const YAML::Mark& mark)
                                                   : "";
 }
 
+// Line breaks as '\n' only: yaml-cpp counts lines at '\n', so a file with old Mac line endings
+// (a lone '\r') would read as one line and every message would name line 1.
+std::string withUnixLineBreaks(const std::string& text)
+{
+    if (text.find('\r') == std::string::npos)
+    {
+        return text;
+    }
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i)
+    {
+        if (text[i] != '\r')
+        {
+            out += text[i];
+        }
+        else if (i + 1 >= text.size() || text[i + 1] != '\n')
+        {
+            out += '\n';
+        }
+    }
+    return out;
+}
+
 std::string defaultName(const std::string& sourceName)
 {
     const std::string stem = std::filesystem::path(sourceName).stem().string();
@@ -276,9 +305,10 @@ std::string defaultName(const std::string& sourceName)
 
 } // namespace
 
-core::Model loadYamlScene(const std::string& text, const std::string& sourceName, const UrdfOptions& urdf,
+core::Model loadYamlScene(const std::string& rawText, const std::string& sourceName, const UrdfOptions& urdf,
                           LoadReport* report)
 {
+    const std::string text = withUnixLineBreaks(rawText);
     SceneBuilder builder;
     builder.urdf = urdf;
     builder.report = report;
@@ -298,8 +328,12 @@ core::Model loadYamlScene(const std::string& text, const std::string& sourceName
         }
         if (documents.empty() || documents[0].IsNull())
         {
-            throw InputError(sourceName, 0, 0,
-                             "empty scene; expected a map with 'bodies' (and 'joints', ...)");
+            throw InputError(sourceName, 1, 1,
+                             std::string(text.find_first_not_of(" \t\n") == std::string::npos
+                                             ? "the file is empty"
+                                             : "the file holds no YAML content (only comments or an "
+                                               "empty document)") +
+                                 "; expected a scene: a map with 'bodies' (and 'joints', ...)");
         }
         const MapNode root(source, documents[0], "the scene");
         root.checkKeys(cSceneKeys);

@@ -1,10 +1,13 @@
 // io/yaml_util.cpp: typed, located reading of yaml-cpp nodes.
 #include "io/yaml_util.h"
 
+#include "io/file_util.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 
 #include <cmath>
+#include <limits>
+#include <optional>
 
 namespace frontier::io::detail
 {
@@ -40,26 +43,49 @@ std::string describeNode(const YAML::Node& node)
     return "'" + node.Scalar() + "'";
 }
 
+namespace
+{
+// A number may carry no tag, or the standard !!int / !!float: a local tag ("!units 3") means
+// something this reader does not know, so it is refused rather than silently dropped.
+void checkNumberTag(const YamlSource& source, const YAML::Node& node, const std::string& what)
+{
+    const std::string& tag = node.Tag();
+    if (tag.empty() || tag == "?" || tag == "!" || tag == "tag:yaml.org,2002:int" ||
+        tag == "tag:yaml.org,2002:float")
+    {
+        return;
+    }
+    failAt(source, node,
+           "expected a number for " + what + ", got one tagged '" + tag +
+               "' (only the standard tags !!int and !!float are understood)");
+}
+} // namespace
+
 double toNumber(const YamlSource& source, const YAML::Node& node, const std::string& what)
 {
     if (!node.IsScalar())
     {
         failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
     }
-    double value = 0.0;
-    try
+    checkNumberTag(source, node, what);
+    // The rule of every text input file (io/file_util.h), so that a scene and a trajectory agree on
+    // what a number is.
+    const std::optional<double> value = parseFiniteNumber(node.Scalar());
+    if (!value)
     {
-        value = node.as<double>();
+        bool nonFinite = false; // YAML's .inf and .nan: say why they are refused
+        try
+        {
+            nonFinite = !std::isfinite(node.as<double>());
+        }
+        catch (const YAML::Exception&)
+        {
+        }
+        failAt(source, node,
+               std::string(nonFinite ? "expected a finite number for " : "expected a number for ") + what +
+                   ", got " + describeNode(node));
     }
-    catch (const YAML::Exception&)
-    {
-        failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
-    }
-    if (!std::isfinite(value))
-    {
-        failAt(source, node, "expected a finite number for " + what + ", got " + describeNode(node));
-    }
-    return value;
+    return *value;
 }
 
 double toPositive(const YamlSource& source, const YAML::Node& node, const std::string& what)
@@ -78,14 +104,14 @@ int toInteger(const YamlSource& source, const YAML::Node& node, const std::strin
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
-    try
-    {
-        return node.as<int>();
-    }
-    catch (const YAML::Exception&)
+    checkNumberTag(source, node, what);
+    const std::optional<long long> value =
+        parseWholeNumber(node.Scalar(), std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+    if (!value)
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
+    return static_cast<int>(*value);
 }
 
 bool toBool(const YamlSource& source, const YAML::Node& node, const std::string& what)

@@ -3,8 +3,12 @@
 #include "app_test_util.h"
 #include "io/trajectory.h"
 
+#include <chrono>
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <ostream>
+#include <sys/stat.h>
+#include <utility>
 
 namespace frontier::app::test
 {
@@ -194,6 +198,62 @@ bodies:
     EXPECT_NE(r.err.find("'abyss'"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("energy"), std::string::npos) << r.err;
     EXPECT_TRUE(dir.outputs().empty());
+}
+
+// Input that is not a file of text (a FIFO, /dev/zero, a URDF nested 40 000 deep, a joint loop)
+// exits with 2 at once: no crash, no hang, no unbounded read. Each input is made here, at run time.
+TEST(BadInput, UnreadableInputsExitWithTwoAtOnce)
+{
+    const TestDir dir;
+    ASSERT_EQ(::mkfifo((dir.path() / "pipe.yaml").c_str(), 0600), 0);
+    std::filesystem::create_symlink("/dev/zero", dir.path() / "zero.urdf");
+    const std::string inertial =
+        "<inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" "
+        "iyz=\"0\" izz=\"1\"/></inertial>";
+    std::string deep = "<robot name=\"r\">\n<link name=\"a\">" + inertial + "</link>\n";
+    for (int i = 0; i < 40000; ++i)
+    {
+        deep += "<x>";
+    }
+    dir.write("deep.urdf", deep + "\n</robot>\n");
+    dir.write("loop.urdf", "<robot name=\"r\">\n<link name=\"a\">" + inertial + "</link>\n<link name=\"b\">" +
+                               inertial +
+                               "</link>\n<joint name=\"j\" type=\"fixed\"><parent link=\"b\"/><child "
+                               "link=\"b\"/></joint>\n</robot>\n");
+    const std::pair<const char*, const char*> cases[] = {
+        {"pipe.yaml", "pipe.yaml: error: is not a regular file (a FIFO)"},
+        {"zero.urdf", "zero.urdf: error: is not a regular file (a device)"},
+        {"deep.urdf", "deep.urdf:3:2998: error: elements nested more than 1000 levels deep"},
+        {"loop.urdf", "loop.urdf:4:1: error: joint 'j' joins link 'b' to itself"}};
+    for (const auto& [file, needle] : cases)
+    {
+        const auto start = std::chrono::steady_clock::now();
+        const Result r = dir.run("info " + shellQuote((dir.path() / file).string()));
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        EXPECT_EQ(r.exitCode, 2) << file << ": " << r.err;
+        EXPECT_NE(r.err.find(needle), std::string::npos) << "expected '" << needle << "' in: " << r.err;
+        EXPECT_LT(seconds, 5.0) << file; // a second on an idle machine; the bound catches a hang
+    }
+}
+
+// `check` and `render` share the trajectory reader: a corrupt reference row is located in both.
+TEST(BadInput, CorruptTrajectoryIsLocatedByCheckAndRender)
+{
+    const TestDir dir;
+    const std::string ref = dir.write(
+        "ref.csv",
+        "# frontier trajectory: scene=scenes/pendulum.yaml dt=0.001 solver=linear pgs_iterations=50 "
+        "integrator=rattle steps=10 record_every=1 duration=0.01\n"
+        "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n"
+        "0,bob,0,0,1,0,0,0,0,0,0,0,0,0,0\n");
+    const std::string where = ref + ":3:13: error: orientation quaternion has norm 0";
+    const Result check = dir.run("check scenes/pendulum.yaml --reference " + shellQuote(ref));
+    EXPECT_EQ(check.exitCode, 2) << check.err;
+    EXPECT_NE(check.err.find(where), std::string::npos) << check.err;
+    const Result render = dir.run("render " + shellQuote(ref) + " --frames " + shellQuote(dir.out("frames")));
+    EXPECT_EQ(render.exitCode, 2) << render.err;
+    EXPECT_NE(render.err.find(where), std::string::npos) << render.err;
 }
 
 } // namespace

@@ -475,9 +475,11 @@ TEST(Mesh, TooLargeFileIsRefused)
 {
     TempDir dir;
     const std::string path = dir.write("huge.stl", "");
-    std::filesystem::resize_file(path, (std::uintmax_t{512} << 20) + 1); // sparse: no disk space used
+    std::filesystem::resize_file(path, (std::uintmax_t{256} << 20) + 1); // sparse: no disk space used
     const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
-    EXPECT_INPUT_ERROR_AT(e, path, 0, 0, "mesh file has 536870913 bytes, above the limit of 512 MiB");
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0,
+                          "mesh file has 268435457 bytes, above the limit of 268435456 bytes (set "
+                          "FRONTIER_MAX_INPUT_BYTES to raise it)");
 }
 
 } // namespace

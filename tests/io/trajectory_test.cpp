@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <limits>
 #include <random>
+#include <sys/stat.h>
 
 namespace frontier::io::test
 {
@@ -216,13 +217,84 @@ TEST(Trajectory, ReadErrorsAreLocated)
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1,0,0,0,0,0,0,0,0,0,9\n"),
                           dir.file("t.csv"), 2, 31, "expected 15 fields, got 16");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2.5x,3,1,0,0,0,0,0,0,0,0,0\n"),
-                          dir.file("t.csv"), 2, 7, "expected a number for 'py', got '2.5x'");
+                          dir.file("t.csv"), 2, 7, "expected a finite number for 'py', got '2.5x'");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,,3,1,0,0,0,0,0,0,0,0,0\n"), dir.file("t.csv"),
-                          2, 7, "expected a number for 'py', got ''");
+                          2, 7, "expected a finite number for 'py', got ''");
     EXPECT_INPUT_ERROR_AT(trajectoryError(dir, "# just a comment\n"), dir.file("t.csv"), 1, 0,
                           "no header line");
     EXPECT_INPUT_ERROR_AT(captureInputError([] { readTrajectory("/nonexistent/t.csv"); }),
                           "/nonexistent/t.csv", 0, 0, "cannot open file");
+}
+
+// Values no run writes are located errors: `check` and `render` would otherwise compare against or
+// draw garbage (a NaN passes every tolerance test as false, a zero quaternion has no rotation).
+TEST(Trajectory, CorruptRowsAreLocated)
+{
+    TempDir dir;
+    const std::string file = dir.file("t.csv");
+    const std::string header = "time,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    const std::string good = "0,a,1,2,3,1,0,0,0,0,0,0,0,0,0\n";
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,nan,3,1,0,0,0,0,0,0,0,0,0\n"), file, 2, 7,
+                          "expected a finite number for 'py', got 'nan'");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1,0,0,0,0,0,0,0,0,-inf\n"), file, 2, 29,
+                          "expected a finite number for 'wz', got '-inf'");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1e999,0,0,0,0,0,0,0,0,0\n"), file, 2, 11,
+                          "expected a finite number for 'qw', got '1e999'");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,0,0,0,0,0,0,0,0,0,0\n"), file, 2, 11,
+                          "orientation quaternion has norm 0; expected a unit quaternion");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,3,1.00001,0,0,0,0,0,0,0,0,0\n"), file, 2, 11,
+                          "orientation quaternion has norm 1.00001");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "0,a,1,2,2e6,1,0,0,0,0,0,0,0,0,0\n"), file, 2, 5,
+                          "position (1, 2, 2000000) m is farther than 1000000 m from the origin");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + "1,a,1,2,3,1,0,0,0,0,0,0,0,0,0\n" + good), file, 3, 1,
+                          "time 0 s is earlier than the row before (1 s)");
+    EXPECT_INPUT_ERROR_AT(trajectoryError(dir, header + good + good), file, 3, 1,
+                          "body 'a' has a second row at time 0 s");
+    // Several bodies share a time; within 1e-6 of norm 1 is a unit quaternion.
+    const std::string path = dir.write("ok.csv", header + good + "0,b,1,2,3,0.9999995,0,0,0,0,0,0,0,0,0\n" +
+                                                     "0.5,a," + good.substr(4));
+    EXPECT_EQ(readTrajectory(path).rows.size(), 3u);
+}
+
+// The settings of the comment line (what `check` re-runs with) are checked as they are read.
+TEST(Trajectory, CorruptHeaderSettingsAreLocated)
+{
+    TempDir dir;
+    const std::string file = dir.file("t.csv");
+    const std::string columns = "\ntime,body,px,py,pz,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+    const auto headerError = [&](const std::string& pairs)
+    { return trajectoryError(dir, "# frontier trajectory: scene=s.yaml " + pairs + columns); };
+    // The column is that of the value (the comment prefix is 23 characters, "scene=s.yaml " 13).
+    EXPECT_INPUT_ERROR_AT(
+        headerError("pgs_iterations=0"), file, 1, 52,
+        "'pgs_iterations' in the trajectory comment is '0'; expected a whole number from 1 to "
+        "1000000");
+    EXPECT_INPUT_ERROR_AT(headerError("pgs_iterations=2.5"), file, 1, 52, "expected a whole number from 1");
+    EXPECT_INPUT_ERROR_AT(headerError("pgs_iterations=99999999999999999999"), file, 1, 52,
+                          "expected a whole number from 1");
+    EXPECT_INPUT_ERROR_AT(headerError("dt=0.01 steps=1.5"), file, 1, 51,
+                          "'steps' in the trajectory comment is '1.5'; expected a whole number of steps");
+    EXPECT_INPUT_ERROR_AT(headerError("dt=0"), file, 1, 40,
+                          "'dt' in the trajectory comment is '0'; expected a positive");
+    EXPECT_INPUT_ERROR_AT(headerError("dt=nan"), file, 1, 40, "expected a positive number of seconds");
+    EXPECT_INPUT_ERROR_AT(headerError("record_every=0"), file, 1, 50,
+                          "expected a whole number of steps >= 1");
+    // A trajectory without the settings reads, but cannot be checked against: the comment line is named.
+    const std::string blank = dir.write("blank.csv", "\n# frontier trajectory: scene=s.yaml" + columns);
+    EXPECT_INPUT_ERROR_AT(captureInputError([&] { readTrajectorySettings(readTrajectory(blank), blank); }),
+                          blank, 2, 0, "the reference's header line has no 'dt'");
+}
+
+// Like every input file, a trajectory is read only when it is a regular file.
+TEST(Trajectory, OnlyRegularFilesAreRead)
+{
+    TempDir dir;
+    const std::string fifo = dir.file("pipe.csv");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_INPUT_ERROR_AT(captureInputError([&] { readTrajectory(fifo); }), fifo, 0, 0,
+                          "is not a regular file (a FIFO), expected a trajectory file");
+    EXPECT_INPUT_ERROR_AT(captureInputError([] { readTrajectory("/dev/zero"); }), "/dev/zero", 0, 0,
+                          "is not a regular file (a device), expected a trajectory file");
 }
 
 } // namespace

@@ -4,8 +4,10 @@
 #include "io_test_util.h"
 
 #include <cmath>
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <sys/stat.h>
 
 namespace frontier::io::test
 {
@@ -431,6 +433,102 @@ TEST(Urdf, ErrorInAModelNamesTheUrdfFile)
     const std::string scene = dir.write("scene.yaml", "models: [{urdf: bad.urdf}]\n");
     const InputError e = captureInputError([&] { loadScene(scene); });
     EXPECT_INPUT_ERROR_AT(e, urdf, 2, 3, "link 'a' has no mass");
+}
+
+// The joints must form a tree; a joint from a link to itself or a loop of joints (which once sent
+// the pose walk round forever) is refused at the joint's line before anything else reads the file.
+std::string revolute(const std::string& name, const std::string& parent, const std::string& child)
+{
+    return "  <joint name=\"" + name + "\" type=\"revolute\"><parent link=\"" + parent +
+           "\"/><child link=\"" + child +
+           "\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\"/></joint>\n";
+}
+
+std::string massiveLink(const std::string& name)
+{
+    return "  <link name=\"" + name + "\">" + cGoodInertial + "</link>\n";
+}
+
+TEST(Urdf, JointsThatDoNotFormATreeAreRefusedAtTheJoint)
+{
+    TempDir dir;
+    const std::string file = dir.file("robot.urdf");
+    // Lines: 2 a, 3 b, 4 c, then the joints from line 5.
+    const std::string links = massiveLink("a") + massiveLink("b") + massiveLink("c");
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, robot(links + revolute("j1", "a", "b") + revolute("j2", "b", "b"))),
+                          file, 6, 3, "joint 'j2' joins link 'b' to itself");
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, robot(links + revolute("j1", "a", "b") + revolute("j2", "b", "c") +
+                                               revolute("j3", "c", "b"))),
+                          file, 7, 3, "link 'b' is the child of joint 'j1' and of joint 'j3'");
+    // A loop that leaves no link without a parent: urdfdom would say only "failed to find root link".
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, robot(links + revolute("j1", "a", "b") + revolute("j2", "b", "a"))),
+                          file, 6, 3, "closes a loop of joints through link");
+}
+
+// TinyXML recurses once per level: 40 000 nested elements overflowed the stack, 30 000 took 16 s.
+// A linear scan refuses them (and names where the limit was passed) before any parser runs.
+TEST(Urdf, DeeplyNestedElementsAreRefusedBeforeParsing)
+{
+    TempDir dir;
+    const int depth = 40000;
+    std::string nested;
+    for (int i = 0; i < depth; ++i)
+    {
+        nested += "<x>";
+    }
+    for (int i = 0; i < depth; ++i)
+    {
+        nested += "</x>";
+    }
+    const InputError e = urdfError(dir, robot(massiveLink("a") + nested + "\n"));
+    // <robot> is level 1, so the 1000th <x> (column 3 * 999 + 1) is level 1001.
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 3, 2998, "elements nested more than 1000 levels deep");
+    // Comments, CDATA, processing instructions, quoted '>' and self-closing tags open no level.
+    std::string flat = "<?xml version=\"1.0\"?>\n<robot name=\"r\">\n" + massiveLink("a");
+    for (int i = 0; i < 2000; ++i)
+    {
+        flat += "<!-- <x> --><![CDATA[<x>]]><y a=\">\"/>";
+    }
+    flat += "\n</robot>\n";
+    const std::string path = dir.write("flat.urdf", flat);
+    EXPECT_NO_THROW(loadScene(path));
+}
+
+TEST(Urdf, DoctypeAndUnclosedCommentsAreLocated)
+{
+    TempDir dir;
+    const std::string file = dir.file("robot.urdf");
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, "<?xml version=\"1.0\"?>\n<!DOCTYPE robot [ <!ENTITY m \"1\"> ]>\n" +
+                                             robot(massiveLink("a"))),
+                          file, 2, 1,
+                          "a <!DOCTYPE> declaration (and the entities it may define) is not supported");
+    EXPECT_INPUT_ERROR_AT(
+        urdfError(dir, "<robot name=\"r\">\n" + massiveLink("a") + "  <!-- open\n</robot>\n"), file, 3, 3,
+        "the comment '<!--' is never closed; expected '-->'");
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, "\n<robot name=\"r\">\n</robot>\n"), file, 2, 1,
+                          "No link elements found");
+    EXPECT_INPUT_ERROR_AT(urdfError(dir, ""), file, 1, 1, "Error document empty");
+}
+
+// A FIFO would block the open, /dev/zero never ends: both are refused at once, as a URDF file and
+// as a mesh named by a file:// URI.
+TEST(Urdf, OnlyRegularFilesAreRead)
+{
+    TempDir dir;
+    const std::string fifo = dir.file("pipe.urdf");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(fifo); }), fifo, 0, 0,
+                          "is not a regular file (a FIFO), expected a URDF file");
+    const std::string zero = dir.file("zero.urdf");
+    std::filesystem::create_symlink("/dev/zero", zero);
+    EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(zero); }), zero, 0, 0,
+                          "is not a regular file (a device), expected a URDF file");
+    const InputError mesh = urdfError(
+        dir, robot("  <link name=\"a\">" + cGoodInertial +
+                   "\n    <collision><geometry><mesh filename=\"file:///dev/zero\"/></geometry></collision>\n"
+                   "  </link>\n"));
+    EXPECT_INPUT_ERROR_AT(mesh, dir.file("robot.urdf"), 3, 26,
+                          "/dev/zero: error: is not a regular file (a device)");
 }
 
 } // namespace

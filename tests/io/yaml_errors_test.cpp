@@ -3,7 +3,11 @@
 #include "io/scene.h"
 #include "io_test_util.h"
 
+#include <cstdlib>
+#include <filesystem>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <utility>
 
 namespace frontier::io::test
 {
@@ -710,7 +714,9 @@ TEST(YamlErrors, WrongNodeKinds)
 
 TEST(YamlErrors, EmptySceneAndNoBodies)
 {
-    EXPECT_INPUT_ERROR_AT(yamlError(""), "scene.yaml", 0, 0, "empty scene");
+    EXPECT_INPUT_ERROR_AT(yamlError(""), "scene.yaml", 1, 1, "the file is empty; expected a scene");
+    EXPECT_INPUT_ERROR_AT(yamlError("\n# only a comment\n"), "scene.yaml", 1, 1,
+                          "the file holds no YAML content (only comments or an empty document)");
     EXPECT_INPUT_ERROR_AT(yamlError("name: nothing\n"), "scene.yaml", 1, 1, "the scene has no bodies");
 }
 
@@ -766,6 +772,108 @@ bodies:
     EXPECT_INPUT_ERROR_AT(e, scene, 3, 31,
                           "cannot read mesh file '" + dir.file("cube.obj") +
                               "': the mesh importer (assimp) failed: OBJ: vertex index out of range");
+}
+
+// Old Mac line endings (a lone CR): yaml-cpp counts lines at LF only, so the scene is read with
+// CR and CR LF turned into LF and messages name the right line.
+TEST(YamlErrors, CarriageReturnLineEndingsKeepLineNumbers)
+{
+    const std::string ball = "  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}";
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies:\r" + ball + "\r  - bad\r"), "scene.yaml", 3, 5,
+                          "expected a map for body #2, got 'bad'");
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies:\r\n" + ball + "\r\n  - bad\r\n"), "scene.yaml", 3, 5,
+                          "expected a map for body #2, got 'bad'");
+}
+
+// A local tag would change what the number means to some other reader: refused, not dropped.
+TEST(YamlErrors, TaggedNumbersAreRefused)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies:\n  - name: ball\n    mass: !tag 3\n"
+                                    "    shape: {type: sphere, radius: 0.1}\n"),
+                          "scene.yaml", 3, 11, "got one tagged '!tag'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {dt: 0.01, pgs_iterations: !n 5}\nbodies:\n"
+                                    "  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}\n"),
+                          "scene.yaml", 1, 40, "got one tagged '!n'");
+    // The standard tags are numbers.
+    EXPECT_NO_THROW(loadSceneFromString("bodies:\n  - name: ball\n    mass: !!float 3\n"
+                                        "    shape: {type: sphere, radius: 0.1}\n",
+                                        "scene.yaml"));
+}
+
+// Principal moments obey I1 + I2 >= I3: [1, 1, 3] is no rigid body.
+TEST(YamlErrors, InertiaBreakingTheTriangleInequalityIsRefused)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies:\n  - name: ball\n    mass: 1\n    inertia: [1, 1, 3]\n"
+                                    "    shape: {type: sphere, radius: 0.1}\n"),
+                          "scene.yaml", 4, 14, "the two smaller must add up to the largest");
+    EXPECT_NO_THROW(loadSceneFromString("bodies:\n  - name: plate\n    mass: 1\n    inertia: [1, 1, 2]\n"
+                                        "    shape: {type: sphere, radius: 0.1}\n",
+                                        "scene.yaml"));
+}
+
+// Only regular files are read: a FIFO would block, /dev/zero and /dev/urandom never end. A URDF
+// model that cannot be read at all is named at the scene's line.
+TEST(YamlErrors, OnlyRegularFilesAreRead)
+{
+    TempDir dir;
+    const std::string fifo = dir.file("pipe.yaml");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(fifo); }), fifo, 0, 0,
+                          "is not a regular file (a FIFO), expected a scene file");
+    for (const char* device : {"/dev/zero", "/dev/urandom"})
+    {
+        const std::string link = dir.file(std::string("device") + (device[5] == 'z' ? "0" : "1") + ".yaml");
+        std::filesystem::create_symlink(device, link);
+        EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(link); }), link, 0, 0,
+                              "is not a regular file (a device), expected a scene file");
+    }
+    std::filesystem::create_directory(dir.file("folder.urdf"));
+    std::filesystem::create_symlink("/dev/zero", dir.file("zero.urdf"));
+    ASSERT_EQ(::mkfifo(dir.file("pipe.urdf").c_str(), 0600), 0);
+    const std::pair<const char*, const char*> models[] = {
+        {"folder.urdf", "is a directory, expected a URDF file"},
+        {"zero.urdf", "is not a regular file (a device), expected a URDF file"},
+        {"pipe.urdf", "is not a regular file (a FIFO), expected a URDF file"}};
+    for (const auto& [model, needle] : models)
+    {
+        const std::string scene =
+            dir.write("scene.yaml", std::string("\nmodels:\n  - urdf: ") + model + "\n");
+        EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(scene); }), scene, 3, 11,
+                              "cannot read URDF file '" + dir.file(model) + "': " + needle);
+    }
+}
+
+// Input files are read up to FRONTIER_MAX_INPUT_BYTES (256 MiB when unset).
+TEST(YamlErrors, InputFilesAboveTheSizeLimitAreRefused)
+{
+    TempDir dir;
+    const std::string scene =
+        dir.write("scene.yaml", "bodies:\n  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}\n");
+    ASSERT_EQ(::setenv("FRONTIER_MAX_INPUT_BYTES", "40", 1), 0);
+    const InputError big = captureInputError([&] { loadScene(scene); });
+    ASSERT_EQ(::setenv("FRONTIER_MAX_INPUT_BYTES", "forty", 1), 0);
+    const InputError bad = captureInputError([&] { loadScene(scene); });
+    ASSERT_EQ(::unsetenv("FRONTIER_MAX_INPUT_BYTES"), 0);
+    EXPECT_INPUT_ERROR_AT(
+        big, scene, 0, 0,
+        "scene file has 70 bytes, above the limit of 40 bytes (set FRONTIER_MAX_INPUT_BYTES");
+    EXPECT_INPUT_ERROR_AT(bad, "FRONTIER_MAX_INPUT_BYTES", 0, 0,
+                          "expected a positive whole number of bytes, got 'forty'");
+    EXPECT_NO_THROW(loadScene(scene));
+}
+
+// One rule for numbers in every input file (io/file_util.h): counts are whole numbers in range.
+TEST(YamlErrors, CountsAreWholeNumbersInRange)
+{
+    const std::string ball = "bodies:\n  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}\n";
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 2.5}\n" + ball), "scene.yaml", 1, 30,
+                          "expected an integer for 'pgs_iterations' in 'simulation', got '2.5'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 99999999999}\n" + ball), "scene.yaml", 1,
+                          30, "expected an integer for 'pgs_iterations'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {pgs_iterations: 2000000}\n" + ball), "scene.yaml", 1, 30,
+                          "expected an integer from 1 to 1000000 for 'pgs_iterations'");
+    EXPECT_INPUT_ERROR_AT(yamlError("simulation: {dt: .inf}\n" + ball), "scene.yaml", 1, 18,
+                          "expected a finite number for 'dt' in 'simulation', got '.inf'");
 }
 
 } // namespace
