@@ -209,7 +209,7 @@ std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string
         if (!kind)
         {
             throw SweepInputError("--integrator: unknown integrator '" + raw +
-                                  "' (expected euler or rattle)");
+                                  "' (expected euler, rattle or rattle4)");
         }
         if (std::find(integrators.begin(), integrators.end(), *kind) == integrators.end())
         {
@@ -300,7 +300,8 @@ namespace
 {
 using RunFraction = std::function<void(double)>;
 
-// The reference: rattle linear at the finest dt / cReferenceRefinement, euler when rattle fails
+// The reference: rattle linear (rattle4 when the grid has rattle4) at the finest dt /
+// cReferenceRefinement, euler when that fails
 // (reference.fallback says why). work leaves with the reference's settings. Throws
 // SweepReferenceError when euler fails too.
 Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedule& schedule,
@@ -312,7 +313,11 @@ Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedu
     work.simulation.dt = reference.dt;
     work.simulation.duration = schedule.durationS();
     work.simulation.solver = core::SolverKind::Linear;
-    for (core::IntegratorKind integrator : {core::IntegratorKind::Rattle, core::IntegratorKind::Euler})
+    const bool fourthOrder = std::find(grid.integrators.begin(), grid.integrators.end(),
+                                       core::IntegratorKind::Rattle4) != grid.integrators.end();
+    const core::IntegratorKind first =
+        fourthOrder ? core::IntegratorKind::Rattle4 : core::IntegratorKind::Rattle;
+    for (core::IntegratorKind integrator : {first, core::IntegratorKind::Euler})
     {
         reference.method = {core::SolverKind::Linear, work.simulation.pgsIterations, integrator};
         work.simulation.integrator = integrator;
@@ -349,7 +354,7 @@ Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedu
             throw SweepReferenceError("the reference run (" + reference.method.label() + ", dt " +
                                       formatSeconds(reference.dt) + " s) failed: " + failure);
         }
-        reference.fallback = "rattle: " + failure;
+        reference.fallback = std::string(core::integratorName(first)) + ": " + failure;
     }
     return {};
 }

@@ -2,12 +2,12 @@
 // run per cell, the reference run and the metrics (cost, trajectory error, joint gap, energy drift,
 // penetration). No output: study/sweep_report.h writes the table and CSV, app/sweep_chart.h the chart.
 //
-// Accuracy is measured against a reference run: integrator rattle (euler when rattle cannot be
-// built or its run fails), solver linear, at the finest time step of the grid divided by
-// cReferenceRefinement. Every run records the centre-of-mass positions of the moving bodies at the
-// same sample times: about cSampleCount multiples of a common multiple of every time step of the
-// grid (usually the largest one), spread evenly over the run, the last one at its end, so every
-// cell and the reference hit them exactly.
+// Accuracy is measured against a reference run: integrator rattle, or rattle4 when the grid has
+// rattle4 (euler when that cannot be built or its run fails), solver linear, at the finest time step of the
+// grid divided by cReferenceRefinement. Every run records the centre-of-mass positions of the moving bodies
+// at the same sample times: about cSampleCount multiples of a common multiple of every time step of the grid
+// (usually the largest one), spread evenly over the run, the last one at its end, so every cell and the
+// reference hit them exactly.
 #pragma once
 
 #include "app/method.h"
@@ -50,7 +50,7 @@ std::vector<double> parseTimeSteps(const std::vector<std::string>& entries);
 // Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps), no integrator
 // (the methods' integrator is left euler).
 std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
-// Integrators: euler, rattle.
+// Integrators: euler, rattle, rattle4.
 std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries);
 
 // The default --dt: a halving ladder of cDefaultLadderSteps steps ending at the scene's dt
@@ -95,11 +95,11 @@ struct SweepCell
 
 struct SweepReference
 {
-    Method method;   // rattle linear, or euler linear when rattle failed
+    Method method;   // rattle (or rattle4) linear, or euler linear when that failed
     double dt = 0.0; // s
     long steps = 0;
     double wallSeconds = 0.0;
-    std::string fallback; // why rattle was not used (empty when it was)
+    std::string fallback; // "rattle: why" (or rattle4) when euler was used, else empty
 };
 
 struct SweepResult

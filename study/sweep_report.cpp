@@ -108,7 +108,7 @@ std::string describeReference(const SweepResult& result)
     std::string line = text;
     if (!r.fallback.empty())
     {
-        line += " (not rattle: " + r.fallback + ")";
+        line += " (not " + r.fallback + ")";
     }
     return line;
 }
