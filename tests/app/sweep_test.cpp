@@ -57,6 +57,8 @@ TEST(Sweep, ListsParseSortAndDeduplicate)
     EXPECT_EQ(solvers[3].solver, core::SolverKind::Dense);
     EXPECT_EQ(parseIntegrators({"rattle", "euler"}),
               (std::vector<core::IntegratorKind>{core::IntegratorKind::Rattle, core::IntegratorKind::Euler}));
+    EXPECT_EQ(parseIntegrators({"rattle4"}),
+              (std::vector<core::IntegratorKind>{core::IntegratorKind::Rattle4}));
     EXPECT_THROW(parseTimeSteps({"1e-3", "nan"}), SweepInputError);
     EXPECT_THROW(parseTimeSteps({"inf"}), SweepInputError);
     EXPECT_THROW(parseSolvers({"pgs:"}, 20), SweepInputError);
