@@ -65,6 +65,7 @@ void Simulator::takeStep(State& state)
     mStats.seconds.fill(0.0);
     mStats.firstOrderFallback = false;
     mStats.secondOrderFallback = false;
+    mComposedStep = false;
     mH = mDt;
     const IntegratorKind integrator = mModel.simulation.integrator;
     mRattleStep = integrator != IntegratorKind::Euler;
@@ -122,6 +123,9 @@ bool Simulator::stepRattle4(State& state)
     bool first = true;
     int iterations = 0;
     mRattle4Stage = true;
+    mStageJoint.assign(mModel.joints.size(), Vec6::Zero());
+    mStageExtras.clear();
+    int stageIndex = 0;
     for (const double c : weights)
     {
         const double driveStep = 0.5 * (std::abs(c) / total) * mDt;
@@ -138,8 +142,13 @@ bool Simulator::stepRattle4(State& state)
         }
         iterations += mStats.stabilizationIterations;
         first = false;
+        if (++stageIndex < 3)
+        {
+            keepStageImpulses();
+        }
     }
     mRattle4Stage = false;
+    mComposedStep = true;
     state.time = start + mDt;
     ++state.step;
     mStats.stabilizationIterations = iterations;
@@ -246,6 +255,26 @@ Simulator::RattleOutcome Simulator::stepRattle(State& state, bool firstStage)
     }
     clock.lap(StepStage::Integrate);
     return RattleOutcome::Done;
+}
+
+// A rattle4 stage's impulses, kept for the step's report (core/step_report.cpp), which takes all of
+// them at the pose the step ends in, as for rattle.
+void Simulator::keepStageImpulses()
+{
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        mStageJoint[k] += mSolution.joint[k];
+    }
+    const auto keep = [&](const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda)
+    {
+        if (!blocks.empty())
+        {
+            mStageExtras.emplace_back(blocks, lambda);
+        }
+    };
+    keep(mProblem.blocks(), mProblem.impulses());
+    keep(mLoopBlocks, mDrift.loopCorrection());
+    keep(mRattle.blocks(), mRattle.impulses());
 }
 
 // Contact or joint-limit rows among the extra rows: one-sided, which a backward stage of rattle4

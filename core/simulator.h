@@ -142,6 +142,11 @@ class Simulator
     RattleOutcome stepRattle(State& state, bool firstStage);
     bool stepRattle4(State& state); // false: a stage met one-sided rows or stalled
     bool hasOneSidedRows() const;
+    void addRowImpulses(const State& state, std::vector<Vec6>& out) const; // core/step_report.cpp
+    void keepStageImpulses();
+    bool mComposedStep = false;    // the last step was a composed rattle4 step
+    LargeVector<Vec6> mStageJoint; // its first two stages' joint-block impulses, summed
+    std::vector<std::pair<std::vector<ExtraBlock>, Eigen::VectorXd>> mStageExtras; // ... extra rows
     bool mRattleStep = false;     // the step under way is a rattle step (or a rattle4 stage)
     bool mRattle4Stage = false;   // ... a stage of a rattle4 step
     bool mHasBlockDrives = false; // some joint has drive rows in its block (damping, actuators)
