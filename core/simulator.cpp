@@ -69,7 +69,10 @@ void Simulator::takeStep(State& state)
     mH = mDt;
     const IntegratorKind integrator = mModel.simulation.integrator;
     mRattleStep = integrator != IntegratorKind::Euler;
-    mDriveStep = mRattleStep ? 0.5 * mDt : mDt;
+    if (integrator != IntegratorKind::Rattle4) // rattle4 keeps its last stage's (stepRattle4)
+    {
+        mDriveStep = mRattleStep ? 0.5 * mDt : mDt;
+    }
     if (!mRattleStep)
     {
         stepEuler(state);
