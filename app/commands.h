@@ -94,7 +94,7 @@ struct SweepOptions
     std::string scene;
     std::vector<std::string> dts;         // s; default: the scene's dt x 16, 8, 4, 2, 1
     std::vector<std::string> solvers;     // linear, dense, pgs, pgs:K; default: linear
-    std::vector<std::string> integrators; // euler, rattle; default: both
+    std::vector<std::string> integrators; // euler, rattle, rattle4; default: euler, rattle
     std::optional<double> duration;       // s; default: the scene's, at most 2 s
     std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
     io::UrdfOptions urdf;

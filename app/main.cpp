@@ -120,7 +120,11 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_option("--solver", o.solver, "linear | dense | pgs")
         ->check(CLI::IsMember({"linear", "dense", "pgs"}));
     run.add_option("--pgs-iterations", o.pgsIterations, "sweeps of the pgs solver")->transform(cIterations);
-    run.add_option("--integrator", o.integrator, "euler | rattle")->check(CLI::IsMember({"euler", "rattle"}));
+    run.add_option("--integrator", o.integrator,
+                   "euler | rattle | rattle4 (fourth order, 3 rattle stages a step; a step with contacts "
+                   "or joint limits is one rattle step, first order across an impact; order 4 for "
+                   "conservative joints only: damping, friction, servos are first order)")
+        ->check(CLI::IsMember({"euler", "rattle", "rattle4"}));
     run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here")->check(cPath);
     run.add_option("--record-every", o.recordEvery, "trajectory, joints and contacts rows every K steps")
         ->transform(cEvery);
@@ -163,7 +167,7 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
         ->allow_extra_args(false);
     sweep
         .add_option("--integrator", o.integrators,
-                    "integrators, comma-separated: euler, rattle; default: both")
+                    "integrators, comma-separated: euler, rattle, rattle4; default: euler, rattle")
         ->delimiter(',')
         ->allow_extra_args(false);
     sweep
@@ -180,7 +184,8 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
     addRobotOptions(sweep, o.urdf);
     sweep.footer(
         "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
-        "rattle (euler when rattle fails) with the linear solver at the finest dt / 4. Trajectory "
+        "rattle (rattle4 when the sweep has rattle4; euler when that fails) with the linear solver at "
+        "the finest dt / 4. Trajectory "
         "error: the largest centre-of-mass distance (m) to the reference over all moving bodies at 20 "
         "sample times spread over the run, the last at its end. Exit codes: 0 done (failed cells are "
         "results), 1 the reference or every cell failed, or gnuplot failed; 2 bad input.");

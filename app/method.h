@@ -1,6 +1,6 @@
 // app/method.h: a simulation method, the integrator with the solver and its options, as `frontier
 // run`, `check`, `sweep` and `stability` name it. Printed one way, `solver[:K]/integrator`
-// (`linear/euler`, `pgs:100/rattle`; K = pgs sweeps, written for pgs only).
+// (`linear/euler`, `pgs:100/rattle`, `pgs:20/rattle4`; K = pgs sweeps, written for pgs only).
 #pragma once
 
 #include "core/model.h"
@@ -33,7 +33,7 @@ struct Method
 // Reads `solver[:K][/integrator]` (`dense` = `dense/euler`, `pgs` = `pgs:defaultPgsIterations`)
 // and the sweep tables' `integrator solver[:K]` (`euler pgs:20`). nullopt for anything else:
 // solver linear, dense or pgs, K a whole number 1 <= K <= cMaxPgsIterations and only for pgs,
-// integrator euler or rattle. hasIntegrator (when given) says whether the text named one.
+// integrator euler, rattle or rattle4. hasIntegrator (when given) says whether the text named one.
 std::optional<Method> parseMethod(const std::string& text, int defaultPgsIterations = 20,
                                   bool* hasIntegrator = nullptr);
 

@@ -92,7 +92,7 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.simulatedSeconds = static_cast<double>(s.steps) * model.simulation.dt;
     stats.extra["max_joint_error_rad"] = s.maxJointErrorRad;
     stats.extra["energy_max_j"] = s.energyMaxJ;
-    if (model.simulation.integrator == core::IntegratorKind::Rattle)
+    if (model.simulation.integrator != core::IntegratorKind::Euler)
     {
         stats.extra["first_order_steps"] = static_cast<double>(s.firstOrderSteps);
     }

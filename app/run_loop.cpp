@@ -119,7 +119,8 @@ long stepsFor(double duration, double dt)
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record)
 {
     RunSummary summary;
-    collision::ContactDetector detector(model, collision::contactMargin(model.simulation.dt));
+    collision::ContactDetector detector(model,
+                                        collision::contactMargin(core::longestStage(model.simulation)));
     core::Simulator simulator(model, {}, &detector);
     core::State state = core::initialState(model);
     summary.energyInitialJ = core::totalEnergy(model, state);

@@ -146,15 +146,20 @@ void Actuation::beginStep()
 
 void Actuation::applyForces(State& state, double t0, double t1)
 {
+    // A backward interval (t1 < t0: the middle stage of rattle4, docs/method.md §11) takes the
+    // loads of [t1, t0) with the opposite sign, so the stages of a step add up to its interval.
+    const double sign = t1 < t0 ? -1.0 : 1.0;
+    const double from = std::min(t0, t1);
+    const double to = std::max(t0, t1);
     for (const Load& load : mModel.loads)
     {
-        const double duration = load.instant ? 0.0 : overlap(t0, t1, load.from, load.to);
-        const bool now = load.instant && *load.instant >= t0 && *load.instant < t1;
+        const double duration = load.instant ? 0.0 : overlap(from, to, load.from, load.to);
+        const bool now = load.instant && *load.instant >= from && *load.instant < to;
         if (!(duration > 0.0) && !now)
         {
             continue;
         }
-        const double scale = now ? 1.0 : duration; // an impulse as it is, a force times its time
+        const double scale = sign * (now ? 1.0 : duration); // an impulse as it is, a force times its time
         const BodyState& s = state.bodies[static_cast<std::size_t>(load.body)];
         const bool bodyFrame = load.frame == LoadFrame::Body;
         const Vec3 force = bodyFrame ? Vec3(s.orientation_WB * load.force) : load.force;

@@ -69,7 +69,8 @@ class Actuation
     // A new step: forgets the impulses of an earlier attempt.
     void beginStep();
     // Effort actuators and loads over [t0, t1) (s) at the pose of `state`: its moving bodies'
-    // velocities change by M^-1 times their impulse.
+    // velocities change by M^-1 times their impulse. t1 < t0 (a backward stage of rattle4) gives
+    // the opposite of the impulse over [t1, t0).
     void applyForces(State& state, double t0, double t1);
     // The right-hand side c of the in-block rows of a solve of duration h (s) ending at tEnd (s), at
     // the pose of `state` (rhs.joint: per joint, rows as in JointRows).

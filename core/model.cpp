@@ -115,7 +115,26 @@ std::optional<SolverKind> solverFromName(const std::string& name)
 
 const char* integratorName(IntegratorKind kind)
 {
-    return kind == IntegratorKind::Euler ? "euler" : "rattle";
+    switch (kind)
+    {
+    case IntegratorKind::Euler:
+        return "euler";
+    case IntegratorKind::Rattle:
+        return "rattle";
+    case IntegratorKind::Rattle4:
+        return "rattle4";
+    }
+    return "euler";
+}
+
+double longestStage(const SimulationSettings& settings)
+{
+    if (settings.integrator != IntegratorKind::Rattle4)
+    {
+        return settings.dt;
+    }
+    const double cbrt2 = std::cbrt(2.0);
+    return cbrt2 / (2.0 - cbrt2) * settings.dt;
 }
 
 std::optional<IntegratorKind> integratorFromName(const std::string& name)
@@ -127,6 +146,10 @@ std::optional<IntegratorKind> integratorFromName(const std::string& name)
     if (name == "rattle")
     {
         return IntegratorKind::Rattle;
+    }
+    if (name == "rattle4")
+    {
+        return IntegratorKind::Rattle4;
     }
     return std::nullopt;
 }

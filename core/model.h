@@ -195,6 +195,7 @@ enum class IntegratorKind
 {
     Euler,
     Rattle,
+    Rattle4, // three RATTLE stages composed to fourth order (docs/method.md §11)
 };
 
 struct SimulationSettings
@@ -242,6 +243,9 @@ std::optional<JointType> jointTypeFromName(const std::string& name);
 const char* solverName(SolverKind kind);
 std::optional<SolverKind> solverFromName(const std::string& name);
 const char* integratorName(IntegratorKind kind);
+// The longest time one stage of a step covers (s): dt, or |c2| dt = 1.70 dt for rattle4, whose
+// middle stage runs backward (docs/method.md §11). Contact margins cover it.
+double longestStage(const SimulationSettings& settings);
 std::optional<IntegratorKind> integratorFromName(const std::string& name);
 
 // Fills a joint's frames from world-space data at the model's initial pose: anchor (m) and unit

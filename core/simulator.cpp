@@ -1,12 +1,14 @@
-// core/simulator.cpp: the step pipelines of the first-order (`euler`) and second-order (`rattle`)
-// schemes.
+// core/simulator.cpp: the step pipelines of the first-order (`euler`), second-order (`rattle`) and
+// fourth-order (`rattle4`) schemes.
 #include "core/simulator.h"
 
 #include "core/joints/coordinates.h"
+#include "core/joints/drive.h"
 #include "core/step/positions.h"
 #include "core/step/velocity_stage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace frontier::core
@@ -20,6 +22,13 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
       mDrift(model, mOptions, mLayout, *mSolver), mRattle(model, mOptions, mLayout, *mSolver),
       mBlowUp(model, mOptions, model.simulation.dt), mDt(model.simulation.dt)
 {
+    mH = mDt;
+    mDriveStep = model.simulation.integrator == IntegratorKind::Euler ? mDt : 0.5 * mDt;
+    const std::vector<std::uint8_t> actuated = actuatedJoints(model);
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        mHasBlockDrives = mHasBlockDrives || blockDriveRows(model.joints[k], actuated[k] != 0) > 0;
+    }
     const std::size_t nb = model.bodies.size();
     const std::size_t nj = model.joints.size();
     mRhs.resize(nb, nj);
@@ -53,8 +62,17 @@ void Simulator::step(State& state)
 
 void Simulator::takeStep(State& state)
 {
-    mRattleStep = mModel.simulation.integrator == IntegratorKind::Rattle;
+    mStats.seconds.fill(0.0);
     mStats.firstOrderFallback = false;
+    mStats.secondOrderFallback = false;
+    mComposedStep = false;
+    mH = mDt;
+    const IntegratorKind integrator = mModel.simulation.integrator;
+    mRattleStep = integrator != IntegratorKind::Euler;
+    if (integrator != IntegratorKind::Rattle4) // rattle4 keeps its last stage's (stepRattle4)
+    {
+        mDriveStep = mRattleStep ? 0.5 * mDt : mDt;
+    }
     if (!mRattleStep)
     {
         stepEuler(state);
@@ -63,17 +81,81 @@ void Simulator::takeStep(State& state)
     mStepStart = state;
     mEndRowsValid = false; // the rattle projection swaps mRowsAfter away
     const bool penetrationCapped = mPenetration.capped();
-    if (!stepRattle(state))
+    if (integrator == IntegratorKind::Rattle4)
+    {
+        if (stepRattle4(state))
+        {
+            return;
+        }
+        // A stage met a contact or a joint limit, or stalled: the step is taken again from its
+        // start as one RATTLE step (docs/method.md §11).
+        state = mStepStart;
+        mPenetration.setCapped(penetrationCapped);
+        mRattle.forgetFactoredPose();
+        mH = mDt;
+        mDriveStep = 0.5 * mDt;
+        mStats.secondOrderFallback = true;
+    }
+    if (stepRattle(state, true) != RattleOutcome::Done)
     {
         // RATTLE's position iteration stalled (very fast rotation within the step): this step is
         // taken again from its start by the robust first-order scheme.
         state = mStepStart;
         mPenetration.setCapped(penetrationCapped);
         mRattleStep = false;
+        mDriveStep = mDt;
         mRattle.forgetFactoredPose();
         stepEuler(state);
         mStats.firstOrderFallback = true;
     }
+}
+
+// Fourth order (docs/method.md §11): RATTLE stages of c1 h, c2 h, c1 h (the triple jump; c2 < 0),
+// each a whole RATTLE step at its own time. The drives and joint friction of a stage act over
+// the positive time w h (the weights add up to 1), so they stay dissipative and stable in the
+// backward stage. False: a stage met contact or limit rows (one-sided, not time-reversible) or
+// stalled; the state is then partly stepped.
+bool Simulator::stepRattle4(State& state)
+{
+    const double start = state.time;
+    const double cbrt2 = std::cbrt(2.0);
+    const double c1 = 1.0 / (2.0 - cbrt2);
+    const double c2 = -cbrt2 / (2.0 - cbrt2);
+    const double total = c1 + c1 - c2; // the sum of |c|
+    const std::array<double, 3> weights = {c1, c2, c1};
+    bool first = true;
+    int iterations = 0;
+    mRattle4Stage = true;
+    mStageJoint.assign(mModel.joints.size(), Vec6::Zero());
+    mStageExtras.clear();
+    int stageIndex = 0;
+    for (const double c : weights)
+    {
+        const double driveStep = 0.5 * (std::abs(c) / total) * mDt;
+        if (driveStep != mDriveStep && mHasBlockDrives)
+        {
+            mRattle.forgetFactoredPose(); // the drive rows' compliance depends on the stage's time
+        }
+        mH = c * mDt;
+        mDriveStep = driveStep;
+        if (stepRattle(state, first) != RattleOutcome::Done)
+        {
+            mRattle4Stage = false;
+            return false;
+        }
+        iterations += mStats.stabilizationIterations;
+        first = false;
+        if (++stageIndex < 3)
+        {
+            keepStageImpulses();
+        }
+    }
+    mRattle4Stage = false;
+    mComposedStep = true;
+    state.time = start + mDt;
+    ++state.step;
+    mStats.stabilizationIterations = iterations;
+    return true;
 }
 
 // First order: kick h g, impulses (joints exact, contacts), drift, SHAKE-type drift removal.
@@ -126,21 +208,30 @@ void Simulator::rowsAtStart(const State& state)
 
 // Second order (RATTLE): kick h/2 g; impulses at q_n (joints, contacts) that the Newton
 // iteration of stabilizeJoints completes into the multiplier putting q_{n+1} on the constraint
-// manifold; drift; kick h/2 g; velocity projection at q_{n+1}.
-bool Simulator::stepRattle(State& state)
+// manifold; drift; kick h/2 g; velocity projection at q_{n+1}. h = mH: the step, or a stage of
+// rattle4 (negative for its middle stage). firstStage: the step's actuator accounting starts.
+Simulator::RattleOutcome Simulator::stepRattle(State& state, bool firstStage)
 {
     StageClock clock(mStats.seconds);
+    const bool stage = mRattle4Stage;
     checkState(state, "start of step");
-    mActuation.beginStep();
+    if (firstStage)
+    {
+        mActuation.beginStep();
+    }
     detectContacts(state);
     clock.lap(StepStage::Detect);
-    computeFreeVelocities(state, 0.5 * mDt);
+    computeFreeVelocities(state, 0.5 * mH);
     do
     {
         factorAtStart(state); // docs/method.md §3, eq. (5), shared with the last step's projection
         clock.lap(StepStage::Factor);
         buildExtraRows(state);
-        setMomentumRhs(state, state.time + 0.5 * mDt);
+        if (stage && hasOneSidedRows())
+        {
+            return RattleOutcome::OneSided;
+        }
+        setMomentumRhs(state, state.time + 0.5 * mH);
         carryImpulses();
         mSolver->solve(mRhs, mSolution); // §3 step 3: joint impulses of the free velocities
         solveContactImpulses(state);
@@ -150,15 +241,55 @@ bool Simulator::stepRattle(State& state)
     removePenetration(state);
     if (!stabilizeJoints(state)) // Newton on C(q_{n+1}) = 0, impulses along J(q_n)^T
     {
-        return false;
+        return RattleOutcome::Stalled;
     }
     carryAngularMomentum(state); // w_{n+1} = I_W(R_{n+1})^-1 L
-    kickByGravity(state, 0.5 * mDt);
-    mActuation.applyForces(state, state.time + 0.5 * mDt, state.time + mDt);
+    kickByGravity(state, 0.5 * mH);
+    mActuation.applyForces(state, state.time + 0.5 * mH, state.time + mH);
     projectVelocities(state); // J(q_{n+1}) u_{n+1} = 0, factored for the next step
-    finishStep(state);
+    if (stage)
+    {
+        trackJointAngles(mModel, state);
+        state.time += mH;
+        checkState(state, "end of step");
+    }
+    else
+    {
+        finishStep(state);
+    }
     clock.lap(StepStage::Integrate);
-    return true;
+    return RattleOutcome::Done;
+}
+
+// A rattle4 stage's impulses, kept for the step's report (core/step_report.cpp), which takes all of
+// them at the pose the step ends in, as for rattle.
+void Simulator::keepStageImpulses()
+{
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        mStageJoint[k] += mSolution.joint[k];
+    }
+    const auto keep = [&](const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda)
+    {
+        if (!blocks.empty())
+        {
+            mStageExtras.emplace_back(blocks, lambda);
+        }
+    };
+    keep(mProblem.blocks(), mProblem.impulses());
+    keep(mLoopBlocks, mDrift.loopCorrection());
+    keep(mRattle.blocks(), mRattle.impulses());
+}
+
+// Contact or joint-limit rows among the extra rows: one-sided, which a backward stage of rattle4
+// cannot hold (docs/method.md §11).
+bool Simulator::hasOneSidedRows() const
+{
+    return std::any_of(mProblem.blocks().begin(), mProblem.blocks().end(),
+                       [](const ExtraBlock& block) {
+                           return block.kind == ExtraBlock::Kind::Contact ||
+                                  block.kind == ExtraBlock::Kind::Limit;
+                       });
 }
 
 // Rows and factorization at the start-of-step pose (core/step/rattle_projection.h).
@@ -170,7 +301,7 @@ void Simulator::factorAtStart(const State& state)
 // RATTLE's velocity projection at q_{n+1} (core/step/rattle_projection.h).
 void Simulator::projectVelocities(State& state)
 {
-    mRattle.project(state, mRows, mRowsAfter, mLoopBlocks, mProblem, mRhs, mSolution, mDt, driveStep(),
+    mRattle.project(state, mRows, mRowsAfter, mLoopBlocks, mProblem, mRhs, mSolution, mH, driveStep(),
                     mActuation);
 }
 
@@ -262,7 +393,7 @@ void Simulator::detectContacts(const State& state)
 void Simulator::buildExtraRows(const State& state)
 {
     buildLoopBlocks(mModel, mLayout, mRows, mLoopBlocks);
-    mStats.extraRows = mProblem.build(state, mStart, mLoopBlocks, mDt, driveStep(), mActuation);
+    mStats.extraRows = mProblem.build(state, mStart, mLoopBlocks, std::abs(mH), driveStep(), mActuation);
     recordStartDefects(state);
 }
 
@@ -311,13 +442,14 @@ void Simulator::solveContactImpulses(State& state)
 // The bounded position projection of overlaps and limit overruns (core/step/penetration_projection.h).
 void Simulator::removePenetration(State& state)
 {
-    mPenetration.apply(state, mStart, mProblem, mSolution, mRows, mPrincipal, mDt, driveStep(), mActuation);
+    mPenetration.apply(state, mStart, mProblem, mSolution, mRows, mPrincipal, std::abs(mH), driveStep(),
+                       mActuation);
 }
 
 // The position update from the start-of-step pose (core/step/positions.h).
 void Simulator::integratePositions(State& state)
 {
-    core::integratePositions(mModel, mStart, mPrincipal, mRows, mDt, mRattleStep, state);
+    core::integratePositions(mModel, mStart, mPrincipal, mRows, mH, mRattleStep, state);
 }
 
 // w_{n+1} = I_W(R_{n+1})^-1 I_W(R_n) w (core/step/positions.h).
@@ -331,7 +463,7 @@ void Simulator::carryAngularMomentum(State& state)
 bool Simulator::stabilizeJoints(State& state)
 {
     const DriftCorrection::Outcome outcome =
-        mDrift.run(state, mStart, mPrincipal, mRows, mRowsAfter, mLoopBlocks, mSolution, mDt, driveStep(),
+        mDrift.run(state, mStart, mPrincipal, mRows, mRowsAfter, mLoopBlocks, mSolution, mH, driveStep(),
                    mRattleStep, mActuation);
     const JointErrors& errors = mDrift.errors();
     mStats.maxJointErrorM = errors.maxM;

@@ -134,9 +134,24 @@ class Simulator
   private:
     void takeStep(State& state);
     void stepEuler(State& state);
-    bool stepRattle(State& state); // false: stalled, state partly stepped
-    bool mRattleStep = false;      // the step under way is a rattle step
-    State mStepStart;              // the state a rattle step started from
+    enum class RattleOutcome
+    {
+        Done,
+        Stalled,  // the position iteration stalled; state partly stepped
+        OneSided, // a rattle4 stage met contact or limit rows; state partly stepped
+    };
+    RattleOutcome stepRattle(State& state, bool firstStage);
+    bool stepRattle4(State& state); // false: a stage met one-sided rows or stalled
+    bool hasOneSidedRows() const;
+    void addRowImpulses(const State& state, std::vector<Vec6>& out) const; // core/step_report.cpp
+    void keepStageImpulses();
+    bool mComposedStep = false;    // the last step was a composed rattle4 step
+    LargeVector<Vec6> mStageJoint; // its first two stages' joint-block impulses, summed
+    std::vector<std::pair<std::vector<ExtraBlock>, Eigen::VectorXd>> mStageExtras; // ... extra rows
+    bool mRattleStep = false;     // the step under way is a rattle step (or a rattle4 stage)
+    bool mRattle4Stage = false;   // ... a stage of a rattle4 step
+    bool mHasBlockDrives = false; // some joint has drive rows in its block (damping, actuators)
+    State mStepStart;             // the state a rattle or rattle4 step started from
     void checkState(const State& state, const char* where) const;
     void recordStartDefects(const State& state);
     void detectContacts(const State& state);
@@ -159,8 +174,9 @@ class Simulator
     void removePenetration(State& state);
     bool stabilizeJoints(State& state); // false: a rattle step stalled
     // Duration of one impulse solve (s): the step, or half of it for rattle, whose two velocity
-    // stages each take half of the joints' damping and friction (core/joints/drive.h).
-    double driveStep() const { return mRattleStep ? 0.5 * mDt : mDt; }
+    // stages each take half of the joints' damping and friction (core/joints/drive.h); for a
+    // rattle4 stage half of its share of the step, always positive (docs/method.md §11).
+    double driveStep() const { return mDriveStep; }
 
     const Model& mModel;
     StepOptions mOptions;
@@ -185,6 +201,8 @@ class Simulator
     bool mEndRowsValid = false;
     StepStats mStats;
     double mDt;
+    double mH = 0.0;         // the (sub)step under way (s): mDt, or a rattle4 stage (< 0 in the middle)
+    double mDriveStep = 0.0; // driveStep() (s)
 };
 
 } // namespace frontier::core

@@ -1,5 +1,6 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
-// (the `--joints` and `--contacts` outputs). Nothing here runs inside step(): a step keeps its
+// (the `--joints` and `--contacts` outputs). Nothing here runs inside step() but for rattle4, whose
+// first two stages' impulses are added up at their end (addRowImpulses): a step keeps its
 // impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
 // projection's in RattleProjection::impulses, the loops' drift correction in
 // DriftCorrection::loopCorrection).
@@ -46,6 +47,34 @@ Vec6 coordinateRowLike(const Joint& joint, const detail::JointGeometry& g, const
 void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) const
 {
     out.assign(mModel.joints.size(), Vec6::Zero());
+    addRowImpulses(state, out);
+    // Effort actuators pass their commanded (clipped) impulse through the joint as applied forces.
+    const std::span<const ActuatorEffort> efforts = mActuation.efforts();
+    for (std::size_t a = 0; a < mModel.actuators.size() && a < efforts.size(); ++a)
+    {
+        const Actuator& actuator = mModel.actuators[a];
+        if (actuator.kind != ActuatorKind::Effort)
+        {
+            continue;
+        }
+        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
+        const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
+        out[static_cast<std::size_t>(actuator.joint)] +=
+            coordinateRow(joint, g, actuator.coordinate).J_b * (efforts[a].effort * mDt);
+    }
+    // About the anchor: the torque about the child's centre of mass less r_b x F.
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        const Joint& joint = mModel.joints[k];
+        const Vec3 r_b = detail::jointGeometry(joint, jointPose(state, joint)).r_b;
+        out[k].tail<3>() -= r_b.cross(Vec3(out[k].head<3>()));
+    }
+}
+
+// The impulses of the rows of the last step's solves (rattle4: of its three stages) on each joint's
+// child, linear and angular about its centre of mass, added into out.
+void Simulator::addRowImpulses(const State& state, std::vector<Vec6>& out) const
+{
     JointRows rows;
     // A whole joint block (a tree joint's, a loop's): lambda row by row as in JointRows.
     auto addBlock = [&](int k, const auto& lambda)
@@ -80,7 +109,8 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
     {
         if (mLayout.jointBlock[k] >= 0)
         {
-            addBlock(static_cast<int>(k), mSolution.joint[k]);
+            addBlock(static_cast<int>(k),
+                     mComposedStep ? Vec6(mSolution.joint[k] + mStageJoint[k]) : Vec6(mSolution.joint[k]));
         }
     }
     addExtra(mProblem.blocks(), mProblem.impulses());
@@ -89,26 +119,12 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
     {
         addExtra(mRattle.blocks(), mRattle.impulses()); // the velocity projection at the end of a rattle step
     }
-    // Effort actuators pass their commanded (clipped) impulse through the joint as applied forces.
-    const std::span<const ActuatorEffort> efforts = mActuation.efforts();
-    for (std::size_t a = 0; a < mModel.actuators.size() && a < efforts.size(); ++a)
+    if (mComposedStep)
     {
-        const Actuator& actuator = mModel.actuators[a];
-        if (actuator.kind != ActuatorKind::Effort)
+        for (const auto& [blocks, lambda] : mStageExtras) // rattle4: the first two stages' extra rows
         {
-            continue;
+            addExtra(blocks, lambda);
         }
-        const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
-        const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
-        out[static_cast<std::size_t>(actuator.joint)] +=
-            coordinateRow(joint, g, actuator.coordinate).J_b * (efforts[a].effort * mDt);
-    }
-    // About the anchor: the torque about the child's centre of mass less r_b x F.
-    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-    {
-        const Joint& joint = mModel.joints[k];
-        const Vec3 r_b = detail::jointGeometry(joint, jointPose(state, joint)).r_b;
-        out[k].tail<3>() -= r_b.cross(Vec3(out[k].head<3>()));
     }
 }
 

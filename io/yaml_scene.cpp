@@ -60,7 +60,7 @@ void readSimulation(const YamlSource& source, const YAML::Node& node, core::Simu
         if (!kind)
         {
             map.failAtValue("integrator", "unknown integrator '" + name + "' for " + map.what("integrator") +
-                                              "; expected euler or rattle");
+                                              "; expected euler, rattle or rattle4");
         }
         sim.integrator = *kind;
     }

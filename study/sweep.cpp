@@ -6,8 +6,10 @@
 #include "core/state.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 namespace frontier::study
@@ -209,7 +211,7 @@ std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string
         if (!kind)
         {
             throw SweepInputError("--integrator: unknown integrator '" + raw +
-                                  "' (expected euler or rattle)");
+                                  "' (expected euler, rattle or rattle4)");
         }
         if (std::find(integrators.begin(), integrators.end(), *kind) == integrators.end())
         {
@@ -300,7 +302,8 @@ namespace
 {
 using RunFraction = std::function<void(double)>;
 
-// The reference: rattle linear at the finest dt / cReferenceRefinement, euler when rattle fails
+// The reference: rattle linear (rattle4 when the grid has rattle4) at the finest dt /
+// cReferenceRefinement, euler when that fails
 // (reference.fallback says why). work leaves with the reference's settings. Throws
 // SweepReferenceError when euler fails too.
 Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedule& schedule,
@@ -312,7 +315,11 @@ Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedu
     work.simulation.dt = reference.dt;
     work.simulation.duration = schedule.durationS();
     work.simulation.solver = core::SolverKind::Linear;
-    for (core::IntegratorKind integrator : {core::IntegratorKind::Rattle, core::IntegratorKind::Euler})
+    const bool fourthOrder = std::find(grid.integrators.begin(), grid.integrators.end(),
+                                       core::IntegratorKind::Rattle4) != grid.integrators.end();
+    const core::IntegratorKind first =
+        fourthOrder ? core::IntegratorKind::Rattle4 : core::IntegratorKind::Rattle;
+    for (core::IntegratorKind integrator : {first, core::IntegratorKind::Euler})
     {
         reference.method = {core::SolverKind::Linear, work.simulation.pgsIterations, integrator};
         work.simulation.integrator = integrator;
@@ -349,9 +356,31 @@ Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedu
             throw SweepReferenceError("the reference run (" + reference.method.label() + ", dt " +
                                       formatSeconds(reference.dt) + " s) failed: " + failure);
         }
-        reference.fallback = "rattle: " + failure;
+        reference.fallback = std::string(core::integratorName(first)) + ": " + failure;
     }
     return {};
+}
+
+// The external reference at every sample time, for its body alone (compared leaves holding it).
+Samples externalSamples(const core::Model& model, const std::vector<int>& bodies,
+                        const SweepSchedule& schedule, const ExternalReference& external,
+                        std::vector<int>& compared)
+{
+    const auto found =
+        std::find_if(bodies.begin(), bodies.end(),
+                     [&](int b) { return model.bodies[static_cast<std::size_t>(b)].name == external.body; });
+    if (found == bodies.end())
+    {
+        throw SweepInputError("reference " + external.source + ": '" + external.body +
+                              "' is not a moving body of the scene");
+    }
+    compared = {*found};
+    Samples samples;
+    for (const long unit : schedule.sampleUnits)
+    {
+        samples.push_back({external.position_W(static_cast<double>(unit) * schedule.unitS)});
+    }
+    return samples;
 }
 
 // A run's summary into its cell; survived when it stayed finite through every sample.
@@ -448,7 +477,7 @@ void runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
 } // namespace
 
 SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
-                     const SweepProgress& progress)
+                     const SweepProgress& progress, const ExternalReference* external)
 {
     SweepResult result;
     result.schedule = schedule;
@@ -469,7 +498,17 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     };
 
     core::Model work = model;
-    const Samples referenceSamples = runReference(work, grid, schedule, bodies, report, result.reference);
+    std::vector<int> compared = bodies; // the bodies whose distance to the reference is measured
+    Samples referenceSamples;
+    if (external != nullptr)
+    {
+        referenceSamples = externalSamples(model, bodies, schedule, *external, compared);
+        result.reference.external = external->source;
+    }
+    else
+    {
+        referenceSamples = runReference(work, grid, schedule, bodies, report, result.reference);
+    }
 
     // The cells, one after another.
     for (core::IntegratorKind integrator : grid.integrators)
@@ -484,13 +523,98 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
                 cell.dt = dt;
                 cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
                 cell.bodies = result.bodies;
-                runCell(work, model, schedule, bodies, referenceSamples,
+                runCell(work, model, schedule, compared, referenceSamples,
                         report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell);
                 result.cells.push_back(std::move(cell));
             }
         }
     }
     return result;
+}
+
+ExternalReference readReferenceCsv(const std::string& path, const std::string& body)
+{
+    std::ifstream in(path);
+    if (!in)
+    {
+        throw SweepInputError("reference " + path + ": cannot be read");
+    }
+    std::vector<double> times;
+    std::vector<core::Vec3> positions;
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line))
+    {
+        ++number;
+        if (line.empty() || line[0] == '#')
+        {
+            continue;
+        }
+        std::array<double, 4> v{};
+        std::size_t at = 0;
+        bool ok = true;
+        for (std::size_t k = 0; k < 4 && ok; ++k)
+        {
+            const std::size_t end = std::min(line.find(',', at), line.size());
+            const std::string field = trim(line.substr(at, end - at));
+            const auto [ptr, error] = std::from_chars(field.data(), field.data() + field.size(), v[k]);
+            ok = !field.empty() && error == std::errc() && ptr == field.data() + field.size() &&
+                 std::isfinite(v[k]) && (k == 3 ? end == line.size() : end < line.size());
+            at = end + 1;
+        }
+        if (!ok && times.empty() && number == 1)
+        {
+            continue; // a header
+        }
+        if (!ok || (!times.empty() && !(v[0] > times.back())))
+        {
+            throw SweepInputError("reference " + path + ":" + std::to_string(number) +
+                                  ": expected t,x,y,z (s, m) with t increasing");
+        }
+        times.push_back(v[0]);
+        positions.emplace_back(v[1], v[2], v[3]);
+    }
+    if (times.size() < 4)
+    {
+        throw SweepInputError("reference " + path + ": fewer than 4 rows t,x,y,z");
+    }
+    ExternalReference reference;
+    reference.body = body;
+    reference.source = path;
+    reference.position_W = [path, times = std::move(times), positions = std::move(positions)](double t)
+    {
+        constexpr double cTimeTolerance = 1e-9; // s: a sample time this close to a row is the row's
+        if (t < times.front() - cTimeTolerance || t > times.back() + cTimeTolerance)
+        {
+            throw SweepInputError("reference " + path + ": no rows around t = " + std::to_string(t) + " s");
+        }
+        const std::size_t upper =
+            static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t) - times.begin());
+        for (const std::size_t k : {upper, upper - 1})
+        {
+            if (k < times.size() && std::abs(times[k] - t) <= cTimeTolerance)
+            {
+                return positions[k];
+            }
+        }
+        // The cubic through the four rows around t (Lagrange form).
+        const std::size_t first = std::clamp<std::size_t>(upper, 2, times.size() - 2) - 2;
+        core::Vec3 p = core::Vec3::Zero();
+        for (std::size_t i = first; i < first + 4; ++i)
+        {
+            double weight = 1.0;
+            for (std::size_t j = first; j < first + 4; ++j)
+            {
+                if (j != i)
+                {
+                    weight *= (t - times[j]) / (times[i] - times[j]);
+                }
+            }
+            p += weight * positions[i];
+        }
+        return p;
+    };
+    return reference;
 }
 
 std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells)

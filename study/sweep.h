@@ -2,12 +2,12 @@
 // run per cell, the reference run and the metrics (cost, trajectory error, joint gap, energy drift,
 // penetration). No output: study/sweep_report.h writes the table and CSV, app/sweep_chart.h the chart.
 //
-// Accuracy is measured against a reference run: integrator rattle (euler when rattle cannot be
-// built or its run fails), solver linear, at the finest time step of the grid divided by
-// cReferenceRefinement. Every run records the centre-of-mass positions of the moving bodies at the
-// same sample times: about cSampleCount multiples of a common multiple of every time step of the
-// grid (usually the largest one), spread evenly over the run, the last one at its end, so every
-// cell and the reference hit them exactly.
+// Accuracy is measured against a reference run: integrator rattle, or rattle4 when the grid has
+// rattle4 (euler when that cannot be built or its run fails), solver linear, at the finest time step of the
+// grid divided by cReferenceRefinement. Every run records the centre-of-mass positions of the moving bodies
+// at the same sample times: about cSampleCount multiples of a common multiple of every time step of the grid
+// (usually the largest one), spread evenly over the run, the last one at its end, so every cell and the
+// reference hit them exactly.
 #pragma once
 
 #include "app/method.h"
@@ -50,7 +50,7 @@ std::vector<double> parseTimeSteps(const std::vector<std::string>& entries);
 // Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps), no integrator
 // (the methods' integrator is left euler).
 std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
-// Integrators: euler, rattle.
+// Integrators: euler, rattle, rattle4.
 std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries);
 
 // The default --dt: a halving ladder of cDefaultLadderSteps steps ending at the scene's dt
@@ -93,13 +93,31 @@ struct SweepCell
     std::string failure;              // why the run failed (empty when it survived)
 };
 
+// A reference the methods did not make: the world position of one moving body's centre of mass
+// (m) as a function of the time (s), from a closed form or from another code's or a measurement's
+// samples (readReferenceCsv). With one, runSweep runs no reference and every cell's error is that
+// body's distance to it at the sample times.
+struct ExternalReference
+{
+    std::string body;                             // the moving body's name in the model
+    std::string source;                           // how the report names it: "tip.csv", "closed form"
+    std::function<core::Vec3(double)> position_W; // m at t (s)
+};
+
+// A CSV of rows `t,x,y,z` (s, m; a first line that is not numbers is a header, `#` lines are
+// comments), times increasing: positions between rows by the cubic through the four nearest rows
+// (fourth-order accurate), a row's own position at its time. Throws SweepInputError naming the
+// file and line when it cannot be read, has fewer than 4 rows or times that do not increase.
+ExternalReference readReferenceCsv(const std::string& path, const std::string& body);
+
 struct SweepReference
 {
-    Method method;   // rattle linear, or euler linear when rattle failed
-    double dt = 0.0; // s
+    std::string external; // the external reference's source (empty: a reference run, below)
+    Method method;        // rattle (or rattle4) linear, or euler linear when that failed
+    double dt = 0.0;      // s
     long steps = 0;
     double wallSeconds = 0.0;
-    std::string fallback; // why rattle was not used (empty when it was)
+    std::string fallback; // "rattle: why" (or rattle4) when euler was used, else empty
 };
 
 struct SweepResult
@@ -133,8 +151,10 @@ double sweepDuration(const core::Model& model, std::optional<double> duration);
 // wall times are comparable). A cell that throws (an integrator that cannot be built, a singular
 // joint, a blow-up) is a failed cell, not an error. Throws SweepReferenceError when the reference
 // fails with euler too, core::UnsupportedModelError when the scene cannot be simulated at all.
+// With `external`, no reference run: the errors are those of its body against it; throws
+// SweepInputError when its body is not a moving body of the model or a sample time is outside it.
 SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
-                     const SweepProgress& progress);
+                     const SweepProgress& progress, const ExternalReference* external = nullptr);
 
 // Indices of the Pareto-optimal cells: survived, with a finite positive cost and error, and no
 // other such cell at most as costly and at most as wrong (better in one). Sorted by cost.

@@ -100,6 +100,15 @@ std::string describeReference(const SweepResult& result)
 {
     const SweepReference& r = result.reference;
     char text[512];
+    if (!r.external.empty())
+    {
+        std::snprintf(
+            text, sizeof text,
+            "reference: %s (not made by a run); errors are the distance of its body's centre of mass "
+            "to it over %zu sample times, the last at t = %.6g s",
+            r.external.c_str(), result.schedule.sampleUnits.size(), result.schedule.durationS());
+        return text;
+    }
     std::snprintf(text, sizeof text,
                   "reference: %s at dt %s s (the finest dt / %d), %ld steps in %.3g s wall; errors are the "
                   "largest centre-of-mass distance to it over %zu sample times, the last at t = %.6g s",
@@ -108,7 +117,7 @@ std::string describeReference(const SweepResult& result)
     std::string line = text;
     if (!r.fallback.empty())
     {
-        line += " (not rattle: " + r.fallback + ")";
+        line += " (not " + r.fallback + ")";
     }
     return line;
 }

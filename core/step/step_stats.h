@@ -49,9 +49,13 @@ struct StepStats
     ContactRoute contactRoute = ContactRoute::None;
     double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
     bool firstOrderFallback = false; // a rattle step that stalled and was taken by euler instead
+    // A rattle4 step taken as one rattle step (contact or limit rows, or a stage stalled;
+    // docs/method.md §11).
+    bool secondOrderFallback = false;
 };
 
-// Wall time of consecutive stages of one step, into StepStats::seconds.
+// Wall time of consecutive stages of one step, added into StepStats::seconds (zeroed when a step
+// starts; a stage timed several times in a step, as by rattle4's three stages, counts each time).
 class StageClock
 {
   public:
@@ -62,7 +66,7 @@ class StageClock
     void lap(StepStage stage)
     {
         const auto now = std::chrono::steady_clock::now();
-        mOut[static_cast<std::size_t>(stage)] = std::chrono::duration<double>(now - mLast).count();
+        mOut[static_cast<std::size_t>(stage)] += std::chrono::duration<double>(now - mLast).count();
         mLast = now;
     }
 

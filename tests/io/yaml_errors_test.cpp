@@ -612,7 +612,7 @@ simulation:
   integrator: rk4
 bodies: []
 )")),
-                          "scene.yaml", 2, 15, "expected euler or rattle");
+                          "scene.yaml", 2, 15, "expected euler, rattle or rattle4");
     EXPECT_INPUT_ERROR_AT(yamlError(text(R"(
 simulation:
   dt: -0.001

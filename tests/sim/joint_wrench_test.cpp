@@ -245,7 +245,8 @@ TEST_P(SecondLaw, DampedRailWithFrictionAndLimitsAndDampedChain)
 }
 
 INSTANTIATE_TEST_SUITE_P(JointWrench, SecondLaw,
-                         ::testing::Values(core::IntegratorKind::Euler, core::IntegratorKind::Rattle));
+                         ::testing::Values(core::IntegratorKind::Euler, core::IntegratorKind::Rattle,
+                                           core::IntegratorKind::Rattle4));
 
 // A box spinning on a damped hinge through its centre, no gravity: the hinge's torque about its
 // axis is the damping's, -d w at the end of the step (implicit), and nothing else.

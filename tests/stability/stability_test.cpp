@@ -82,6 +82,10 @@ TEST(Method, ParsesSolverIterationsAndIntegrator)
 // The sweep tables' spelling `integrator solver[:K]` reads as the same method, printed one way.
 TEST(Method, ReadsTheSweepTablesSpelling)
 {
+    const auto fourth = parseMethod("pgs:20/rattle4");
+    ASSERT_TRUE(fourth);
+    EXPECT_EQ(fourth->integrator, core::IntegratorKind::Rattle4);
+    EXPECT_EQ(fourth->label(), "pgs:20/rattle4");
     const auto method = parseMethod("rattle pgs:30");
     ASSERT_TRUE(method);
     EXPECT_EQ(method->integrator, core::IntegratorKind::Rattle);
