@@ -97,6 +97,8 @@ struct SweepOptions
     std::vector<std::string> integrators; // euler, rattle, rattle4; default: euler, rattle
     std::optional<double> duration;       // s; default: the scene's, at most 2 s
     std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
+    std::string referenceCsv;             // rows t,x,y,z of one body's centre of mass, not a run's
+    std::string referenceBody;            // that body's name
     io::UrdfOptions urdf;
 };
 

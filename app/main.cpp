@@ -181,12 +181,20 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
             "later) and its data sweep.dat")
         ->required()
         ->check(cPath);
+    CLI::Option* referenceCsv =
+        sweep.add_option("--reference-csv", o.referenceCsv,
+                         "an external reference instead of a reference run: rows t,x,y,z (s, m) of one "
+                         "body's centre of mass (an analytic solution, another code), cubic between rows");
+    sweep.add_option("--reference-body", o.referenceBody, "the body whose positions --reference-csv holds")
+        ->needs(referenceCsv);
+    referenceCsv->needs("--reference-body");
     addRobotOptions(sweep, o.urdf);
     sweep.footer(
         "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
         "rattle (rattle4 when the sweep has rattle4; euler when that fails) with the linear solver at "
-        "the finest dt / 4. Trajectory "
-        "error: the largest centre-of-mass distance (m) to the reference over all moving bodies at 20 "
+        "the finest dt / 4, or with --reference-csv's body. Trajectory "
+        "error: the largest centre-of-mass distance (m) to the reference over all moving bodies (that "
+        "body alone with --reference-csv) at 20 "
         "sample times spread over the run, the last at its end. Exit codes: 0 done (failed cells are "
         "results), 1 the reference or every cell failed, or gnuplot failed; 2 bad input.");
 }

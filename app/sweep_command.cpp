@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 namespace frontier::app
 {
@@ -35,6 +36,7 @@ int sweepCommand(const SweepOptions& options)
     study::SweepGrid grid;
     study::SweepSchedule schedule;
     double requestedS = 0.0;
+    std::optional<study::ExternalReference> external;
     const fs::path folder(options.out);
     try
     {
@@ -43,6 +45,10 @@ int sweepCommand(const SweepOptions& options)
         model = std::move(loaded.model);
         grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
         requestedS = study::sweepDuration(model, options.duration);
+        if (!options.referenceCsv.empty())
+        {
+            external = study::readReferenceCsv(options.referenceCsv, options.referenceBody);
+        }
         schedule = study::planSchedule(grid.dts, requestedS);
         // The reference run takes the most steps: at the finest dt / study::cReferenceRefinement.
         checkedStepCount(schedule.durationS(),
@@ -93,11 +99,19 @@ int sweepCommand(const SweepOptions& options)
     study::SweepResult result;
     try
     {
-        result = study::runSweep(model, grid, schedule, progress);
+        result = study::runSweep(model, grid, schedule, progress, external ? &*external : nullptr);
     }
     catch (const core::UnsupportedModelError& e)
     {
         return fail(options.scene + ": " + e.what(), cExitBadInput);
+    }
+    catch (const study::SweepInputError& e) // the external reference's body or times
+    {
+        if (terminal)
+        {
+            std::fprintf(stderr, "\r\033[K");
+        }
+        return fail(e.what(), cExitBadInput);
     }
     catch (const study::SweepReferenceError& e)
     {

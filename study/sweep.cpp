@@ -4,6 +4,7 @@
 #include "app/run_loop.h"
 #include "core/simulator.h"
 #include "core/state.h"
+#include "io/file_util.h"
 
 #include <algorithm>
 #include <array>
@@ -11,6 +12,8 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
+#include <sstream>
 
 namespace frontier::study
 {
@@ -534,11 +537,7 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
 
 ExternalReference readReferenceCsv(const std::string& path, const std::string& body)
 {
-    std::ifstream in(path);
-    if (!in)
-    {
-        throw SweepInputError("reference " + path + ": cannot be read");
-    }
+    std::istringstream in(io::detail::readTextFile(path, "reference CSV")); // regular files only, bounded
     std::vector<double> times;
     std::vector<core::Vec3> positions;
     std::string line;
@@ -556,10 +555,10 @@ ExternalReference readReferenceCsv(const std::string& path, const std::string& b
         for (std::size_t k = 0; k < 4 && ok; ++k)
         {
             const std::size_t end = std::min(line.find(',', at), line.size());
-            const std::string field = trim(line.substr(at, end - at));
-            const auto [ptr, error] = std::from_chars(field.data(), field.data() + field.size(), v[k]);
-            ok = !field.empty() && error == std::errc() && ptr == field.data() + field.size() &&
-                 std::isfinite(v[k]) && (k == 3 ? end == line.size() : end < line.size());
+            const std::optional<double> value =
+                io::detail::parseFiniteNumber(trim(line.substr(at, end - at)));
+            ok = value.has_value() && (k == 3 ? end == line.size() : end < line.size());
+            v[k] = value.value_or(0.0);
             at = end + 1;
         }
         if (!ok && times.empty() && number == 1)

@@ -177,3 +177,48 @@ TEST(SweepCli, WithoutGnuplotWritesCsvAndScript)
 }
 
 } // namespace
+
+// --reference-csv: the errors are measured against rows the methods did not make. A box falling
+// freely from (0, 0, 5) m at (1, 0, 2) m/s, its parabola every 0.1 s: euler's error at the end is
+// |g| h T / 2 exactly, rattle's zero (it integrates a parabola exactly). A body the scene lacks, or
+// the flag without --reference-body, exits 2.
+TEST(SweepCli, ExternalReferenceCsvMeasuresTheMethodsOwnError)
+{
+    TestDir dir;
+    const std::string scene = dir.write(
+        "falling_box.yaml", "name: falling box\nsimulation: {dt: 0.01, duration: 1.0, gravity: [0, 0, "
+                            "-9.81]}\nbodies:\n  - {name: box, shape: {type: box, size: [0.1, 0.1, "
+                            "0.1]}, mass: 1.0,\n     position: [0, 0, 5], velocity: [1, 0, 2]}\n");
+    std::string csv = "t,x,y,z\n";
+    for (int k = 0; k <= 10; ++k)
+    {
+        const double t = 0.1 * k; // s
+        char row[128];
+        std::snprintf(row, sizeof row, "%.17g,%.17g,0,%.17g\n", t, t, 5.0 + 2.0 * t - 0.5 * 9.81 * t * t);
+        csv += row;
+    }
+    const std::string reference = dir.write("box.csv", csv);
+    const std::string out = dir.out("sweep");
+    const Result r = dir.run("sweep " + shellQuote(scene) + " --dt 0.01,0.005 --integrator euler,rattle " +
+                             "--reference-csv " + shellQuote(reference) + " --reference-body box --out " +
+                             shellQuote(out));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("box.csv"), std::string::npos) << r.out;
+    const std::vector<std::string> rows = lines(readText(out + "/sweep.csv")); // settings, header, cells
+    ASSERT_EQ(rows.size(), 6u);
+    for (std::size_t k = 2; k < rows.size(); ++k)
+    {
+        const std::vector<std::string> f = fields(rows[k]);
+        const double dt = std::stod(f[4]);          // s
+        const double finalError = std::stod(f[12]); // m
+        const double expected = f[1] == "euler" ? 0.5 * 9.81 * dt * 1.0 : 0.0;
+        EXPECT_NEAR(finalError, expected, 1e-9) << rows[k];
+    }
+    const Result lid = dir.run("sweep " + shellQuote(scene) + " --reference-csv " + shellQuote(reference) +
+                               " --reference-body lid --out " + shellQuote(dir.out("lid")));
+    EXPECT_EQ(lid.exitCode, 2) << lid.err;
+    EXPECT_NE(lid.err.find("'lid'"), std::string::npos) << lid.err;
+    const Result alone = dir.run("sweep " + shellQuote(scene) + " --reference-csv " + shellQuote(reference) +
+                                 " --out " + shellQuote(dir.out("alone")));
+    EXPECT_EQ(alone.exitCode, 2) << alone.err;
+}
