@@ -223,4 +223,12 @@ void assembleVideo(const std::string& folder, double fps, const std::string& vid
     }
 }
 
+std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
+                                     const std::string& folder)
+{
+    return "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) + " of " +
+           std::to_string(total) + " frames; " + folder + "/" + cIncompleteMarker +
+           " marks the folder as incomplete";
+}
+
 } // namespace frontier::app

@@ -61,6 +61,11 @@ std::size_t renderFrames(const core::Model& model, const std::vector<core::State
 
 // Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
 // not installed or fails.
+// The message of frames stopped by `signal` after `rendered` of `total`: the folder keeps its
+// cIncompleteMarker.
+std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
+                                     const std::string& folder);
+
 void assembleVideo(const std::string& folder, double fps, const std::string& video);
 
 } // namespace frontier::app

@@ -323,9 +323,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
                              });
             if (const int signal = interruptSignal(); signal != 0)
             {
-                error = "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) +
-                        " of " + std::to_string(frames.size()) + " frames; " + out.frames + "/" +
-                        cIncompleteMarker + " marks the folder as incomplete";
+                error = interruptedFramesMessage(signal, rendered, frames.size(), out.frames);
                 return interruptedExitCode(signal);
             }
             if (!out.video.empty())
