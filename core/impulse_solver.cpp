@@ -33,39 +33,32 @@ SingularJointError::SingularJointError(std::string jointName, const std::string&
 {
 }
 
-void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
-                  RowSystem& system, std::span<const JointDriveGains> gains)
+namespace
 {
-    system.model = &model;
-    system.layout = &layout;
-    const std::size_t nb = model.bodies.size();
-    system.mass.resize(nb);
-    system.inertia_W.resize(nb);
-    for (std::size_t i = 0; i < nb; ++i)
+// R_WB of every body, once per assembly: the inertias and both ends of every joint read it.
+void bodyRotations(const Model& model, const State& state, RowSystem& system)
+{
+    system.rotation_WB.resize(model.bodies.size());
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
-        const Body& body = model.bodies[i];
-        system.mass[i] = body.isStatic ? 0.0 : body.mass;
-        system.inertia_W[i] = body.isStatic ? Mat3::Zero() : worldInertia(body, state.bodies[i]);
-    }
-    system.joints.resize(model.joints.size());
-    system.rowCount = 0;
-    for (std::size_t k = 0; k < model.joints.size(); ++k)
-    {
-        evaluateJointBlock(model, layout, state, static_cast<int>(k), driveStep, gains, system.joints[k]);
-        if (layout.jointBlock[k] >= 0)
-        {
-            system.rowCount += system.joints[k].count;
-        }
+        system.rotation_WB[i] = state.bodies[i].orientation_WB.toRotationMatrix();
     }
 }
 
-void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const State& state, int jointIndex,
-                        double driveStep, std::span<const JointDriveGains> gains, JointRows& out)
+// Joint k's geometry at `state` from the rotations bodyRotations left in `system`.
+detail::JointGeometry jointGeometryAt(const Joint& joint, const JointPose& pose, const RowSystem& system)
+{
+    const Mat3 R_a = joint.parent == cWorld ? Mat3::Identity()
+                                            : system.rotation_WB[static_cast<std::size_t>(joint.parent)];
+    return detail::jointGeometry(joint, pose, R_a, system.rotation_WB[static_cast<std::size_t>(joint.child)]);
+}
+
+void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const JointPose& pose,
+                        const detail::JointGeometry& g, int jointIndex, double driveStep,
+                        std::span<const JointDriveGains> gains, JointRows& out)
 {
     const std::size_t k = static_cast<std::size_t>(jointIndex);
     const Joint& joint = model.joints[k];
-    const JointPose pose = jointPose(state, joint);
-    const detail::JointGeometry g = detail::jointGeometry(joint, pose);
     const bool parentMoves = !jointToWorld(model, joint);
     evaluateJoint(joint, pose, g, parentMoves, out);
     // A loop joint's actuators are extra rows (core/actuation.h): its drive rows damp only.
@@ -74,6 +67,59 @@ void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const 
         block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows : blockDriveRows(joint);
     writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves,
                    driveStep, out);
+}
+} // namespace
+
+void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
+                  RowSystem& system, std::span<const JointDriveGains> gains)
+{
+    system.model = &model;
+    system.layout = &layout;
+    const std::size_t nb = model.bodies.size();
+    bodyRotations(model, state, system);
+    system.mass.resize(nb);
+    system.inertia_W.resize(nb);
+    for (std::size_t i = 0; i < nb; ++i)
+    {
+        const Body& body = model.bodies[i];
+        system.mass[i] = body.isStatic ? 0.0 : body.mass;
+        system.inertia_W[i] = body.isStatic ? Mat3::Zero() : worldInertia(body, system.rotation_WB[i]);
+    }
+    system.joints.resize(model.joints.size());
+    system.rowCount = 0;
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        const Joint& joint = model.joints[k];
+        const JointPose pose = jointPose(state, joint);
+        evaluateJointBlock(model, layout, pose, jointGeometryAt(joint, pose, system), static_cast<int>(k),
+                           driveStep, gains, system.joints[k]);
+        if (layout.jointBlock[k] >= 0)
+        {
+            system.rowCount += system.joints[k].count;
+        }
+    }
+}
+
+void assembleJointConditions(const Model& model, const State& state, RowSystem& system)
+{
+    bodyRotations(model, state, system);
+    system.joints.resize(model.joints.size());
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        const Joint& joint = model.joints[k];
+        const JointPose pose = jointPose(state, joint);
+        JointRows& rows = system.joints[k];
+        evaluateJoint(joint, pose, jointGeometryAt(joint, pose, system), !jointToWorld(model, joint), rows);
+        rows.error.tail(6 - rows.count).setZero(); // drive rows (and unused ones) have none
+    }
+}
+
+void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const State& state, int jointIndex,
+                        double driveStep, std::span<const JointDriveGains> gains, JointRows& out)
+{
+    const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
+    const JointPose pose = jointPose(state, joint);
+    evaluateJointBlock(model, layout, pose, detail::jointGeometry(joint, pose), jointIndex, driveStep, gains, out);
 }
 
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,

@@ -34,6 +34,7 @@ struct RowSystem
     const FrontierLayout* layout = nullptr;
     LargeVector<double> mass;      // kg, per body index (0 for static bodies)
     LargeVector<Mat3> inertia_W;   // kg m^2, per body index, world frame
+    LargeVector<Mat3> rotation_WB; // per body index: R_WB at the state the rows were evaluated at
     LargeVector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
     int rowCount = 0;              // tree joint rows in all
 };
@@ -44,6 +45,11 @@ struct RowSystem
 // actuators in the joints' blocks); empty: the joints' damping alone. `system` keeps its storage.
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
                   RowSystem& system, std::span<const JointDriveGains> gains = {});
+
+// Only the joints' condition rows (J and C(q)) at a state, with the errors of their drive rows
+// zero: what measuring the joints' drift needs. Leaves `system` incomplete (masses, inertias and
+// drive rows as they were, JointRows::count = constraintRows) until assembleRows completes it.
+void assembleJointConditions(const Model& model, const State& state, RowSystem& system);
 
 // The rows of one joint's block at a state (its conditions, then its drive rows for a solve of
 // duration driveStep with the joint's `gains`, empty as in assembleRows), as assembleRows writes them.

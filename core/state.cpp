@@ -27,8 +27,12 @@ State initialState(const Model& model)
 
 Mat3 worldInertia(const Body& body, const BodyState& state)
 {
-    const Mat3 r = state.orientation_WB.toRotationMatrix();
-    return r * body.inertia_B * r.transpose();
+    return worldInertia(body, state.orientation_WB.toRotationMatrix());
+}
+
+Mat3 worldInertia(const Body& body, const Mat3& R_WB)
+{
+    return R_WB * body.inertia_B * R_WB.transpose();
 }
 
 double kineticEnergy(const Model& model, const State& state)

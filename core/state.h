@@ -33,8 +33,9 @@ struct State
 
 State initialState(const Model& model);
 
-// World-frame inertia R I_B R^T (kg m^2).
+// World-frame inertia R I_B R^T (kg m^2); R_WB: the body's rotation matrix where it is at hand.
 Mat3 worldInertia(const Body& body, const BodyState& state);
+Mat3 worldInertia(const Body& body, const Mat3& R_WB);
 
 // Kinetic energy of the moving bodies, translational plus rotational (J).
 double kineticEnergy(const Model& model, const State& state);

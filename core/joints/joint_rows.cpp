@@ -27,9 +27,14 @@ void setAngularRow(JointRows& out, int row, const Vec3& g)
 
 JointGeometry jointGeometry(const Joint& joint, const JointPose& pose)
 {
+    return jointGeometry(joint, pose, pose.q_a.toRotationMatrix(), pose.q_b.toRotationMatrix());
+}
+
+JointGeometry jointGeometry(const Joint& joint, const JointPose& pose, const Mat3& R_a, const Mat3& R_b)
+{
     JointGeometry g;
-    g.R_a = pose.q_a.toRotationMatrix();
-    g.R_b = pose.q_b.toRotationMatrix();
+    g.R_a = R_a;
+    g.R_b = R_b;
     g.r_a = g.R_a * joint.anchorParent;
     g.r_b = g.R_b * joint.anchorChild;
     g.p_a = pose.x_a + g.r_a;

@@ -62,6 +62,9 @@ struct JointGeometry
     Vec3 x_a;      // centre of mass of a (m)
 };
 JointGeometry jointGeometry(const Joint& joint, const JointPose& pose);
+// The same with the bodies' rotation matrices given (R_a: identity for a world parent), as
+// pose.q_a.toRotationMatrix() and pose.q_b.toRotationMatrix() would give them.
+JointGeometry jointGeometry(const Joint& joint, const JointPose& pose, const Mat3& R_a, const Mat3& R_b);
 
 // Row writers, each appending at row `row` and returning the next free row.
 int writeBallRows(const JointGeometry& g, JointRows& out, int row);

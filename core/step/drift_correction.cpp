@@ -101,16 +101,36 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
 {
     constexpr double cSlowContraction = 0.1;
     constexpr double cJointBlowUp = 1e-3; // m or rad
-    mIterations = 0;
     double previous = std::numeric_limits<double>::infinity();
     bool loopsFactored = false;
     bool refactored = false;
     constexpr double cRattleStall = 0.5;
     constexpr int cRattleIterations = 12;
     mLoopCorrection.setZero(loopBlocks.empty() ? 0 : loopBlocks.back().offset + loopBlocks.back().count);
+    // The first measurement needs the joints' conditions only when a correction will follow (the
+    // last step took one); the rows the step ends with are assembled in full once, at its end pose.
+    bool complete = false;
+    const auto completeRows = [&]
+    {
+        if (!complete)
+        {
+            assembleRows(mModel, mLayout, state, driveStep, rowsAfter, actuation.gains());
+            complete = true;
+        }
+    };
+    const bool expectCorrection = mIterations > 0;
+    mIterations = 0;
     for (int iteration = 0;; ++iteration)
     {
-        assembleRows(mModel, mLayout, state, driveStep, rowsAfter, actuation.gains());
+        complete = false;
+        if (iteration == 0 && expectCorrection)
+        {
+            assembleJointConditions(mModel, state, rowsAfter);
+        }
+        else
+        {
+            completeRows();
+        }
         measure(rowsAfter);
         if (iteration == 0)
         {
@@ -123,16 +143,19 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
         }
         if (rattle && (error > cRattleStall * previous || iteration >= cRattleIterations))
         {
+            completeRows();
             return Outcome::Stalled;
         }
         if (iteration >= mOptions.stabilizationIterations)
         {
             // A joint still apart by more than cJointBlowUp after the last iteration is a blow-up:
             // the run stops naming the step, the joint and the gap, instead of going on with garbage.
+            completeRows();
             return error > cJointBlowUp ? Outcome::CameApart : Outcome::Converged;
         }
         if (!refactored && error > cSlowContraction * previous)
         {
+            completeRows();
             refactored = true;
             mRowsRefactored = rowsAfter;
             mSolver.factor(mRowsRefactored);
@@ -182,6 +205,7 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
         }
         integratePositions(mModel, start, principal, rows, dt, rattle, state);
     }
+    completeRows();
     return Outcome::Converged;
 }
 
