@@ -119,7 +119,8 @@ void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const 
 {
     const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
     const JointPose pose = jointPose(state, joint);
-    evaluateJointBlock(model, layout, pose, detail::jointGeometry(joint, pose), jointIndex, driveStep, gains, out);
+    evaluateJointBlock(model, layout, pose, detail::jointGeometry(joint, pose), jointIndex, driveStep, gains,
+                       out);
 }
 
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,
