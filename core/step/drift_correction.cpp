@@ -107,8 +107,9 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
     constexpr double cRattleStall = 0.5;
     constexpr int cRattleIterations = 12;
     mLoopCorrection.setZero(loopBlocks.empty() ? 0 : loopBlocks.back().offset + loopBlocks.back().count);
-    // The first measurement needs the joints' conditions only when a correction will follow (the
-    // last step took one); the rows the step ends with are assembled in full once, at its end pose.
+    // A measurement that a correction follows needs the joints' conditions only; the rows the step
+    // ends with are assembled in full once, at its end pose. The last step's iteration count is the
+    // guess of how many corrections this one takes (only the cost depends on it).
     bool complete = false;
     const auto completeRows = [&]
     {
@@ -118,12 +119,12 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
             complete = true;
         }
     };
-    const bool expectCorrection = mIterations > 0;
+    const int expectedCorrections = mIterations;
     mIterations = 0;
     for (int iteration = 0;; ++iteration)
     {
         complete = false;
-        if (iteration == 0 && expectCorrection)
+        if (iteration < expectedCorrections)
         {
             assembleJointConditions(mModel, state, rowsAfter);
         }
