@@ -50,7 +50,7 @@ class Engine
 //   bullet-multibody                 Bullet 3 btMultiBody (reduced coordinates, Featherstone)
 //   bullet-si                        Bullet 3 rigid bodies and constraints, sequential impulses (10 it.)
 //   ode-quick, ode-direct            ODE dWorldQuickStep (20 it.) and dWorldStep (direct LCP)
-//   mujoco                           MuJoCo (reduced coordinates), its default Euler integrator
+//   mujoco, mujoco-rk4               MuJoCo (reduced coordinates), its default Euler integrator or RK4
 std::vector<std::string> engineNames();
 // Throws Unsupported, or std::invalid_argument for an unknown name.
 std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model);
@@ -60,6 +60,11 @@ std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorK
 std::unique_ptr<Engine> makeBulletMultibody(const core::Model& model);
 std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model);
 std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep);
-std::unique_ptr<Engine> makeMujoco(const core::Model& model);
+enum class MujocoIntegrator
+{
+    Euler, // MuJoCo's default (semi-implicit Euler)
+    Rk4,   // its fourth-order Runge-Kutta
+};
+std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator);
 
 } // namespace frontier::peers

@@ -89,7 +89,7 @@ void writeGeoms(std::ostream& out, const core::Model& model, const core::Body& b
 }
 
 // MJCF text of the model's joint trees.
-std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree)
+std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, MujocoIntegrator integrator)
 {
     const bool contacts = hasContacts(model);
     std::vector<std::vector<const TreeLink*>> children(model.bodies.size());
@@ -99,7 +99,8 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree)
     std::ostringstream out;
     const core::Vec3& g = model.simulation.gravity;
     out << "<mujoco model=\"peers\">\n<option timestep=\"" << numbers({model.simulation.dt})
-        << "\" gravity=\"" << numbers({g.x(), g.y(), g.z()}) << "\">\n<flag filterparent=\"disable\"/>\n"
+        << "\" gravity=\"" << numbers({g.x(), g.y(), g.z()}) << "\""
+        << (integrator == MujocoIntegrator::Rk4 ? " integrator=\"RK4\"" : "") << ">\n<flag filterparent=\"disable\"/>\n"
         << "</option>\n<worldbody>\n";
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
     {
@@ -190,13 +191,13 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree)
 class MujocoEngine final : public Engine
 {
   public:
-    explicit MujocoEngine(const core::Model& model) : mTree(jointTree(model))
+    MujocoEngine(const core::Model& model, MujocoIntegrator integrator) : mTree(jointTree(model))
     {
         const std::filesystem::path file = std::filesystem::temp_directory_path() /
                                            ("frontier_peers_" + std::to_string(::getpid()) + ".xml");
         {
             std::ofstream xml(file);
-            xml << mjcf(model, mTree);
+            xml << mjcf(model, mTree, integrator);
         }
         char error[1000] = "";
         mModel = mj_loadXML(file.c_str(), nullptr, error, sizeof error);
@@ -253,9 +254,9 @@ class MujocoEngine final : public Engine
 
 } // namespace
 
-std::unique_ptr<Engine> makeMujoco(const core::Model& model)
+std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator)
 {
-    return std::make_unique<MujocoEngine>(model);
+    return std::make_unique<MujocoEngine>(model, integrator);
 }
 
 } // namespace frontier::peers

@@ -8,8 +8,8 @@ namespace frontier::peers
 
 std::vector<std::string> engineNames()
 {
-    return {"frontier-euler", "frontier-rattle", "bullet-multibody", "bullet-si", "ode-quick",
-            "ode-direct",     "mujoco"};
+    return {"frontier-euler", "frontier-rattle", "frontier-rattle4", "bullet-multibody", "bullet-si",
+            "ode-quick",      "ode-direct",      "mujoco",           "mujoco-rk4"};
 }
 
 std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model)
@@ -18,6 +18,8 @@ std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& m
         return makeFrontier(model, core::IntegratorKind::Euler);
     if (name == "frontier-rattle")
         return makeFrontier(model, core::IntegratorKind::Rattle);
+    if (name == "frontier-rattle4")
+        return makeFrontier(model, core::IntegratorKind::Rattle4);
     if (name == "bullet-multibody")
         return makeBulletMultibody(model);
     if (name == "bullet-si")
@@ -27,7 +29,9 @@ std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& m
     if (name == "ode-direct")
         return makeOde(model, false);
     if (name == "mujoco")
-        return makeMujoco(model);
+        return makeMujoco(model, MujocoIntegrator::Euler);
+    if (name == "mujoco-rk4")
+        return makeMujoco(model, MujocoIntegrator::Rk4);
     throw std::invalid_argument("unknown engine '" + name + "'");
 }
 

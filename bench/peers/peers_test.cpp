@@ -73,7 +73,7 @@ void expectAgreement(const Case& c)
         // 0.2 s of swinging moves the tip about 0.2 m; a wrong anchor, axis or inertia moves it by
         // centimetres, a first-order method at 1 ms by millimetres.
         EXPECT_LT(positionError(end, reference), 5e-3);
-        const bool reduced = name == "bullet-multibody" || name == "mujoco";
+        const bool reduced = name == "bullet-multibody" || name.rfind("mujoco", 0) == 0;
         const bool frontier = name.rfind("frontier", 0) == 0;
         EXPECT_LT(jointGap(c.model, end), reduced ? 1e-12 : frontier ? 1e-9 : 5e-3);
     }
@@ -184,7 +184,7 @@ TEST(Peers, BoxDroppedOnTheFloorComesToRestOnItInEveryEngine)
         EXPECT_NEAR(centre.z(), 0.15, 2e-3);
         EXPECT_LT(p.orientation_WB.angularDistance(model.bodies[1].orientation_WB),
                   0.05); // on the right face
-        EXPECT_LT(run.deepest, name == "mujoco" ? 15e-3 : 5e-3);
+        EXPECT_LT(run.deepest, name.rfind("mujoco", 0) == 0 ? 15e-3 : 5e-3);
         EXPECT_LT(PenetrationMeter(model).deepest(run.end), 2e-3);
     }
 }
