@@ -96,6 +96,10 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     {
         stats.extra["first_order_steps"] = static_cast<double>(s.firstOrderSteps);
     }
+    if (model.simulation.integrator == core::IntegratorKind::Rattle4)
+    {
+        stats.extra["second_order_steps"] = static_cast<double>(s.secondOrderSteps); // retaken by rattle
+    }
     // How the contact problem was solved (core::ContactRoute): steps that kept the last impulses,
     // that finished on a recent step's Delassus matrix, that built their own; sweeps in all.
     stats.extra["contact_steps_carried"] =

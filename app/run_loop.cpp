@@ -157,6 +157,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.maxPenetrationM = std::max(summary.maxPenetrationM, stats.maxPenetrationM);
             summary.maxContacts = std::max(summary.maxContacts, stats.contacts);
             summary.firstOrderSteps += stats.firstOrderFallback ? 1 : 0;
+            summary.secondOrderSteps += stats.secondOrderFallback ? 1 : 0;
             ++summary.contactRoutes[core::routeIndex(stats.contactRoute)];
             summary.contactSweeps += stats.contactSweeps;
             summary.limitSteps += simulator.pushingLimitRows() > 0 ? 1 : 0;
