@@ -334,6 +334,32 @@ TEST(RunOutputs, StatsCountLimitStepsAndActuatorKeys)
     }
 }
 
+// second_order_steps (rattle4 only): the limits scene's limits push in most steps after about
+// 1 s, and a step with a limit row is retaken as one rattle step; the pendulum, free of limits
+// and contacts, never is. Euler runs have no such key.
+TEST(RunOutputs, StatsCountRattle4StepsRetakenByRattle)
+{
+    const TestDir dir;
+    const std::string limits = dir.out("limits.json");
+    const std::string pendulum = dir.out("pendulum.json");
+    const std::string euler = dir.out("euler.json");
+    Result r = dir.run("run scenes/limits.yaml --quiet --duration 2 --integrator rattle4 --stats " +
+                       shellQuote(limits));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = dir.run("run scenes/pendulum.yaml --quiet --duration 0.5 --integrator rattle4 --stats " +
+                shellQuote(pendulum));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = dir.run("run scenes/pendulum.yaml --quiet --duration 0.1 --stats " + shellQuote(euler));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const io::RunStats a = io::readStats(limits);
+    const io::RunStats b = io::readStats(pendulum);
+    EXPECT_GE(a.extra.at("second_order_steps"), a.extra.at("limit_steps"));
+    EXPECT_GE(a.extra.at("second_order_steps"), 1000.0);
+    EXPECT_LE(a.extra.at("second_order_steps"), static_cast<double>(a.steps));
+    EXPECT_EQ(b.extra.at("second_order_steps"), 0.0);
+    EXPECT_EQ(io::readStats(euler).extra.count("second_order_steps"), 0u);
+}
+
 // A 2 kg bob on a 1 m rod, hinged about +y at (0, 0, 2) in zero gravity, driven by a commanded
 // torque of 5 N m clipped to its limit of 3 N m: the joints file's effort is 3 N m at every step
 // after the first, the hinge passes that torque about its axis (ty = 3, so the bob's spin rises
