@@ -184,7 +184,8 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
     CLI::Option* referenceCsv =
         sweep.add_option("--reference-csv", o.referenceCsv,
                          "an external reference instead of a reference run: rows t,x,y,z (s, m) of one "
-                         "body's centre of mass (an analytic solution, another code), cubic between rows");
+                         "body's centre of mass (an analytic solution, another code), cubic between rows; "
+                         "overrides the scene's `reference: {csv: FILE, body: NAME}`");
     sweep.add_option("--reference-body", o.referenceBody, "the body whose positions --reference-csv holds")
         ->needs(referenceCsv);
     referenceCsv->needs("--reference-body");
@@ -192,7 +193,7 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
     sweep.footer(
         "Each cell (integrator, solver, dt) is one run, timed, and compared with a reference run: "
         "rattle (rattle4 when the sweep has rattle4; euler when that fails) with the linear solver at "
-        "the finest dt / 4, or with --reference-csv's body. Trajectory "
+        "the finest dt / 4, or with the scene's reference or --reference-csv's body. Trajectory "
         "error: the largest centre-of-mass distance (m) to the reference over all moving bodies (that "
         "body alone with --reference-csv) at 20 "
         "sample times spread over the run, the last at its end. Exit codes: 0 done (failed cells are "

@@ -45,9 +45,13 @@ int sweepCommand(const SweepOptions& options)
         model = std::move(loaded.model);
         grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
         requestedS = study::sweepDuration(model, options.duration);
-        if (!options.referenceCsv.empty())
+        if (!options.referenceCsv.empty()) // the command line's, else the scene's `reference:`
         {
             external = study::readReferenceCsv(options.referenceCsv, options.referenceBody);
+        }
+        else if (loaded.report.reference)
+        {
+            external = study::readReferenceCsv(loaded.report.reference->csvPath, loaded.report.reference->body);
         }
         schedule = study::planSchedule(grid.dts, requestedS);
         // The reference run takes the most steps: at the finest dt / study::cReferenceRefinement.

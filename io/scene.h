@@ -60,10 +60,19 @@ struct RobotReport
     std::string placement;                                     // where it was put and how it is held
     std::vector<std::pair<std::string, std::string>> excluded; // body pairs that overlap at the start
 };
+// A scene's `reference:` for `frontier sweep`: one body's positions that none of the simulator's
+// methods made (measured, or from another program), as a CSV of rows t,x,y,z (study::readReferenceCsv).
+struct SceneReference
+{
+    std::string csvPath; // resolved against the scene's folder
+    std::string body;    // a body of the scene (checked when loading)
+};
+
 struct LoadReport
 {
     std::vector<std::string> warnings; // "FILE:LINE:COL: warning: TEXT"
     std::vector<RobotReport> robots;
+    std::optional<SceneReference> reference; // the scene's `reference:`, when it has one
 };
 
 // Loads a .yaml/.yml scene or a .urdf model (a URDF alone is dropped onto a floor with defaults).

@@ -16,7 +16,8 @@ namespace
 {
 
 const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact",   "bodies", "joints",
-                                             "models", "camera",     "actuators", "loads"};
+                                             "models", "camera",     "actuators", "loads",  "reference"};
+const std::vector<std::string> cReferenceKeys = {"csv", "body"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
 const std::vector<std::string> cContactKeys = {"friction", "restitution", "ignore"};
@@ -24,6 +25,18 @@ const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
     "urdf",   "position",       "orientation", "velocity",  "angular_velocity",
     "prefix", "self_collision", "fixed",       "free_base", "hold"};
+
+// `reference: {csv: FILE, body: NAME}`, after all bodies exist; the CSV is read by `sweep` alone.
+SceneReference readReference(const SceneBuilder& builder, const YAML::Node& node)
+{
+    const MapNode map(builder.source, node, "'reference'");
+    map.checkKeys(cReferenceKeys);
+    SceneReference reference;
+    reference.csvPath = resolvePath(builder.source.baseDir, map.string("csv"));
+    const int body = resolveBodyName(builder, map.require("body"), map.what("body"), false);
+    reference.body = builder.model.bodies[static_cast<std::size_t>(body)].name;
+    return reference;
+}
 
 void readSimulation(const YamlSource& source, const YAML::Node& node, core::SimulationSettings& sim)
 {
@@ -385,6 +398,14 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
         if (root.has("loads"))
         {
             readLoads(builder, root.get("loads"));
+        }
+        if (root.has("reference"))
+        {
+            SceneReference reference = readReference(builder, root.get("reference"));
+            if (report != nullptr)
+            {
+                report->reference = std::move(reference);
+            }
         }
     }
     catch (const YAML::ParserException& e)

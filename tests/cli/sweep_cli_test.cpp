@@ -221,4 +221,26 @@ TEST(SweepCli, ExternalReferenceCsvMeasuresTheMethodsOwnError)
     const Result alone = dir.run("sweep " + shellQuote(scene) + " --reference-csv " + shellQuote(reference) +
                                  " --out " + shellQuote(dir.out("alone")));
     EXPECT_EQ(alone.exitCode, 2) << alone.err;
+
+    // The same reference declared by the scene (its CSV relative to the scene's folder) gives the
+    // same errors; `run` accepts the key; a body that is not in the scene is named at its line.
+    const std::string declared = dir.write(
+        "declared.yaml", readText(scene) + "reference: {csv: box.csv, body: box}\n");
+    const std::string declaredOut = dir.out("declared");
+    const Result d = dir.run("sweep " + shellQuote(declared) + " --dt 0.01,0.005 --integrator euler,rattle --out " +
+                             shellQuote(declaredOut));
+    ASSERT_EQ(d.exitCode, 0) << d.err;
+    const std::vector<std::string> declaredRows = lines(readText(declaredOut + "/sweep.csv"));
+    ASSERT_EQ(declaredRows.size(), rows.size());
+    for (std::size_t k = 2; k < rows.size(); ++k)
+    {
+        EXPECT_EQ(fields(declaredRows[k])[12], fields(rows[k])[12]) << declaredRows[k];
+    }
+    EXPECT_EQ(dir.run("run " + shellQuote(declared) + " --duration 0.05 --quiet").exitCode, 0);
+    const std::string wrongBody =
+        dir.write("wrong_body.yaml", readText(scene) + "reference: {csv: box.csv, body: lid}\n");
+    const Result wrong = dir.run("run " + shellQuote(wrongBody) + " --duration 0.05 --quiet");
+    EXPECT_EQ(wrong.exitCode, 2) << wrong.err;
+    EXPECT_NE(wrong.err.find("wrong_body.yaml:5:"), std::string::npos) << wrong.err;
+    EXPECT_NE(wrong.err.find("'lid'"), std::string::npos) << wrong.err;
 }
