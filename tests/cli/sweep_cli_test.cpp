@@ -241,6 +241,6 @@ TEST(SweepCli, ExternalReferenceCsvMeasuresTheMethodsOwnError)
         dir.write("wrong_body.yaml", readText(scene) + "reference: {csv: box.csv, body: lid}\n");
     const Result wrong = dir.run("run " + shellQuote(wrongBody) + " --duration 0.05 --quiet");
     EXPECT_EQ(wrong.exitCode, 2) << wrong.err;
-    EXPECT_NE(wrong.err.find("wrong_body.yaml:5:"), std::string::npos) << wrong.err;
+    EXPECT_NE(wrong.err.find("wrong_body.yaml:6:"), std::string::npos) << wrong.err;
     EXPECT_NE(wrong.err.find("'lid'"), std::string::npos) << wrong.err;
 }

@@ -58,8 +58,9 @@ TEST(DriftPrediction, SameStepResultWithFewerProjectionIterations)
     // h (velocities). Measured after 500 steps: 1.8e-10 m and 3.9e-8 m/s.
     EXPECT_LT(largestDifferenceM, 1e-8) << "speeds differ by " << largestSpeedDifference << " m/s";
     EXPECT_LT(largestSpeedDifference, 1e-6);
-    // Measured: 1 041 projection iterations without (2.1 a step), 654 with (1.3 a step).
-    EXPECT_LT(static_cast<double>(predicted.iterations), 0.7 * static_cast<double>(plain.iterations))
+    // Measured: 1 041 projection iterations without (2.1 a step), 814 with (1.6 a step; joints whose
+    // drift is not smooth start their prediction over, core/step/drift_correction.cpp).
+    EXPECT_LT(static_cast<double>(predicted.iterations), 0.85 * static_cast<double>(plain.iterations))
         << predicted.iterations << " vs " << plain.iterations;
 }
 
