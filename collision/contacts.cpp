@@ -197,9 +197,11 @@ struct BodyMotion
 };
 
 // A body is searched along its motion when its travel over a step, |v| dt + |w| dt r (r: the
-// distance of its farthest shape point from its centre of mass), exceeds this fraction of the
-// margin; slower bodies are searched exactly as without the sweep.
-constexpr double cSweptFraction = 0.5;
+// distance of its farthest shape point from its centre of mass), exceeds this multiple of the
+// margin; slower bodies are searched exactly as without the sweep. A slower body is seen within
+// the margin at some step start before it overlaps anything by more than a margin
+// (docs/method.md §10).
+constexpr double cSweptFraction = 2.0;
 // Conservative advancement (docs/method.md §10): it stops when the shapes are closer than this
 // fraction of the margin (a hit) or after this many distance queries (taken as a miss: the next
 // step looks again, from nearer).
