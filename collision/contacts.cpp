@@ -212,14 +212,14 @@ constexpr int cSweepIterations = 64;
 
 struct ContactDetector::Impl
 {
-    double margin = 1e-3;   // m
-    double stepTime = 0.0;  // s; the swept search is off while 0
+    double margin = 1e-3;  // m
+    double stepTime = 0.0; // s; the swept search is off while 0
     detail::PairFilter filter;
-    std::vector<char> bodyCollides;                     // per body: has a shape that can touch something
-    std::vector<double> bodyReach;                      // per body: farthest shape point from the centre of mass (m)
-    std::vector<BodyMotion> motions;                    // per body, this detect() call (swept search)
-    bool anySwept = false;                              // some body is swept this call
-    std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
+    std::vector<char> bodyCollides;    // per body: has a shape that can touch something
+    std::vector<double> bodyReach;     // per body: farthest shape point from the centre of mass (m)
+    std::vector<BodyMotion> motions;   // per body, this detect() call (swept search)
+    bool anySwept = false;             // some body is swept this call
+    std::vector<ShapeInstance> shapes; // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
     // Boxes grown by the margin on every side (null for other shapes): colliding one with the other
     // box of a pair gives FCL's box-box manifold while they are still apart, for speculative contacts.

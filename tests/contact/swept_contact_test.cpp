@@ -93,7 +93,8 @@ TEST(SweptContact, SpinningRodDoesNotTunnelIntoFloor)
     y << "name: spinning rod\nsimulation: {dt: 0.01, duration: 0.5}\n"
       << "contact: {friction: 0.5, restitution: 0.0}\nbodies:\n"
       << "  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1], offset: 0}}\n"
-      << "  - {name: rod, shape: {type: capsule, radius: 0.01, length: 1.0}, mass: 1.0, position: [0, 0, 0.2],"
+      << "  - {name: rod, shape: {type: capsule, radius: 0.01, length: 1.0}, mass: 1.0, position: [0, 0, "
+         "0.2],"
       << " orientation: [0.7071067811865476, 0, 0.7071067811865476, 0], angular_velocity: [0, 60, 0]}\n";
     double deepest[2] = {0.0, 0.0}; // m: swept, not swept
     for (const bool swept : {true, false})
@@ -105,7 +106,8 @@ TEST(SweptContact, SpinningRodDoesNotTunnelIntoFloor)
         {
             run.step();
             // The deepest overlap a step starts with (the projection removes it within the step).
-            deepest[swept ? 0 : 1] = std::max(deepest[swept ? 0 : 1], run.simulator.lastStep().maxPenetrationM);
+            deepest[swept ? 0 : 1] =
+                std::max(deepest[swept ? 0 : 1], run.simulator.lastStep().maxPenetrationM);
         }
         EXPECT_TRUE(allFinite(run.state));
         EXPECT_GT(run.body("rod").position_W.z(), 0.0);
