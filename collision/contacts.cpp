@@ -698,6 +698,9 @@ void ContactDetector::Impl::sweptPair(int i, int j, std::vector<Contact>& out)
     const fcl::CollisionGeometryd* ga = objects[static_cast<std::size_t>(i)]->collisionGeometry().get();
     const fcl::CollisionGeometryd* gb = objects[static_cast<std::size_t>(j)]->collisionGeometry().get();
     const double tolerance = cSweepTolerance * margin; // m
+    const bool triangles = isTriangleMesh(a) || isTriangleMesh(b);
+    if (isTriangleMesh(a) && isTriangleMesh(b))
+        return; // two triangle meshes (a moving mesh without its hull): not swept
     double tau = 0.0;
     Mat3 turnA = Mat3::Identity();
     Mat3 turnB = Mat3::Identity();
@@ -710,12 +713,20 @@ void ContactDetector::Impl::sweptPair(int i, int j, std::vector<Contact>& out)
         ++stats.narrowphaseTests;
         if (!(d >= 0.0))
             return; // touching already (the margin search's business at tau = 0) or no answer
-        if (k == 0 && d < margin)
-            return; // within the margin: the ordinary search saw it
+        if (k == 0 && d < margin && !triangles)
+            return; // within the margin: the ordinary search saw it (triangles report no gaps)
         if (d < tolerance)
         {
-            const Vec3 pa = distanceResult.nearest_points[0];
-            const Vec3 pb = distanceResult.nearest_points[1];
+            Vec3 pa = distanceResult.nearest_points[0];
+            Vec3 pb = distanceResult.nearest_points[1];
+            if (triangles)
+            {
+                // FCL 0.7 gives a mesh-shape pair's nearest points in the frames of the mesh
+                // ([0]) and of the shape ([1]), whatever the argument order (measured).
+                const bool meshIsA = isTriangleMesh(a);
+                pa = tfA * distanceResult.nearest_points[meshIsA ? 0 : 1];
+                pb = tfB * distanceResult.nearest_points[meshIsA ? 1 : 0];
+            }
             const Vec3 between = pb - pa;
             if (!(between.norm() > 1e-12) || !pa.allFinite() || !pb.allFinite())
                 return;

@@ -54,6 +54,30 @@ TEST(SweptContact, FastBallBouncesOffThinWall)
     }
 }
 
+// The same wall as a static triangle mesh (FCL's BVH; its nearest points come in the frames of
+// the mesh and the ball): the ball bounces off it as off the box.
+TEST(SweptContact, FastBallBouncesOffMeshWall)
+{
+    core::Model model = ballAndWall(Vec3(0, 0, 1), Vec3(300, 0, 0), core::SolverKind::Linear, 1e-3);
+    core::Shape& wall = model.bodies[static_cast<std::size_t>(model.findBody("wall"))].shapes.at(0);
+    const Vec3 half = 0.5 * wall.size;
+    wall.type = core::ShapeType::Mesh;
+    for (int k = 0; k < 8; ++k)
+        wall.vertices.emplace_back((k & 1) ? half.x() : -half.x(), (k & 2) ? half.y() : -half.y(),
+                                   (k & 4) ? half.z() : -half.z());
+    wall.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                      {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    SceneRun run(std::move(model));
+    double maxX = -1.0; // m
+    for (long k = 0; k < run.stepsFor(0.02); ++k)
+    {
+        run.step();
+        maxX = std::max(maxX, run.body("bullet").position_W.x());
+    }
+    EXPECT_LT(maxX, 0.985);
+    EXPECT_NEAR(run.body("bullet").velocity_W.x(), -150.0, 1e-6);
+}
+
 // Fast balls that pass the wall by are not disturbed: past its edge (1 cm clear, the nearest point
 // at the step start is the wall's edge, ahead of the ball) and along its face (1 cm clear). Their
 // trajectories are free flight to round-off.
