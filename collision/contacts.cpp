@@ -28,6 +28,10 @@
 //      already reach its depth. Zero-normal/zero-depth FCL points (meshes) are dropped.
 //   5. Per shape pair: merge points closer than a size-relative distance and keep at most 4
 //      (manifold.cpp). Then all contacts are sorted by (bodyA, bodyB, point, depth).
+//   Fast bodies (setStepTime, docs/method.md §10): a body travelling more than cSweptMargins
+//   margins in a step has its broadphase box grown along its motion and its plane window widened
+//   by its travel towards the plane; a pair of it that steps 4-5 leave without a contact is
+//   advanced conservatively along the step's motion (sweptPair), and a hit gives a gap contact.
 //
 // Our code does no heap allocation per step once its vectors have grown; fcl::collide itself
 // allocates a few small blocks per touching pair (measured: 1-3, about 20 for a mesh pair).
@@ -193,7 +197,7 @@ struct BodyMotion
     Vec3 position = Vec3::Zero();        // centre of mass at the step start (m)
     Vec3 velocity = Vec3::Zero();        // m/s
     Vec3 angularVelocity = Vec3::Zero(); // rad/s
-    bool swept = false;                  // travels more than cSweptFraction of the margin
+    bool swept = false;                  // travels more than cSweptMargins margins in a step
 };
 
 // A body is searched along its motion when its travel over a step, |v| dt + |w| dt r (r: the
@@ -201,7 +205,7 @@ struct BodyMotion
 // margin; slower bodies are searched exactly as without the sweep. A slower body is seen within
 // the margin at some step start before it overlaps anything by more than a margin
 // (docs/method.md §10).
-constexpr double cSweptFraction = 2.0;
+constexpr double cSweptMargins = 2.0;
 // Conservative advancement (docs/method.md §10): it stops when the shapes are closer than this
 // fraction of the margin (a hit) or after this many distance queries (taken as a miss: the next
 // step looks again, from nearer).
@@ -360,12 +364,18 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
 }
 
 // Each moving body's motion over the coming step, and whether it is swept: its travel
-// |v| dt + |w| dt r exceeds cSweptFraction of the margin (docs/method.md §10).
+// |v| dt + |w| dt r exceeds cSweptMargins margins (docs/method.md §10).
 void ContactDetector::Impl::sweepMotions(const core::State& state)
 {
-    anySwept = false;
     if (!(stepTime > 0.0))
+    {
+        if (anySwept) // switched off since the last call
+            for (BodyMotion& m : motions)
+                m.swept = false;
+        anySwept = false;
         return;
+    }
+    anySwept = false;
     for (std::size_t b = 0; b < motions.size(); ++b)
     {
         BodyMotion& m = motions[b];
@@ -375,7 +385,7 @@ void ContactDetector::Impl::sweepMotions(const core::State& state)
         m.velocity = moves ? body.velocity_W : Vec3::Zero();
         m.angularVelocity = moves ? body.angularVelocity_W : Vec3::Zero();
         const double travel = (m.velocity.norm() + m.angularVelocity.norm() * bodyReach[b]) * stepTime;
-        m.swept = moves && bodyCollides[b] && travel > cSweptFraction * margin;
+        m.swept = moves && bodyCollides[b] && travel > cSweptMargins * margin;
         anySwept = anySwept || m.swept;
     }
 }

@@ -159,7 +159,7 @@ TEST(StabilitySuite, HeavyTip1e6)
 // floor in its path is found a step ahead (measured 3.0 cm; without the sweep 7.1 cm, a step's
 // travel less the margin). The joint correction needs up to 40 iterations when a hand hits the
 // floor (StepOptions); with 8 the wrist was left 0.033 rad apart and the run stopped. The same
-// scene with linear/rattle holds too (without the sweep a forearm ended a step 10 cm into the
+// scene with linear/rattle holds too (without the sweep a forearm ends a step 10 cm into the
 // floor).
 TEST(StabilitySuite, DollLargeStep)
 {
