@@ -121,6 +121,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     RunSummary summary;
     collision::ContactDetector detector(model,
                                         collision::contactMargin(core::longestStage(model.simulation)));
+    detector.setStepTime(core::longestStage(model.simulation)); // fast bodies swept (docs/method.md §10)
     core::Simulator simulator(model, {}, &detector);
     core::State state = core::initialState(model);
     summary.energyInitialJ = core::totalEnergy(model, state);

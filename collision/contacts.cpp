@@ -28,6 +28,10 @@
 //      already reach its depth. Zero-normal/zero-depth FCL points (meshes) are dropped.
 //   5. Per shape pair: merge points closer than a size-relative distance and keep at most 4
 //      (manifold.cpp). Then all contacts are sorted by (bodyA, bodyB, point, depth).
+//   Fast bodies (setStepTime, docs/method.md §10): a body travelling more than cSweptMargins
+//   margins in a step has its broadphase box grown along its motion and its plane window widened
+//   by its travel towards the plane; a pair of it that steps 4-5 leave without a contact is
+//   advanced conservatively along the step's motion (sweptPair), and a hit gives a gap contact.
 //
 // Our code does no heap allocation per step once its vectors have grown; fcl::collide itself
 // allocates a few small blocks per touching pair (measured: 1-3, about 20 for a mesh pair).
@@ -76,12 +80,19 @@ class MarginObject : public fcl::CollisionObjectd
     // AABB): a body at rest, or moving less than a margin, keeps its leaf. Returns true when the
     // box changed. The broadphase then reports a few more pairs, all of them at least a margin
     // apart, which the narrowphase rejects: the contacts are the same.
-    bool updateFatAABB(double margin)
+    // A body that moves fast (docs/method.md §10) has its box grown further by its travel over
+    // the step: below by sweepBelow, above by sweepAbove (m, >= 0 per axis).
+    bool updateFatAABB(double margin, const Vec3* sweepBelow = nullptr, const Vec3* sweepAbove = nullptr)
     {
         computeAABB();
         fcl::AABBd needed = aabb;
         needed.min_.array() -= margin;
         needed.max_.array() += margin;
+        if (sweepBelow != nullptr)
+        {
+            needed.min_ -= *sweepBelow;
+            needed.max_ += *sweepAbove;
+        }
         if (mHasFat && mFat.contain(needed))
         {
             aabb = mFat;
@@ -180,14 +191,39 @@ struct PlaneInstance
     double offset = 0.0;         // m
 };
 
+// A body's motion over one step, for the swept search (docs/method.md §10).
+struct BodyMotion
+{
+    Vec3 position = Vec3::Zero();        // centre of mass at the step start (m)
+    Vec3 velocity = Vec3::Zero();        // m/s
+    Vec3 angularVelocity = Vec3::Zero(); // rad/s
+    bool swept = false;                  // travels more than cSweptMargins margins in a step
+};
+
+// A body is searched along its motion when its travel over a step, |v| dt + |w| dt r (r: the
+// distance of its farthest shape point from its centre of mass), exceeds this multiple of the
+// margin; slower bodies are searched exactly as without the sweep. A slower body is seen within
+// the margin at some step start before it overlaps anything by more than a margin
+// (docs/method.md §10).
+constexpr double cSweptMargins = 2.0;
+// Conservative advancement (docs/method.md §10): it stops when the shapes are closer than this
+// fraction of the margin (a hit) or after this many distance queries (taken as a miss: the next
+// step looks again, from nearer).
+constexpr double cSweepTolerance = 0.1;
+constexpr int cSweepIterations = 64;
+
 } // namespace
 
 struct ContactDetector::Impl
 {
-    double margin = 1e-3; // m
+    double margin = 1e-3;  // m
+    double stepTime = 0.0; // s; the swept search is off while 0
     detail::PairFilter filter;
-    std::vector<char> bodyCollides;                     // per body: has a shape that can touch something
-    std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
+    std::vector<char> bodyCollides;    // per body: has a shape that can touch something
+    std::vector<double> bodyReach;     // per body: farthest shape point from the centre of mass (m)
+    std::vector<BodyMotion> motions;   // per body, this detect() call (swept search)
+    bool anySwept = false;             // some body is swept this call
+    std::vector<ShapeInstance> shapes; // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
     // Boxes grown by the margin on every side (null for other shapes): colliding one with the other
     // box of a pair gives FCL's box-box manifold while they are still apart, for speculative contacts.
@@ -223,6 +259,10 @@ struct ContactDetector::Impl
     void planePass(std::vector<Contact>& out);
     void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
     void narrowphase(int i, int j, std::vector<Contact>& out);
+    void sweepMotions(const core::State& state);
+    double shapeReach(const ShapeInstance& s) const;
+    fcl::Transform3d poseAt(const ShapeInstance& s, double tau, Mat3* turn) const;
+    void sweptPair(int i, int j, std::vector<Contact>& out);
     bool nearestGap(int i, int j, RawContact& out);
     void clipAgainstTriangles(int i, int j);
     void emit(int bodyA, int bodyB, std::vector<Contact>& out);
@@ -315,6 +355,62 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
     useBroadphase = !movingRegistered.empty();
     if (useBroadphase)
         manager.setup();
+
+    bodyReach.assign(model.bodies.size(), 0.0);
+    motions.assign(model.bodies.size(), BodyMotion{});
+    for (const ShapeInstance& s : shapes)
+        bodyReach[static_cast<std::size_t>(s.body)] =
+            std::max(bodyReach[static_cast<std::size_t>(s.body)], s.p_BS.norm() + s.boundingRadius);
+}
+
+// Each moving body's motion over the coming step, and whether it is swept: its travel
+// |v| dt + |w| dt r exceeds cSweptMargins margins (docs/method.md §10).
+void ContactDetector::Impl::sweepMotions(const core::State& state)
+{
+    if (!(stepTime > 0.0))
+    {
+        if (anySwept) // switched off since the last call
+            for (BodyMotion& m : motions)
+                m.swept = false;
+        anySwept = false;
+        return;
+    }
+    anySwept = false;
+    for (std::size_t b = 0; b < motions.size(); ++b)
+    {
+        BodyMotion& m = motions[b];
+        const core::BodyState& body = state.bodies[b];
+        const bool moves = !filter.isStatic(static_cast<int>(b));
+        m.position = body.position_W;
+        m.velocity = moves ? body.velocity_W : Vec3::Zero();
+        m.angularVelocity = moves ? body.angularVelocity_W : Vec3::Zero();
+        const double travel = (m.velocity.norm() + m.angularVelocity.norm() * bodyReach[b]) * stepTime;
+        m.swept = moves && bodyCollides[b] && travel > cSweptMargins * margin;
+        anySwept = anySwept || m.swept;
+    }
+}
+
+// The farthest point of shape s from its body's centre of mass (m).
+double ContactDetector::Impl::shapeReach(const ShapeInstance& s) const
+{
+    return s.p_BS.norm() + s.boundingRadius;
+}
+
+// Shape s's pose a fraction tau of the step ahead, its body moving with its velocities of the step
+// start (the rotation exp(tau dt w) about the centre of mass, as the integrator turns it); turn
+// receives that rotation.
+fcl::Transform3d ContactDetector::Impl::poseAt(const ShapeInstance& s, double tau, Mat3* turn) const
+{
+    const BodyMotion& m = motions[static_cast<std::size_t>(s.body)];
+    Mat3 Q = Mat3::Identity();
+    const double angle = m.angularVelocity.norm() * tau * stepTime; // rad
+    if (angle > 0.0)
+        Q = Eigen::AngleAxisd(angle, m.angularVelocity.normalized()).toRotationMatrix();
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.linear() = Q * s.R_WS;
+    tf.translation() = m.position + tau * stepTime * m.velocity + Q * (s.p_WS - m.position);
+    *turn = Q;
+    return tf;
 }
 
 void ContactDetector::Impl::poseShape(int index, const core::State& state)
@@ -328,7 +424,20 @@ void ContactDetector::Impl::poseShape(int index, const core::State& state)
         tf.linear() = s.R_WS;
         tf.translation() = s.p_WS;
         object->setTransform(tf);
-        if (object->updateFatAABB(margin) && registeredMoving[static_cast<std::size_t>(index)])
+        bool grown = false;
+        const BodyMotion& m = motions[static_cast<std::size_t>(s.body)];
+        if (m.swept)
+        {
+            // Along the travel over the step, and by the turn's reach on every side.
+            const Vec3 d = stepTime * m.velocity; // m
+            const Vec3 turn = Vec3::Constant(stepTime * m.angularVelocity.norm() * shapeReach(s));
+            const Vec3 below = d.cwiseMin(Vec3::Zero()).cwiseAbs() + turn;
+            const Vec3 above = d.cwiseMax(Vec3::Zero()) + turn;
+            grown = object->updateFatAABB(margin, &below, &above);
+        }
+        else
+            grown = object->updateFatAABB(margin);
+        if (grown && registeredMoving[static_cast<std::size_t>(index)])
             changed.push_back(object);
         if (fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(index)].get())
             inflated->setTransform(tf);
@@ -347,15 +456,23 @@ void ContactDetector::Impl::planePass(std::vector<Contact>& out)
     for (const int index : movingShapes)
     {
         const ShapeInstance& s = shapes[static_cast<std::size_t>(index)];
+        const BodyMotion& m = motions[static_cast<std::size_t>(s.body)];
         for (const PlaneInstance& plane : planes)
         {
-            if (plane.normal.dot(s.p_WS) - plane.offset - s.boundingRadius >= margin)
+            // A swept body's window reaches as far as it moves towards the plane in the step,
+            // plus its turn's reach (docs/method.md §10); the solver's speculative rows then let
+            // it close the gap, not pass it.
+            double window = margin; // m
+            if (m.swept)
+                window += stepTime * (std::max(0.0, -plane.normal.dot(m.velocity)) +
+                                      m.angularVelocity.norm() * shapeReach(s));
+            if (plane.normal.dot(s.p_WS) - plane.offset - s.boundingRadius >= window)
                 continue;
             if (!filter.allowed(s.body, plane.body))
                 continue;
             ++stats.planeTests;
             raw.clear();
-            detail::planeContacts(s, plane.normal, plane.offset, margin, raw);
+            detail::planeContacts(s, plane.normal, plane.offset, window, raw);
             detail::mergeAndReduce(raw, 0, s.mergeDistance);
             emit(s.body, plane.body, out);
         }
@@ -567,6 +684,80 @@ void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeI
     emit(a.body, b.body, out);
 }
 
+// A pair with a swept body that is farther apart than the margin at the step start: conservative
+// advancement along both bodies' motion over the step (docs/method.md §10). The pair's distance
+// shrinks by at most mu = dt (|v_B - v_A| + |w_A| r_A + |w_B| r_B) over the whole step, so advancing
+// by distance / mu never passes a touch. When the shapes come within cSweepTolerance of the
+// margin before the step ends, the contact is that of the touch, carried back to the step start:
+// the touch's normal, the points where they were at the start, the gap between them along the
+// normal (depth = -gap). A pair that passes by (or moves apart) gets none, so a fast body is
+// never stopped by what it would miss.
+void ContactDetector::Impl::sweptPair(int i, int j, std::vector<Contact>& out)
+{
+    const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
+    const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
+    const BodyMotion& ma = motions[static_cast<std::size_t>(a.body)];
+    const BodyMotion& mb = motions[static_cast<std::size_t>(b.body)];
+    const Vec3& va = ma.velocity; // zero for a static body (sweepMotions)
+    const Vec3& vb = mb.velocity;
+    const double wa = ma.angularVelocity.norm();
+    const double wb = mb.angularVelocity.norm();
+    const double mu = stepTime * ((vb - va).norm() + wa * shapeReach(a) + wb * shapeReach(b)); // m per step
+    if (!(mu > 0.0))
+        return;
+    const fcl::CollisionGeometryd* ga = objects[static_cast<std::size_t>(i)]->collisionGeometry().get();
+    const fcl::CollisionGeometryd* gb = objects[static_cast<std::size_t>(j)]->collisionGeometry().get();
+    const double tolerance = cSweepTolerance * margin; // m
+    const bool triangles = isTriangleMesh(a) || isTriangleMesh(b);
+    if (isTriangleMesh(a) && isTriangleMesh(b))
+        return; // two triangle meshes (a moving mesh without its hull): not swept
+    double tau = 0.0;
+    Mat3 turnA = Mat3::Identity();
+    Mat3 turnB = Mat3::Identity();
+    for (int k = 0; k < cSweepIterations; ++k)
+    {
+        const fcl::Transform3d tfA = poseAt(a, tau, &turnA);
+        const fcl::Transform3d tfB = poseAt(b, tau, &turnB);
+        distanceResult.clear();
+        const double d = fcl::distance(ga, tfA, gb, tfB, distanceRequest, distanceResult);
+        ++stats.narrowphaseTests;
+        if (!(d >= 0.0))
+            return; // touching already (the margin search's business at tau = 0) or no answer
+        if (k == 0 && d < margin && !triangles)
+            return; // within the margin: the ordinary search saw it (triangles report no gaps)
+        if (d < tolerance)
+        {
+            Vec3 pa = distanceResult.nearest_points[0];
+            Vec3 pb = distanceResult.nearest_points[1];
+            if (triangles)
+            {
+                // FCL 0.7 gives a mesh-shape pair's nearest points in the frames of the mesh
+                // ([0]) and of the shape ([1]), whatever the argument order (measured).
+                const bool meshIsA = isTriangleMesh(a);
+                pa = tfA * distanceResult.nearest_points[meshIsA ? 0 : 1];
+                pb = tfB * distanceResult.nearest_points[meshIsA ? 1 : 0];
+            }
+            const Vec3 between = pb - pa;
+            if (!(between.norm() > 1e-12) || !pa.allFinite() || !pb.allFinite())
+                return;
+            const Vec3 n = between / between.norm();
+            // The touching points where they were at the step start.
+            const Vec3 ca = ma.position + tau * stepTime * va;
+            const Vec3 pa0 = ma.position + turnA.transpose() * (pa - ca);
+            const Vec3 cb = mb.position + tau * stepTime * vb;
+            const Vec3 pb0 = mb.position + turnB.transpose() * (pb - cb);
+            const double gap = std::max((pb0 - pa0).dot(n), d); // m
+            raw.clear();
+            raw.push_back({0.5 * (pa0 + pb0), n, -gap});
+            emit(a.body, b.body, out);
+            return;
+        }
+        tau += (d - 0.5 * tolerance) / mu;
+        if (tau > 1.0)
+            return; // apart over the whole step
+    }
+}
+
 ContactDetector::ContactDetector(const core::Model& model, double margin, MovingMeshes movingMeshes)
     : mImpl(std::make_unique<Impl>(model, margin, movingMeshes))
 {
@@ -582,6 +773,7 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
     out.clear();
     ++m.stats.detectCalls;
 
+    m.sweepMotions(state);
     m.changed.clear();
     for (const int index : m.movingShapes)
         m.poseShape(index, state);
@@ -605,7 +797,14 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
         std::sort(m.shapePairs.begin(), m.shapePairs.end());
         m.stats.broadphasePairs += static_cast<long>(m.shapePairs.size());
         for (const auto& [i, j] : m.shapePairs)
+        {
+            const std::size_t before = out.size();
             m.narrowphase(i, j, out);
+            if (m.anySwept && out.size() == before &&
+                (m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(i)].body)].swept ||
+                 m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(j)].body)].swept))
+                m.sweptPair(i, j, out);
+        }
     }
 
     std::sort(out.begin(), out.end(), contactLess);
@@ -631,6 +830,11 @@ const std::vector<std::pair<int, int>>& ContactDetector::candidatePairs() const
 double contactMargin(double dt)
 {
     return std::clamp(5.0 * dt, 2e-3, 0.05);
+}
+
+void ContactDetector::setStepTime(double dt)
+{
+    mImpl->stepTime = dt > 0.0 ? dt : 0.0;
 }
 
 double ContactDetector::margin() const

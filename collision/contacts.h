@@ -60,6 +60,13 @@ class ContactDetector final : public core::ContactSource
     // first call (O(bodies^2)), so not meant for the stepping loop.
     const std::vector<std::pair<int, int>>& candidatePairs() const;
 
+    // The time step (s) of the simulation this detector serves, for the swept search
+    // (docs/method.md §10): a body whose travel in a step, |v| dt + |w| dt r (r its farthest shape
+    // point from its centre of mass), exceeds twice the margin is searched along its motion, so
+    // that what lies in its path is reported at the step start as a gap contact. 0 (the default)
+    // turns it off; bodies slower than that are searched exactly as without it.
+    void setStepTime(double dt);
+
     double margin() const;
     const DetectorStats& stats() const;
 

@@ -28,6 +28,7 @@ struct SceneRun
         : model(std::move(m)), detector(model, collision::contactMargin(model.simulation.dt)),
           simulator(model, options, &detector), state(core::initialState(model))
     {
+        detector.setStepTime(model.simulation.dt); // fast bodies swept, as `frontier run` does
     }
     SceneRun(const SceneRun&) = delete;
     SceneRun& operator=(const SceneRun&) = delete;
