@@ -83,4 +83,41 @@ int PairFilter::excludedBound(int body) const
     return bound;
 }
 
+long long PairFilter::allowedPairCount(const std::vector<char>& among) const
+{
+    // All pairs, less those of two static bodies or of one group (counted by inclusion-exclusion:
+    // a pair of two static bodies of one group is in both), less the excluded pairs that neither
+    // rule already removed.
+    auto pairs = [](long long k) { return k * (k - 1) / 2; };
+    long long members = 0;
+    long long statics = 0;
+    std::vector<long long> groupMembers(mGroupSize.size(), 0);
+    std::vector<long long> groupStatics(mGroupSize.size(), 0);
+    for (std::size_t i = 0; i < mStatic.size(); ++i)
+    {
+        if (!among[i])
+            continue;
+        ++members;
+        statics += mStatic[i] ? 1 : 0;
+        if (mGroup[i] >= 0)
+        {
+            ++groupMembers[static_cast<std::size_t>(mGroup[i])];
+            groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
+        }
+    }
+    long long count = pairs(members) - pairs(statics);
+    for (std::size_t g = 0; g < groupMembers.size(); ++g)
+        count -= pairs(groupMembers[g]) - pairs(groupStatics[g]);
+    for (const std::uint64_t k : mExcluded)
+    {
+        const auto a = static_cast<std::size_t>(k >> 32);
+        const auto b = static_cast<std::size_t>(k & 0xffffffffu);
+        if (!among[a] || !among[b] || (mStatic[a] && mStatic[b]) ||
+            (mGroup[a] >= 0 && mGroup[a] == mGroup[b]))
+            continue;
+        --count;
+    }
+    return count;
+}
+
 } // namespace frontier::collision

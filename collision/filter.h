@@ -25,6 +25,10 @@ class PairFilter
     // An upper bound on the number of bodies that body b may not collide with.
     int excludedBound(int body) const;
 
+    // The number of allowed pairs (a, b), a < b, among the bodies with among[body] != 0, counted
+    // without listing them: O(bodies + joints + ignore pairs) time and memory.
+    long long allowedPairCount(const std::vector<char>& among) const;
+
   private:
     static std::uint64_t key(int a, int b);
 
