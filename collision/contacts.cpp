@@ -310,21 +310,13 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
     }
 
     // Bodies that go to the broadphase: those with an FCL shape and an allowed partner among the
-    // others with FCL shapes. The excluded-count bound avoids the O(n^2) check in large scenes.
-    std::vector<int> fclBodies;
+    // others with FCL shapes, counted in O(bodies + joints) (PairFilter::hasAllowedPartner).
+    std::vector<char> fclBody(model.bodies.size(), 0);
     for (std::size_t s = 0; s < shapes.size(); ++s)
-        if (objects[s] && (fclBodies.empty() || fclBodies.back() != shapes[s].body))
-            fclBodies.push_back(shapes[s].body);
-    std::vector<char> inBroadphase(model.bodies.size(), 0);
+        if (objects[s])
+            fclBody[static_cast<std::size_t>(shapes[s].body)] = 1;
+    const std::vector<char> inBroadphase = filter.hasAllowedPartner(fclBody);
     registeredMoving.assign(shapes.size(), 0);
-    const int others = static_cast<int>(fclBodies.size()) - 1;
-    for (const int b : fclBodies)
-    {
-        bool partner = others > filter.excludedBound(b);
-        for (std::size_t k = 0; k < fclBodies.size() && !partner; ++k)
-            partner = filter.allowed(b, fclBodies[k]);
-        inBroadphase[static_cast<std::size_t>(b)] = partner ? 1 : 0;
-    }
     std::vector<fcl::CollisionObjectd*> registered;
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {

@@ -1,4 +1,5 @@
 // tests/collision/filter_test.cpp: which pairs may collide (docs/method.md §10).
+#include "collision/filter.h"
 #include "test_models.h"
 
 #include <algorithm>
@@ -175,6 +176,24 @@ TEST(Filter, PairCountIsTheListsLength)
     EXPECT_EQ(pairs.size(), 55u - 3u - 5u - 1u - 3u);
     EXPECT_TRUE(hasCandidate(detector, 4, 5));
     EXPECT_FALSE(hasCandidate(detector, 7, 11));
+    // Which bodies have a partner at all (the broadphase takes only those), against the list.
+    std::vector<char> among(model.bodies.size(), 1);
+    among[11] = 0;
+    model.contact.ignore.push_back({9, 0}); // s9's last partners: 0, ..., 7
+    for (int k = 2; k < 8; ++k)
+        model.contact.ignore.push_back({9, k});
+    const PairFilter filter(model);
+    const std::vector<char> partner = filter.hasAllowedPartner(among);
+    for (int b = 0; b < 12; ++b)
+    {
+        bool listed = false;
+        for (int c = 0; c < 12; ++c)
+            listed = listed || (b != c && among[static_cast<std::size_t>(b)] &&
+                                among[static_cast<std::size_t>(c)] && filter.allowed(b, c));
+        EXPECT_EQ(partner[static_cast<std::size_t>(b)] != 0, listed) << "body " << b;
+    }
+    EXPECT_FALSE(partner[9]);
+    EXPECT_TRUE(partner[8]);
 }
 
 // Set-up that scales (docs/benchmarks.md, "Start-up"): the detector of a 20 000-box chain laid
