@@ -14,6 +14,10 @@ namespace frontier::app
 
 namespace
 {
+// `info` lists the collision pairs only up to this many pairs and bodies; beyond, it gives their count.
+constexpr long long cListedPairsMax = 1000;
+constexpr std::size_t cListedPairBodiesMax = 2000;
+
 std::string bodyName(const core::Model& model, int body)
 {
     return body == core::cWorld ? "world" : model.bodies[static_cast<std::size_t>(body)].name;
@@ -149,13 +153,20 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
         loops.push_back(model.joints[static_cast<std::size_t>(joint)].name);
     }
     out["loops"] = loops;
+    // The pairs are O(bodies^2): counted always, listed only for a scene small enough to read them
+    // (listing them also takes O(bodies^2) time).
     collision::ContactDetector detector(model);
-    nlohmann::json pairs = nlohmann::json::array();
-    for (const auto& [a, b] : detector.candidatePairs())
+    const long long pairCount = detector.candidatePairCount();
+    out["collision_pair_count"] = pairCount;
+    if (pairCount <= cListedPairsMax && model.bodies.size() <= cListedPairBodiesMax)
     {
-        pairs.push_back({bodyName(model, a), bodyName(model, b)});
+        nlohmann::json pairs = nlohmann::json::array();
+        for (const auto& [a, b] : detector.candidatePairs())
+        {
+            pairs.push_back({bodyName(model, a), bodyName(model, b)});
+        }
+        out["collision_pairs"] = pairs;
     }
-    out["collision_pairs"] = pairs;
     out["robots"] = describeRobots(report);
     return out;
 }
@@ -259,8 +270,14 @@ void printText(const nlohmann::json& info)
             std::cout << "\n    " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>();
         }
     }
-    std::cout << "\ncollision pairs: " << info["collision_pairs"].size() << "\n";
-    for (const auto& pair : info["collision_pairs"])
+    std::cout << "\ncollision pairs: " << info["collision_pair_count"].get<long long>();
+    if (!info.contains("collision_pairs"))
+    {
+        std::cout << " (not listed: more than " << cListedPairsMax << " pairs or " << cListedPairBodiesMax
+                  << " bodies)";
+    }
+    std::cout << "\n";
+    for (const auto& pair : info.value("collision_pairs", nlohmann::json::array()))
     {
         std::cout << "  " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>() << "\n";
     }

@@ -40,6 +40,7 @@
 #include "collision/internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -54,6 +55,7 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 namespace frontier::collision
@@ -225,9 +227,11 @@ struct ContactDetector::Impl
     bool anySwept = false;             // some body is swept this call
     std::vector<ShapeInstance> shapes; // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
-    // Boxes grown by the margin on every side (null for other shapes): colliding one with the other
-    // box of a pair gives FCL's box-box manifold while they are still apart, for speculative contacts.
+    // Boxes grown by the margin on every side: colliding one with the other box of a pair gives
+    // FCL's box-box manifold while they are still apart, for speculative contacts. One object per
+    // distinct box size, given the box's pose when it is used; per shape its index, -1 for others.
     std::vector<std::unique_ptr<fcl::CollisionObjectd>> inflatedBoxes;
+    std::vector<int> inflatedBox;
     std::vector<PlaneInstance> planes;
     std::vector<int> movingShapes;                        // shapes of moving bodies
     std::vector<int> staticShapes;                        // shapes of static bodies
@@ -274,6 +278,10 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
 {
     const int bodyCount = static_cast<int>(model.bodies.size());
     bodyCollides.assign(model.bodies.size(), 0);
+    // Shapes of one type and size share one FCL geometry (it holds no pose), so that a scene of many
+    // equal bodies costs one geometry, not one per body; the same for the inflated boxes.
+    std::map<std::array<double, 4>, std::shared_ptr<fcl::CollisionGeometryd>> geometries;
+    std::map<std::array<double, 3>, int> inflatedBySize;
     for (int b = 0; b < bodyCount; ++b)
     {
         const core::Body& body = model.bodies[static_cast<std::size_t>(b)];
@@ -299,7 +307,20 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
             bodyCollides[static_cast<std::size_t>(b)] = 1;
             (body.isStatic ? staticShapes : movingShapes).push_back(index);
             std::unique_ptr<MarginObject> object;
-            if (auto geometry = makeGeometry(shape, shapes.back()))
+            std::shared_ptr<fcl::CollisionGeometryd> geometry;
+            if (shape.type == core::ShapeType::Mesh)
+                geometry = makeGeometry(shape, shapes.back());
+            else
+            {
+                const bool box = shape.type == core::ShapeType::Box;
+                std::shared_ptr<fcl::CollisionGeometryd>& shared =
+                    geometries[{static_cast<double>(shape.type), box ? shape.size.x() : shape.radius,
+                                box ? shape.size.y() : shape.length, box ? shape.size.z() : 0.0}];
+                if (!shared)
+                    shared = makeGeometry(shape, shapes.back());
+                geometry = shared;
+            }
+            if (geometry)
             {
                 fcl::Transform3d tf = fcl::Transform3d::Identity();
                 tf.linear() = shapes.back().R_WS;
@@ -309,33 +330,33 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
                 object->updateFatAABB(margin);
             }
             objects.push_back(std::move(object));
-            std::unique_ptr<fcl::CollisionObjectd> inflated;
+            int inflated = -1;
             if (shape.type == core::ShapeType::Box)
             {
-                const Vec3 size = shape.size + Vec3::Constant(2.0 * margin);
-                inflated = std::make_unique<fcl::CollisionObjectd>(
-                    std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z()), fcl::Transform3d::Identity());
+                const auto [it, added] = inflatedBySize.emplace(
+                    std::array<double, 3>{shape.size.x(), shape.size.y(), shape.size.z()},
+                    static_cast<int>(inflatedBoxes.size()));
+                if (added)
+                {
+                    const Vec3 size = shape.size + Vec3::Constant(2.0 * margin);
+                    inflatedBoxes.push_back(std::make_unique<fcl::CollisionObjectd>(
+                        std::make_shared<fcl::Boxd>(size.x(), size.y(), size.z()),
+                        fcl::Transform3d::Identity()));
+                }
+                inflated = it->second;
             }
-            inflatedBoxes.push_back(std::move(inflated));
+            inflatedBox.push_back(inflated);
         }
     }
 
     // Bodies that go to the broadphase: those with an FCL shape and an allowed partner among the
-    // others with FCL shapes. The excluded-count bound avoids the O(n^2) check in large scenes.
-    std::vector<int> fclBodies;
+    // others with FCL shapes, counted in O(bodies + joints) (PairFilter::hasAllowedPartner).
+    std::vector<char> fclBody(model.bodies.size(), 0);
     for (std::size_t s = 0; s < shapes.size(); ++s)
-        if (objects[s] && (fclBodies.empty() || fclBodies.back() != shapes[s].body))
-            fclBodies.push_back(shapes[s].body);
-    std::vector<char> inBroadphase(model.bodies.size(), 0);
+        if (objects[s])
+            fclBody[static_cast<std::size_t>(shapes[s].body)] = 1;
+    const std::vector<char> inBroadphase = filter.hasAllowedPartner(fclBody);
     registeredMoving.assign(shapes.size(), 0);
-    const int others = static_cast<int>(fclBodies.size()) - 1;
-    for (const int b : fclBodies)
-    {
-        bool partner = others > filter.excludedBound(b);
-        for (std::size_t k = 0; k < fclBodies.size() && !partner; ++k)
-            partner = filter.allowed(b, fclBodies[k]);
-        inBroadphase[static_cast<std::size_t>(b)] = partner ? 1 : 0;
-    }
     std::vector<fcl::CollisionObjectd*> registered;
     for (std::size_t s = 0; s < shapes.size(); ++s)
     {
@@ -439,8 +460,6 @@ void ContactDetector::Impl::poseShape(int index, const core::State& state)
             grown = object->updateFatAABB(margin);
         if (grown && registeredMoving[static_cast<std::size_t>(index)])
             changed.push_back(object);
-        if (fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(index)].get())
-            inflated->setTransform(tf);
     }
 }
 
@@ -583,9 +602,11 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
                 raw.erase(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(fclCount));
         }
     }
-    fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(i)].get();
-    if (raw.empty() && inflated != nullptr && b.type == core::ShapeType::Box)
+    const int inflatedIndex = inflatedBox[static_cast<std::size_t>(i)];
+    if (raw.empty() && inflatedIndex >= 0 && b.type == core::ShapeType::Box)
     {
+        fcl::CollisionObjectd* inflated = inflatedBoxes[static_cast<std::size_t>(inflatedIndex)].get();
+        inflated->setTransform(objects[static_cast<std::size_t>(i)]->getTransform()); // box i's pose
         // Two boxes apart: the manifold of a grown by the margin, depths less the margin (< 0).
         result.clear();
         fcl::collide(inflated, objects[static_cast<std::size_t>(j)].get(), request, result);
@@ -825,6 +846,11 @@ const std::vector<std::pair<int, int>>& ContactDetector::candidatePairs() const
         m.candidatesReady = true;
     }
     return m.candidates;
+}
+
+long long ContactDetector::candidatePairCount() const
+{
+    return mImpl->filter.allowedPairCount(mImpl->bodyCollides);
 }
 
 double contactMargin(double dt)

@@ -59,6 +59,9 @@ class ContactDetector final : public core::ContactSource
     // Listed as (i, j) with i < j, bodies without collision shapes left out. Computed on the
     // first call (O(bodies^2)), so not meant for the stepping loop.
     const std::vector<std::pair<int, int>>& candidatePairs() const;
+    // How many pairs candidatePairs() lists, counted in O(bodies + joints + ignore pairs) without
+    // listing them (a large scene has O(bodies^2) of them).
+    long long candidatePairCount() const;
 
     // The time step (s) of the simulation this detector serves, for the swept search
     // (docs/method.md §10): a body whose travel in a step, |v| dt + |w| dt r (r its farthest shape

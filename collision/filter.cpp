@@ -20,17 +20,13 @@ PairFilter::PairFilter(const core::Model& model)
     const std::size_t n = model.bodies.size();
     mStatic.assign(n, 0);
     mGroup.assign(n, -1);
-    mExcludedDegree.assign(n, 0);
 
     std::map<std::string, int> groupIds;
     for (std::size_t i = 0; i < n; ++i)
     {
         const core::Body& body = model.bodies[i];
         if (body.isStatic)
-        {
             mStatic[i] = 1;
-            ++mStaticCount;
-        }
         if (!body.group.empty())
         {
             const auto [it, inserted] = groupIds.emplace(body.group, static_cast<int>(groupIds.size()));
@@ -47,8 +43,6 @@ PairFilter::PairFilter(const core::Model& model)
         if (a < 0 || b < 0 || a >= count || b >= count || a == b)
             return;
         mExcluded.push_back(key(a, b));
-        ++mExcludedDegree[static_cast<std::size_t>(a)];
-        ++mExcludedDegree[static_cast<std::size_t>(b)];
     };
     for (const core::Joint& joint : model.joints)
         if (!joint.collideConnected)
@@ -72,15 +66,94 @@ bool PairFilter::allowed(int a, int b) const
     return !std::binary_search(mExcluded.begin(), mExcluded.end(), key(a, b));
 }
 
-int PairFilter::excludedBound(int body) const
+// Whether the excluded pair (a, b) is also removed by the static or the group rule.
+bool PairFilter::excludedByRule(std::size_t a, std::size_t b) const
 {
-    const auto i = static_cast<std::size_t>(body);
-    int bound = mExcludedDegree[i];
-    if (mGroup[i] >= 0)
-        bound += mGroupSize[static_cast<std::size_t>(mGroup[i])] - 1;
-    if (mStatic[i])
-        bound += mStaticCount - 1;
-    return bound;
+    return (mStatic[a] && mStatic[b]) || (mGroup[a] >= 0 && mGroup[a] == mGroup[b]);
+}
+
+std::vector<char> PairFilter::hasAllowedPartner(const std::vector<char>& among) const
+{
+    // Body b's allowed partners: the other members, less the other static ones when b is static,
+    // the other members of its group (those both static and of its group counted once) and its
+    // excluded partners that neither rule removes (each key is there once).
+    long long members = 0;
+    long long statics = 0;
+    std::vector<long long> groupMembers(mGroupSize.size(), 0);
+    std::vector<long long> groupStatics(mGroupSize.size(), 0);
+    for (std::size_t i = 0; i < mStatic.size(); ++i)
+    {
+        if (!among[i])
+            continue;
+        ++members;
+        statics += mStatic[i] ? 1 : 0;
+        if (mGroup[i] >= 0)
+        {
+            ++groupMembers[static_cast<std::size_t>(mGroup[i])];
+            groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
+        }
+    }
+    std::vector<long long> excludedPartners(mStatic.size(), 0);
+    for (const std::uint64_t k : mExcluded)
+    {
+        const auto a = static_cast<std::size_t>(k >> 32);
+        const auto b = static_cast<std::size_t>(k & 0xffffffffu);
+        if (among[a] && among[b] && !excludedByRule(a, b))
+        {
+            ++excludedPartners[a];
+            ++excludedPartners[b];
+        }
+    }
+    std::vector<char> out(mStatic.size(), 0);
+    for (std::size_t i = 0; i < mStatic.size(); ++i)
+    {
+        if (!among[i])
+            continue;
+        long long barred = excludedPartners[i] + (mStatic[i] ? statics - 1 : 0);
+        if (mGroup[i] >= 0)
+        {
+            const auto g = static_cast<std::size_t>(mGroup[i]);
+            barred += groupMembers[g] - 1 - (mStatic[i] ? groupStatics[g] - 1 : 0);
+        }
+        out[i] = members - 1 - barred > 0 ? 1 : 0;
+    }
+    return out;
+}
+
+long long PairFilter::allowedPairCount(const std::vector<char>& among) const
+{
+    // All pairs, less those of two static bodies or of one group (counted by inclusion-exclusion:
+    // a pair of two static bodies of one group is in both), less the excluded pairs that neither
+    // rule already removed.
+    auto pairs = [](long long k) { return k * (k - 1) / 2; };
+    long long members = 0;
+    long long statics = 0;
+    std::vector<long long> groupMembers(mGroupSize.size(), 0);
+    std::vector<long long> groupStatics(mGroupSize.size(), 0);
+    for (std::size_t i = 0; i < mStatic.size(); ++i)
+    {
+        if (!among[i])
+            continue;
+        ++members;
+        statics += mStatic[i] ? 1 : 0;
+        if (mGroup[i] >= 0)
+        {
+            ++groupMembers[static_cast<std::size_t>(mGroup[i])];
+            groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
+        }
+    }
+    long long count = pairs(members) - pairs(statics);
+    for (std::size_t g = 0; g < groupMembers.size(); ++g)
+        count -= pairs(groupMembers[g]) - pairs(groupStatics[g]);
+    for (const std::uint64_t k : mExcluded)
+    {
+        const auto a = static_cast<std::size_t>(k >> 32);
+        const auto b = static_cast<std::size_t>(k & 0xffffffffu);
+        if (!among[a] || !among[b] || excludedByRule(a, b))
+            continue;
+        --count;
+    }
+    return count;
 }
 
 } // namespace frontier::collision

@@ -22,17 +22,21 @@ class PairFilter
     bool isStatic(int body) const { return mStatic[static_cast<std::size_t>(body)] != 0; }
     int bodyCount() const { return static_cast<int>(mStatic.size()); }
 
-    // An upper bound on the number of bodies that body b may not collide with.
-    int excludedBound(int body) const;
+    // The number of allowed pairs (a, b), a < b, among the bodies with among[body] != 0, counted
+    // without listing them: O(bodies + joints + ignore pairs) time and memory.
+    long long allowedPairCount(const std::vector<char>& among) const;
+
+    // Per body: whether it is among[] and may collide with at least one other body among them;
+    // O(bodies + joints + ignore pairs), counted as in allowedPairCount.
+    std::vector<char> hasAllowedPartner(const std::vector<char>& among) const;
 
   private:
     static std::uint64_t key(int a, int b);
+    bool excludedByRule(std::size_t a, std::size_t b) const;
 
-    std::vector<char> mStatic;        // per body
-    std::vector<int> mGroup;          // per body, -1 for none
-    std::vector<int> mGroupSize;      // per group id
-    std::vector<int> mExcludedDegree; // per body: joints and ignore entries it is part of
-    int mStaticCount = 0;
+    std::vector<char> mStatic;            // per body
+    std::vector<int> mGroup;              // per body, -1 for none
+    std::vector<int> mGroupSize;          // per group id
     std::vector<std::uint64_t> mExcluded; // sorted keys of (min, max) pairs
 };
 

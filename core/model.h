@@ -231,6 +231,9 @@ struct Model
     std::vector<Actuator> actuators; // at most one per joint coordinate
     std::vector<Load> loads;
 
+    // The index of the first body of that name, -2 when there is none. A linear search (the model
+    // keeps no index that every edit of `bodies` would have to maintain): for a single look-up;
+    // the scene loaders resolve names through a name -> index map (io's SceneBuilder).
     int findBody(const std::string& bodyName) const;
 };
 

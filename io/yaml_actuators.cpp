@@ -26,14 +26,14 @@ const char* coordinateName(core::JointCoordinate coordinate)
 int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what)
 {
     const std::string name = toString(builder.source, node, what);
-    std::vector<std::string> names;
-    for (std::size_t k = 0; k < builder.model.joints.size(); ++k)
+    if (const auto it = builder.jointIndex.find(name); it != builder.jointIndex.end())
     {
-        if (builder.model.joints[k].name == name)
-        {
-            return static_cast<int>(k);
-        }
-        names.push_back(builder.model.joints[k].name);
+        return it->second;
+    }
+    std::vector<std::string> names;
+    for (const core::Joint& joint : builder.model.joints)
+    {
+        names.push_back(joint.name);
     }
     failAt(builder.source, node,
            "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));

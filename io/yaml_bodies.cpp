@@ -396,7 +396,7 @@ void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const
         failAt(builder.source, nameNode, "invalid " + kind + " name '" + name + "': " + reason);
     }
     const auto& marks = kind == "body" ? builder.bodyMarks : builder.jointMarks;
-    const bool taken = kind == "body" ? builder.findBody(name) >= 0 : builder.jointNames.count(name) > 0;
+    const bool taken = kind == "body" ? builder.findBody(name) >= 0 : builder.jointIndex.count(name) > 0;
     if (taken)
     {
         const auto it = marks.find(name);

@@ -166,7 +166,7 @@ void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fra
     }
     for (core::Joint& joint : fragment.joints)
     {
-        if (builder.jointNames.count(joint.name))
+        if (builder.jointIndex.count(joint.name))
         {
             entry.fail("the model from '" + urdfPath + "' adds joint '" + joint.name +
                        "', but a joint of that name exists already; give this model another 'prefix'");

@@ -21,15 +21,15 @@ struct SceneBuilder
 {
     YamlSource source;
     core::Model model;
-    std::map<std::string, YAML::Mark> bodyMarks;    // where each YAML body's name was given
-    std::map<std::string, YAML::Mark> jointMarks;   // where each YAML joint's name was given
-    std::map<std::string, int> weldedLinks;         // a URDF link welded into a body (prefixed name -> body)
-    UrdfOptions urdf;                               // how `models:` are read
-    std::optional<PackagePaths> packages;           // their mesh URIs, made on first use
-    LoadReport* report = nullptr;                   // receives warnings and what loading did
-    std::vector<std::array<int, 2>> heldJoints;     // joints [first, end) of models held by servos
-    std::unordered_map<std::string, int> bodyIndex; // every body's name -> its index (no linear search)
-    std::unordered_set<std::string> jointNames;     // every joint's name
+    std::map<std::string, YAML::Mark> bodyMarks;     // where each YAML body's name was given
+    std::map<std::string, YAML::Mark> jointMarks;    // where each YAML joint's name was given
+    std::map<std::string, int> weldedLinks;          // a URDF link welded into a body (prefixed name -> body)
+    UrdfOptions urdf;                                // how `models:` are read
+    std::optional<PackagePaths> packages;            // their mesh URIs, made on first use
+    LoadReport* report = nullptr;                    // receives warnings and what loading did
+    std::vector<std::array<int, 2>> heldJoints;      // joints [first, end) of models held by servos
+    std::unordered_map<std::string, int> bodyIndex;  // every body's name -> its index (no linear search)
+    std::unordered_map<std::string, int> jointIndex; // every joint's name -> its index (no linear search)
 
     void addBody(core::Body body)
     {
@@ -38,7 +38,7 @@ struct SceneBuilder
     }
     void addJoint(core::Joint joint)
     {
-        jointNames.insert(joint.name);
+        jointIndex.emplace(joint.name, static_cast<int>(model.joints.size()));
         model.joints.push_back(std::move(joint));
     }
     int findBody(const std::string& name) const

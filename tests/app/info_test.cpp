@@ -149,5 +149,42 @@ joints:
         << text.out;
 }
 
+// A chain of 1 500 boxes has about 1.1 million collision pairs: `info` gives their count (all pairs
+// less the 1 499 joined ones) and does not list them; the doll's few are still listed.
+TEST(Info, LargeChainCountsItsPairsInsteadOfListingThem)
+{
+    constexpr long long n = 1500;
+    std::string text = "bodies:\n";
+    for (long long i = 0; i < n; ++i)
+    {
+        text += "  - {name: link" + std::to_string(i) +
+                ", shape: {type: box, size: [0.08, 0.02, 0.02]}, mass: 0.1, position: [" +
+                std::to_string(0.1 * i) + ", 0, 2]}\n";
+    }
+    text += "joints:\n";
+    for (long long i = 1; i < n; ++i)
+    {
+        text += "  - {name: j" + std::to_string(i) + ", type: ball, parent: link" + std::to_string(i - 1) +
+                ", child: link" + std::to_string(i) + ", anchor: [" + std::to_string(0.1 * i - 0.05) +
+                ", 0, 2]}\n";
+    }
+    const TestDir dir;
+    const std::string scene = dir.write("chain.yaml", text);
+    const Result json = dir.run("info " + scene + " --json");
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    const nlohmann::json info = nlohmann::json::parse(json.out);
+    EXPECT_EQ(info.at("collision_pair_count").get<long long>(), n * (n - 1) / 2 - (n - 1));
+    EXPECT_FALSE(info.contains("collision_pairs"));
+    const Result plain = dir.run("info " + scene);
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_NE(plain.out.find("collision pairs: 1122751 (not listed"), std::string::npos);
+    EXPECT_EQ(plain.out.find("link0 - link2\n"), std::string::npos);
+
+    const Result doll = dir.run("info scenes/falling_doll.yaml --json");
+    ASSERT_EQ(doll.exitCode, 0) << doll.err;
+    const nlohmann::json small = nlohmann::json::parse(doll.out);
+    EXPECT_EQ(small.at("collision_pair_count").get<std::size_t>(), small.at("collision_pairs").size());
+}
+
 } // namespace
 } // namespace frontier::app::test
