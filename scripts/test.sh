@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: a Release build (warnings are errors) and an
-# AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2.
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2; then
+# each fuzz target (fuzz/, clang) for FUZZ_SECONDS (default 20, 0 skips), two at a time.
 # Installs missing Debian packages first (scripts/install-deps.sh --for-tests --with-peers); the
 # Release build also builds and tests bench/peers (the comparison with Bullet, ODE and MuJoCo).
 set -euo pipefail
@@ -20,3 +21,10 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DFRONTIER_SANITIZE=ON -
 cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -j"$jobs" --output-on-failure
+
+fuzz_seconds=${FUZZ_SECONDS:-20}
+if [[ $fuzz_seconds -gt 0 ]]; then
+  echo "== Fuzz targets (libFuzzer, address, undefined): ${fuzz_seconds} s each"
+  JOBS=$jobs FUZZ_JOBS=2 scripts/fuzz.sh all "$fuzz_seconds"
+fi
+
