@@ -4,8 +4,8 @@
 #   TARGET: yaml_scene (YAML scenes), urdf (URDF models), mesh (mesh files through assimp),
 #   trajectory (the trajectory reader of `check` and `render`); all: each of them for SECONDS,
 #   FUZZ_JOBS (default 2) at a time.
-# Builds fuzz/ in build-fuzz/ with clang (cmake -DFRONTIER_FUZZ=ON; only the io and core libraries
-# and the targets), seeds build-fuzz/seeds/TARGET from scenes/ and tests/ (fuzz/seeds.sh) and
+# Builds fuzz/ in build-fuzz/ (FUZZ_BUILD_DIR) with clang (cmake -DFRONTIER_FUZZ=ON; only the io and
+# core libraries and the targets), seeds build-fuzz/seeds/TARGET from scenes/ and tests/ (fuzz/seeds.sh) and
 # grows build-fuzz/corpus/TARGET. An io::InputError is the readers' answer to bad input; a crash,
 # a sanitizer report, a leak, an input slower than 5 s (-timeout=5) or over 2 GB of memory
 # (-rss_limit_mb=2048) is a finding: its input is saved as build-fuzz/findings/TARGET-*, the log
@@ -39,8 +39,12 @@ launcher=()
 if command -v ccache >/dev/null 2>&1; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 fi
-CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DFRONTIER_FUZZ=ON \
-  -DBUILD_TESTING=OFF -DFRONTIER_BENCHMARKS=OFF -DFRONTIER_WERROR=ON "${launcher[@]}" >/dev/null
+# A tree already configured with FRONTIER_FUZZ=ON (build-fuzz/, or a sanitizer build made with clang,
+# FUZZ_BUILD_DIR=build-sanitize) is used as it is.
+if ! grep -q '^FRONTIER_FUZZ:BOOL=ON' "$build/CMakeCache.txt" 2>/dev/null; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DFRONTIER_FUZZ=ON \
+    -DBUILD_TESTING=OFF -DFRONTIER_BENCHMARKS=OFF -DFRONTIER_WERROR=ON "${launcher[@]}" >/dev/null
+fi
 cmake --build "$build" -j"${JOBS:-2}" --target "${selected[@]/#/fuzz_}"
 fuzz/seeds.sh "$build/seeds"
 
