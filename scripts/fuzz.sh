@@ -7,7 +7,8 @@
 # Builds fuzz/ in build-fuzz/ (FUZZ_BUILD_DIR) with clang (cmake -DFRONTIER_FUZZ=ON; only the io and
 # core libraries and the targets), seeds build-fuzz/seeds/TARGET from scenes/ and tests/ (fuzz/seeds.sh) and
 # grows build-fuzz/corpus/TARGET. An io::InputError is the readers' answer to bad input; a crash,
-# a sanitizer report, a leak, an input slower than 5 s (-timeout=5) or over 2 GB of memory
+# a sanitizer report, a leak, an input slower than 5 s (-timeout=5; FUZZ_TIMEOUT=N raises it on a
+# busy machine, where the bundled quadruped alone can take 5 s under the sanitizers) or over 2 GB of memory
 # (-rss_limit_mb=2048) is a finding: its input is saved as build-fuzz/findings/TARGET-*, the log
 # as build-fuzz/logs/TARGET.log, and the script exits 1. Replay one: build-fuzz/fuzz/fuzz_TARGET FILE.
 # Needs clang and libclang-rt-14-dev (scripts/install-deps.sh --for-tests).
@@ -57,7 +58,7 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 run_one() {
   local t=$1
   mkdir -p "$build/corpus/$t"
-  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=5 -rss_limit_mb=2048 -max_len=65536 \
+  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-5}" -rss_limit_mb=2048 -max_len=65536 \
     -dict="fuzz/$t.dict" -artifact_prefix="$build/findings/$t-" -print_final_stats=1 \
     "$build/corpus/$t" "$build/seeds/$t" >"$build/logs/$t.log" 2>&1
 }
