@@ -82,13 +82,14 @@ void indexReferenceRows(const std::string& scene, const std::string& ref, Checke
         }
     }
     std::set<std::string> atThisTime;
-    auto closeTime = [&](double time)
+    // `line`: the first row of the time being closed.
+    auto closeTime = [&](double time, int line)
     {
         for (const std::string& name : sceneBodies)
         {
             if (!atThisTime.count(name))
             {
-                throw io::InputError(ref, 0, 0,
+                throw io::InputError(ref, line, 0,
                                      "body '" + name +
                                          "' of the scene is missing from the reference at t = " +
                                          std::to_string(time) + " s (a reference of another scene?)");
@@ -102,14 +103,14 @@ void indexReferenceRows(const std::string& scene, const std::string& ref, Checke
         {
             if (r > 0)
             {
-                closeTime(reference.rows[r - 1].time);
+                closeTime(reference.rows[r - 1].time, reference.rows[out.timeStart.back()].line);
             }
             out.timeStart.push_back(r);
             atThisTime.clear();
         }
         if (!sceneBodies.count(row.body))
         {
-            throw io::InputError(ref, 0, 0,
+            throw io::InputError(ref, row.line, 0,
                                  "the reference has body '" + row.body + "', which is not a moving body of " +
                                      scene + " (a reference of another scene?)");
         }
@@ -119,11 +120,14 @@ void indexReferenceRows(const std::string& scene, const std::string& ref, Checke
     {
         throw io::InputError(ref, 0, 0, "the reference has no rows");
     }
-    closeTime(reference.rows.back().time);
+    closeTime(reference.rows.back().time, reference.rows[out.timeStart.back()].line);
     const std::size_t expected = static_cast<std::size_t>(out.steps / out.recordEvery) + 1;
     if (out.timeStart.size() != expected)
     {
-        throw io::InputError(ref, 0, 0,
+        // The first time too many, or the last row when times are missing.
+        const int line = out.timeStart.size() > expected ? reference.rows[out.timeStart[expected]].line
+                                                         : reference.rows.back().line;
+        throw io::InputError(ref, line, 0,
                              "the reference has " + std::to_string(out.timeStart.size()) +
                                  " recorded times, but " + std::to_string(out.steps) +
                                  " steps recorded every " + std::to_string(out.recordEvery) + " make " +
@@ -186,7 +190,7 @@ class Comparison
 {
   public:
     Comparison(const CheckedReference& reference, const CheckOptions& options)
-        : mReference(reference),
+        : mReference(reference), mReferencePath(options.reference),
           mQuantities{{{"position", "m", options.positionTolerance, 0.0, 0.0, {}},
                        {"orientation", "rad", options.orientationTolerance, 0.0, 0.0, {}},
                        {"velocity", "m/s", options.velocityTolerance, 0.0, 0.0, {}},
@@ -207,8 +211,11 @@ class Comparison
                                     : trajectory.rows.size();
         if (std::abs(trajectory.rows[begin].time - state.time) > 1e-9 * std::max(1.0, std::abs(state.time)))
         {
-            misfit = "the reference's time " + std::to_string(trajectory.rows[begin].time) +
-                     " s does not match the simulated " + std::to_string(state.time) + " s";
+            misfit =
+                io::InputError(mReferencePath, trajectory.rows[begin].line, 1,
+                               "the reference's time " + std::to_string(trajectory.rows[begin].time) +
+                                   " s does not match the simulated " + std::to_string(state.time) + " s")
+                    .what();
             return;
         }
         ++recorded;
@@ -222,7 +229,7 @@ class Comparison
 
     std::string firstDivergence;
     std::size_t recorded = 0;
-    std::string misfit;
+    std::string misfit; // "REF:LINE:COL: error: ..." when the reference's times do not fit the run
 
   private:
     void compareRow(const io::TrajectoryRow& row, const core::State& state)
@@ -261,6 +268,7 @@ class Comparison
     }
 
     const CheckedReference& mReference;
+    std::string mReferencePath; // for messages
     std::array<Quantity, 4> mQuantities;
 };
 
@@ -355,7 +363,7 @@ int checkCommand(const CheckOptions& options)
     }
     if (!comparison.misfit.empty())
     {
-        std::cerr << "frontier: " << options.reference << ": " << comparison.misfit << "\n";
+        std::cerr << "frontier: " << comparison.misfit << "\n";
         return cExitBadInput;
     }
     return reportCheck(options, comparison, summary);

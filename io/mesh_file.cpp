@@ -4,10 +4,13 @@
 #include "io/file_util.h"
 #include "io/scene.h"
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <optional>
+#include <sys/stat.h>
 #include <unordered_map>
 #include <utility>
 
@@ -143,6 +146,67 @@ class MeshCollector
     std::unordered_map<VertexKey, int, VertexKeyHash> mIndex;
 };
 
+// Every file assimp opens (the mesh, an OBJ's mtllib, a glTF's buffers, ...) goes through
+// checkInputFile (io/file_util.h) first: a FIFO or a device named inside a mesh file would block
+// assimp or feed it without end. Assimp catches exceptions thrown inside its readers and reports
+// "internal error", so a refusal is kept here and thrown after ReadFile returns.
+class CheckedIOSystem final : public Assimp::DefaultIOSystem
+{
+  public:
+    // stat() only: the default opens the file to see whether it exists, which blocks on a FIFO
+    // until a writer comes.
+    bool Exists(const char* file) const override
+    {
+        struct stat info
+        {
+        };
+        return ::stat(file, &info) == 0;
+    }
+
+    Assimp::IOStream* Open(const char* file, const char* mode) override
+    {
+        if (!Exists(file))
+        {
+            return nullptr; // a missing material file: assimp goes on without it, as it always did
+        }
+        try
+        {
+            checkInputFile(file, "file named in a mesh file");
+        }
+        catch (const InputError& refused)
+        {
+            if (!mRefused)
+            {
+                mRefused = refused;
+            }
+            return nullptr;
+        }
+        return Assimp::DefaultIOSystem::Open(file, mode);
+    }
+
+    const std::optional<InputError>& refused() const { return mRefused; }
+
+  private:
+    std::optional<InputError> mRefused;
+};
+
+// The 1-based line of `path`'s text where `name` first appears after "mtllib" (0 when none).
+int mtllibLine(const std::string& path, const std::string& name)
+{
+    const std::string text = readTextFile(path, "mesh file");
+    const std::string base = name.substr(name.find_last_of('/') + 1);
+    for (std::size_t at = text.find("mtllib"); at != std::string::npos; at = text.find("mtllib", at + 1))
+    {
+        const std::size_t end = text.find('\n', at);
+        if (text.substr(at, end == std::string::npos ? std::string::npos : end - at).find(base) !=
+            std::string::npos)
+        {
+            return positionOf(text, at).line;
+        }
+    }
+    return 0;
+}
+
 } // namespace
 
 core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
@@ -151,6 +215,8 @@ core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
     // on a FIFO and read /dev/zero until memory runs out.
     checkInputFile(path, "mesh file");
     Assimp::Importer importer;
+    auto* io = new CheckedIOSystem; // the importer owns it
+    importer.SetIOHandler(io);
     // Robot files give a link's COLLADA and STL meshes in the same frame: a COLLADA file's
     // coordinates are used as written, whatever its <up_axis>, not rotated into y-up.
     importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -159,6 +225,12 @@ core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
     // corner) and took 2 s per million triangles; MeshCollector merges positions exactly instead.
     const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
                                                        aiProcess_ValidateDataStructure);
+    if (io->refused())
+    {
+        const InputError& refused = *io->refused();
+        throw InputError(path, mtllibLine(path, refused.file()), 0,
+                         "mesh file refers to '" + refused.file() + "': " + refused.message());
+    }
     if (scene == nullptr)
     {
         throw InputError(path, 0, 0,

@@ -245,6 +245,7 @@ Trajectory readTrajectory(const std::string& path)
                                  std::to_string(fields.size()));
         }
         TrajectoryRow row;
+        row.line = lineNumber;
         const auto number = [&](std::size_t index)
         {
             const Field& field = fields[index];

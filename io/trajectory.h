@@ -56,6 +56,7 @@ struct TrajectoryRow
     std::string body;
     // px py pz (m), qw qx qy qz, vx vy vz (m/s), wx wy wz (rad/s), world frame
     std::array<double, 13> values{};
+    int line = 0; // 1-based line in the file it was read from (0 when not read from a file)
 
     core::BodyState state() const;
 };

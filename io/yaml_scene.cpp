@@ -8,6 +8,8 @@
 #include "io/urdf_model.h"
 
 #include <filesystem>
+#include <sstream>
+#include <yaml-cpp/eventhandler.h>
 
 namespace frontier::io::detail
 {
@@ -310,6 +312,58 @@ std::string withUnixLineBreaks(const std::string& text)
     return out;
 }
 
+// Walks the documents of a text without building them (yaml-cpp's events), so that LoadAll is only
+// called on text it can finish: on a stray flow token outside any flow collection (a line that
+// starts with ',' at the top level) yaml-cpp 0.7 returns the same empty document forever, each
+// one kept, until memory runs out.
+class DocumentScan final : public YAML::EventHandler
+{
+  public:
+    void OnDocumentStart(const YAML::Mark& mark) override
+    {
+        stuck = documents > 0 && mark.pos == lastStart.pos;
+        lastStart = mark;
+        ++documents;
+    }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override
+    {
+    }
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override
+    {
+    }
+    void OnMapEnd() override {}
+
+    int documents = 0;
+    bool stuck = false; // a document started where the one before started: no progress
+    YAML::Mark lastStart;
+};
+
+// Throws InputError at a token yaml-cpp cannot move past (see DocumentScan); YAML::ParserException
+// for other malformed text.
+void checkYamlTerminates(const YamlSource& source, const std::string& text)
+{
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentScan scan;
+    while (parser.HandleNextDocument(scan))
+    {
+        if (scan.stuck)
+        {
+            const std::size_t at = static_cast<std::size_t>(scan.lastStart.pos);
+            const std::string token = at < text.size() ? std::string(1, text[at]) : std::string();
+            failAt(source, scan.lastStart,
+                   "invalid YAML: unexpected '" + token +
+                       "' here (outside any [...] or {...}, and not the start of a value)");
+        }
+    }
+}
+
 std::string defaultName(const std::string& sourceName)
 {
     const std::string stem = std::filesystem::path(sourceName).stem().string();
@@ -332,6 +386,7 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
     model.name = defaultName(sourceName);
     try
     {
+        checkYamlTerminates(source, text);
         const std::vector<YAML::Node> documents = YAML::LoadAll(text);
         if (documents.size() > 1)
         {

@@ -4,7 +4,8 @@
 #   --with-extras also installs ffmpeg (--video). gnuplot-nox (the charts of `frontier sweep`)
 #   is in the main list: the sweep test draws one in CI.
 #   --for-tests also installs dart-doc: real robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas)
-#   that the robot corpus test (tests/robots) runs.
+#   that the robot corpus test (tests/robots) runs; and clang with libclang-rt-14-dev (libFuzzer)
+#   for the fuzz targets (fuzz/, scripts/fuzz.sh).
 #   --with-peers also installs Bullet, ODE and MuJoCo for bench/peers (the comparison harness,
 #   cmake -DFRONTIER_PEERS=ON); scripts/test.sh builds and runs it.
 # Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
@@ -20,7 +21,7 @@ packages=(
 for option in "$@"; do
   case "$option" in
     --with-extras) packages+=(ffmpeg) ;;
-    --for-tests) packages+=(dart-doc) ;;
+    --for-tests) packages+=(dart-doc clang libclang-rt-14-dev) ;;
     --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
     *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests or --with-peers)" >&2; exit 2 ;;
   esac

@@ -1,13 +1,18 @@
 // tests/app/app_test_util.h: running the `frontier` executable in a per-test folder.
 #pragma once
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
 #include <string>
 #include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
 #include <vector>
 
 namespace frontier::app::test
@@ -108,5 +113,77 @@ class TestDir
   private:
     std::filesystem::path mPath;
 };
+
+// Starts `frontier ARGS` in the source folder (as TestDir::run does), stdout and stderr to
+// stdout.txt and stderr.txt of the test folder; returns the child's pid.
+inline pid_t spawnFrontier(const TestDir& dir, const std::vector<std::string>& args)
+{
+    const std::string binary = std::string(FRONTIER_BINARY_DIR) + "/app/frontier";
+    const std::string out = (dir.path() / "stdout.txt").string();
+    const std::string err = (dir.path() / "stderr.txt").string();
+    std::vector<std::string> words = {binary};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& word : words)
+    {
+        argv.push_back(word.data());
+    }
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0)
+    {
+        const int outFd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int errFd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (outFd < 0 || errFd < 0 || ::chdir(FRONTIER_SOURCE_DIR) != 0)
+        {
+            ::_exit(127);
+        }
+        ::dup2(outFd, 1);
+        ::dup2(errFd, 2);
+        ::execv(binary.c_str(), argv.data());
+        ::_exit(127);
+    }
+    return pid;
+}
+
+// The exit code of the child, waiting at most `seconds` (then it is killed: -1).
+inline int waitForExit(pid_t pid, double seconds)
+{
+    const auto start = std::chrono::steady_clock::now();
+    int status = 0;
+    while (::waitpid(pid, &status, WNOHANG) == 0)
+    {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+        {
+            ::kill(pid, SIGKILL);
+            ::waitpid(pid, &status, 0);
+            return -1;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Waits (at most `seconds`) until process `pid` catches `signal` (its handler is installed: the
+// signal's bit in SigCgt of /proc/PID/status); false when it did not in time or has ended.
+inline bool waitForHandler(pid_t pid, int signal, double seconds)
+{
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < seconds)
+    {
+        std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+        std::string line;
+        while (std::getline(status, line))
+        {
+            if (line.rfind("SigCgt:", 0) == 0 &&
+                ((std::stoull(line.substr(7), nullptr, 16) >> (signal - 1)) & 1U) != 0)
+            {
+                return true;
+            }
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
 
 } // namespace frontier::app::test

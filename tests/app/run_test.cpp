@@ -333,56 +333,6 @@ TEST(Run, PassiveSceneThatGainsEnergyIsWarnedAndFailsWithStrict)
     EXPECT_LT(s.extra.at("energy_rise_fraction"), 0.01);
 }
 
-// Starts `frontier ARGS` in the source folder (as TestDir::run does), stdout and stderr to
-// stdout.txt and stderr.txt of the test folder; returns the child's pid.
-pid_t spawnFrontier(const TestDir& dir, const std::vector<std::string>& args)
-{
-    const std::string binary = std::string(FRONTIER_BINARY_DIR) + "/app/frontier";
-    const std::string out = (dir.path() / "stdout.txt").string();
-    const std::string err = (dir.path() / "stderr.txt").string();
-    std::vector<std::string> words = {binary};
-    words.insert(words.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& word : words)
-    {
-        argv.push_back(word.data());
-    }
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0)
-    {
-        const int outFd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int errFd = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (outFd < 0 || errFd < 0 || ::chdir(FRONTIER_SOURCE_DIR) != 0)
-        {
-            ::_exit(127);
-        }
-        ::dup2(outFd, 1);
-        ::dup2(errFd, 2);
-        ::execv(binary.c_str(), argv.data());
-        ::_exit(127);
-    }
-    return pid;
-}
-
-// The exit code of the child, waiting at most `seconds` (then it is killed: -1).
-int waitForExit(pid_t pid, double seconds)
-{
-    const auto start = std::chrono::steady_clock::now();
-    int status = 0;
-    while (::waitpid(pid, &status, WNOHANG) == 0)
-    {
-        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
-        {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            return -1;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // Files anywhere under out/ whose name holds ".tmp-" (io/atomic_file.h temporaries).
 std::vector<std::string> temporaries(const TestDir& dir)
 {

@@ -2,6 +2,7 @@
 #include "app_test_util.h"
 #include "io/trajectory.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <sstream>
 
@@ -9,7 +10,10 @@ namespace
 {
 using frontier::app::test::readText;
 using frontier::app::test::Result;
+using frontier::app::test::spawnFrontier;
 using frontier::app::test::TestDir;
+using frontier::app::test::waitForExit;
+using frontier::app::test::waitForHandler;
 
 // Records a double pendulum reference: 0.5 s, a row every 5 steps (101 times, 2 bodies).
 std::string recordReference(const TestDir& dir)
@@ -127,10 +131,30 @@ TEST(CheckCli, MissingTimesExitTwo)
     const std::size_t at = text.find("\n0.25"); // the first row at t = 0.25 s
     ASSERT_NE(at, std::string::npos);
     const std::string cut = text.substr(0, at); // rows before t = 0.25 s only
-    const Result r =
-        dir.run("check scenes/double_pendulum.yaml --reference " + dir.write("short.csv", cut + "\n"));
+    const std::string shortened = dir.write("short.csv", cut + "\n");
+    const Result r = dir.run("check scenes/double_pendulum.yaml --reference " + shortened);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("recorded times"), std::string::npos) << r.err;
+    // Named at the last row of the file (the line after which times are missing).
+    const std::string lastLine = std::to_string(std::count(cut.begin(), cut.end(), '\n') + 1);
+    EXPECT_NE(r.err.find(shortened + ":" + lastLine + ":"), std::string::npos) << r.err;
+}
+
+// A recorded time that is not the run's: exit 2 naming the reference's file and the row's line.
+TEST(CheckCli, WrongRecordedTimeExitsTwoNamingTheLine)
+{
+    TestDir dir;
+    const std::string text = recordReference(dir);
+    // Both rows at t = 0.25 s moved to 0.251 s (still between 0.245 and 0.255 s: the file reads).
+    const std::string shifted = perturb(perturb(text, "0.25", "upper", 0, 1e-3), "0.25", "lower", 0, 1e-3);
+    const std::size_t at = text.find("\n0.25");
+    ASSERT_NE(at, std::string::npos);
+    const std::string line = std::to_string(std::count(text.begin(), text.begin() + at, '\n') + 2);
+    const std::string bad = dir.write("times.csv", shifted);
+    const Result r = dir.run("check scenes/double_pendulum.yaml --reference " + bad);
+    EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find(bad + ":" + line + ":1: error: the reference's time 0.251"), std::string::npos)
+        << r.err;
 }
 
 TEST(CheckCli, HeaderWithoutSettingsExitsTwo)
@@ -141,6 +165,37 @@ TEST(CheckCli, HeaderWithoutSettingsExitsTwo)
     const Result r = dir.run("check scenes/double_pendulum.yaml --reference " + dir.write("bare.csv", bare));
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("header line"), std::string::npos) << r.err;
+}
+
+// SIGINT and SIGTERM stop a check between steps: exit 128 + the signal, one line naming the
+// signal and saying the check did not finish; nothing written (a check writes no file).
+TEST(CheckCli, SignalStopsTheCheck)
+{
+    for (const int signal : {SIGINT, SIGTERM})
+    {
+        TestDir dir;
+        // A pendulum reference of 10 steps, its header turned into one of 1e8 steps with a row at
+        // the start and at the end: the check runs long enough to be interrupted.
+        const Result run = dir.run(
+            "run scenes/pendulum.yaml --duration 0.01 --record-every 10 --trajectory " + dir.out("ref.csv"));
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        std::string text = readText(dir.out("ref.csv"));
+        const std::size_t at = text.find("steps=10 record_every=10 ");
+        ASSERT_NE(at, std::string::npos) << text;
+        text.replace(at, 25, "steps=100000000 record_every=100000000 ");
+        const std::string ref = dir.write("long.csv", text);
+        const pid_t pid =
+            spawnFrontier(dir, {"check", "scenes/pendulum.yaml", "--quiet", "--reference", ref});
+        ASSERT_GT(pid, 0);
+        ASSERT_TRUE(waitForHandler(pid, signal, 60.0));
+        ::kill(pid, signal);
+        EXPECT_EQ(waitForExit(pid, 30.0), 128 + signal);
+        const std::string err = readText(dir.path() / "stderr.txt");
+        EXPECT_EQ(err.rfind("frontier: interrupted by SIG", 0), 0u) << err;
+        EXPECT_NE(err.find("; the check did not finish\n"), std::string::npos) << err;
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        EXPECT_EQ(dir.outputs(), std::vector<std::string>{"ref.csv"});
+    }
 }
 
 } // namespace

@@ -8,8 +8,12 @@
 
 namespace
 {
+using frontier::app::test::readText;
 using frontier::app::test::Result;
+using frontier::app::test::spawnFrontier;
 using frontier::app::test::TestDir;
+using frontier::app::test::waitForExit;
+using frontier::app::test::waitForHandler;
 namespace fs = std::filesystem;
 
 std::vector<std::string> listFolder(const std::string& folder)
@@ -152,6 +156,38 @@ TEST(RenderCli, VideoIsMadeWithFfmpegOrRefusedClearly)
     {
         EXPECT_EQ(r.exitCode, 2);
         EXPECT_NE(r.err.find("ffmpeg"), std::string::npos) << r.err;
+    }
+}
+
+// SIGTERM while `render` writes frames: exit 143, one line naming the signal, the frames folder
+// keeps its INCOMPLETE marker and no temporary file is left.
+TEST(RenderCli, SignalStopsRenderingAndMarksTheFramesIncomplete)
+{
+    TestDir dir;
+    const Result run =
+        dir.run("run scenes/pendulum.yaml --duration 30 --record-every 10 --trajectory " + dir.out("p.csv"));
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    const std::string frames = dir.out("frames");
+    const pid_t pid = spawnFrontier(dir, {"render", dir.out("p.csv"), "--fps", "100", "--width", "64",
+                                          "--height", "48", "--jobs", "1", "--quiet", "--frames", frames});
+    ASSERT_GT(pid, 0);
+    const auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(frames + "/frame_00000.png") &&
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 60.0)
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(waitForHandler(pid, SIGTERM, 10.0));
+    ::kill(pid, SIGTERM);
+    EXPECT_EQ(waitForExit(pid, 60.0), 143);
+    const std::string err = readText(dir.path() / "stderr.txt");
+    EXPECT_NE(err.find("interrupted by SIGTERM after "), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_TRUE(fs::exists(frames + "/INCOMPLETE"));
+    EXPECT_FALSE(fs::exists(frames + "/frame_03000.png"));
+    for (const auto& entry : fs::recursive_directory_iterator(dir.path() / "out"))
+    {
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
     }
 }
 

@@ -471,6 +471,27 @@ TEST(Mesh, OnlyRegularFilesAreRead)
     EXPECT_INPUT_ERROR_AT(z, "/dev/zero", 0, 0, "is not a regular file");
 }
 
+// Files that assimp opens itself (an OBJ's mtllib) pass the same checks: a FIFO or a link to
+// /dev/zero beside the OBJ is refused at once, naming the OBJ's mtllib line.
+TEST(Mesh, ObjMaterialFileThatIsNotARegularFileIsRefused)
+{
+    TempDir dir;
+    const std::string fifo = dir.file("pipe.mtl");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::filesystem::create_symlink("/dev/zero", dir.file("zero.mtl"));
+    const std::string faces = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    for (const std::string material : {"pipe.mtl", "zero.mtl"})
+    {
+        const std::string obj = dir.write("tetra.obj", "# tetrahedron\nmtllib " + material + "\n" + faces);
+        const InputError e = captureInputError([&] { loadMeshFile(obj, core::Vec3::Ones()); });
+        EXPECT_INPUT_ERROR_AT(e, obj, 2, 0, "refers to '");
+        EXPECT_NE(e.message().find(material + "': is not a regular file"), std::string::npos) << e.what();
+    }
+    // A material file that is missing is not an error (assimp reads the geometry without it).
+    const std::string obj = dir.write("tetra.obj", "mtllib missing.mtl\n" + faces);
+    EXPECT_EQ(loadMeshFile(obj, core::Vec3::Ones()).triangles.size(), 4u);
+}
+
 TEST(Mesh, TooLargeFileIsRefused)
 {
     TempDir dir;

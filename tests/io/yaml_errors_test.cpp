@@ -731,6 +731,18 @@ bodies: []
     EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 4, 1, "the file holds 2 YAML documents");
 }
 
+// A ',' where a value or document should start made yaml-cpp return empty documents without end
+// (memory grew until the process was killed; found by fuzz/yaml_scene_fuzz.cpp): refused at once.
+TEST(YamlErrors, StrayCommaAtTheTopLevel)
+{
+    EXPECT_INPUT_ERROR_AT(yamlError(","), "scene.yaml", 1, 1, "invalid YAML: unexpected ',' here");
+    EXPECT_INPUT_ERROR_AT(yamlError(", duration: 3.0, gravity: [0, 0, -9.81]}\n"), "scene.yaml", 1, 1,
+                          "unexpected ','");
+    EXPECT_INPUT_ERROR_AT(yamlError("- x\n,\n"), "scene.yaml", 2, 1, "unexpected ','");
+    EXPECT_INPUT_ERROR_AT(yamlError("# comment\n  ,\n"), "scene.yaml", 2, 3, "unexpected ','");
+    EXPECT_INPUT_ERROR_AT(yamlError("bodies: []\n---\n,\n"), "scene.yaml", 3, 1, "unexpected ','");
+}
+
 TEST(YamlErrors, MissingMeshFileIsReportedAtTheSceneNode)
 {
     TempDir dir;
