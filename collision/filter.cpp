@@ -72,27 +72,32 @@ bool PairFilter::excludedByRule(std::size_t a, std::size_t b) const
     return (mStatic[a] && mStatic[b]) || (mGroup[a] >= 0 && mGroup[a] == mGroup[b]);
 }
 
+PairFilter::MemberCounts PairFilter::countMembers(const std::vector<char>& among) const
+{
+    MemberCounts c;
+    c.groupMembers.assign(mGroupSize.size(), 0);
+    c.groupStatics.assign(mGroupSize.size(), 0);
+    for (std::size_t i = 0; i < mStatic.size(); ++i)
+    {
+        if (!among[i])
+            continue;
+        ++c.members;
+        c.statics += mStatic[i] ? 1 : 0;
+        if (mGroup[i] >= 0)
+        {
+            ++c.groupMembers[static_cast<std::size_t>(mGroup[i])];
+            c.groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
+        }
+    }
+    return c;
+}
+
 std::vector<char> PairFilter::hasAllowedPartner(const std::vector<char>& among) const
 {
     // Body b's allowed partners: the other members, less the other static ones when b is static,
     // the other members of its group (those both static and of its group counted once) and its
     // excluded partners that neither rule removes (each key is there once).
-    long long members = 0;
-    long long statics = 0;
-    std::vector<long long> groupMembers(mGroupSize.size(), 0);
-    std::vector<long long> groupStatics(mGroupSize.size(), 0);
-    for (std::size_t i = 0; i < mStatic.size(); ++i)
-    {
-        if (!among[i])
-            continue;
-        ++members;
-        statics += mStatic[i] ? 1 : 0;
-        if (mGroup[i] >= 0)
-        {
-            ++groupMembers[static_cast<std::size_t>(mGroup[i])];
-            groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
-        }
-    }
+    const auto [members, statics, groupMembers, groupStatics] = countMembers(among);
     std::vector<long long> excludedPartners(mStatic.size(), 0);
     for (const std::uint64_t k : mExcluded)
     {
@@ -126,22 +131,7 @@ long long PairFilter::allowedPairCount(const std::vector<char>& among) const
     // a pair of two static bodies of one group is in both), less the excluded pairs that neither
     // rule already removed.
     auto pairs = [](long long k) { return k * (k - 1) / 2; };
-    long long members = 0;
-    long long statics = 0;
-    std::vector<long long> groupMembers(mGroupSize.size(), 0);
-    std::vector<long long> groupStatics(mGroupSize.size(), 0);
-    for (std::size_t i = 0; i < mStatic.size(); ++i)
-    {
-        if (!among[i])
-            continue;
-        ++members;
-        statics += mStatic[i] ? 1 : 0;
-        if (mGroup[i] >= 0)
-        {
-            ++groupMembers[static_cast<std::size_t>(mGroup[i])];
-            groupStatics[static_cast<std::size_t>(mGroup[i])] += mStatic[i] ? 1 : 0;
-        }
-    }
+    const auto [members, statics, groupMembers, groupStatics] = countMembers(among);
     long long count = pairs(members) - pairs(statics);
     for (std::size_t g = 0; g < groupMembers.size(); ++g)
         count -= pairs(groupMembers[g]) - pairs(groupStatics[g]);

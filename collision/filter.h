@@ -31,6 +31,15 @@ class PairFilter
     std::vector<char> hasAllowedPartner(const std::vector<char>& among) const;
 
   private:
+    // Bodies of `among`: how many, how many static, and both per group.
+    struct MemberCounts
+    {
+        long long members = 0;
+        long long statics = 0;
+        std::vector<long long> groupMembers;
+        std::vector<long long> groupStatics;
+    };
+    MemberCounts countMembers(const std::vector<char>& among) const;
     static std::uint64_t key(int a, int b);
     bool excludedByRule(std::size_t a, std::size_t b) const;
 
