@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs the whole test suite: a Release build (warnings are errors) and an
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the tests, each run with ctest -j2; then
-# each fuzz target (fuzz/, clang) for FUZZ_SECONDS (default 20, 0 skips), two at a time.
+# each fuzz target (fuzz/, clang) for FUZZ_SECONDS (default 10, 0 skips), two at a time.
 # Installs missing Debian packages first (scripts/install-deps.sh --for-tests --with-peers); the
 # Release build also builds and tests bench/peers (the comparison with Bullet, ODE and MuJoCo).
 set -euo pipefail
@@ -16,23 +16,15 @@ cmake --build build -j"$jobs"
 ctest --test-dir build -j"$jobs" --output-on-failure
 
 echo "== Sanitizer build (address, undefined) and tests"
-# SANITIZE_WITH_CLANG=1: the sanitizer build with clang, the fuzz targets built in it (no separate
-# fuzz tree to compile).
-sanitize_compiler=()
-fuzz_dir=build-fuzz
-if [[ ${SANITIZE_WITH_CLANG:-0} == 1 ]]; then
-  sanitize_compiler=(-DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DFRONTIER_FUZZ=ON)
-  fuzz_dir=build-sanitize
-fi
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DFRONTIER_SANITIZE=ON -DFRONTIER_BENCHMARKS=OFF \
-  -DFRONTIER_WERROR=ON "${sanitize_compiler[@]}" >/dev/null
+  -DFRONTIER_WERROR=ON >/dev/null
 cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize -j"$jobs" --output-on-failure
 
-fuzz_seconds=${FUZZ_SECONDS:-20}
+fuzz_seconds=${FUZZ_SECONDS:-10}
 if [[ $fuzz_seconds -gt 0 ]]; then
   echo "== Fuzz targets (libFuzzer, address, undefined): ${fuzz_seconds} s each"
-  JOBS=$jobs FUZZ_JOBS=2 FUZZ_BUILD_DIR=$fuzz_dir scripts/fuzz.sh all "$fuzz_seconds"
+  JOBS=$jobs FUZZ_JOBS=2 scripts/fuzz.sh all "$fuzz_seconds"
 fi
 
