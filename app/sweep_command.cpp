@@ -51,7 +51,8 @@ int sweepCommand(const SweepOptions& options)
         }
         else if (loaded.report.reference)
         {
-            external = study::readReferenceCsv(loaded.report.reference->csvPath, loaded.report.reference->body);
+            external =
+                study::readReferenceCsv(loaded.report.reference->csvPath, loaded.report.reference->body);
         }
         schedule = study::planSchedule(grid.dts, requestedS);
         // The reference run takes the most steps: at the finest dt / study::cReferenceRefinement.

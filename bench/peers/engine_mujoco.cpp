@@ -100,7 +100,8 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
     const core::Vec3& g = model.simulation.gravity;
     out << "<mujoco model=\"peers\">\n<option timestep=\"" << numbers({model.simulation.dt})
         << "\" gravity=\"" << numbers({g.x(), g.y(), g.z()}) << "\""
-        << (integrator == MujocoIntegrator::Rk4 ? " integrator=\"RK4\"" : "") << ">\n<flag filterparent=\"disable\"/>\n"
+        << (integrator == MujocoIntegrator::Rk4 ? " integrator=\"RK4\"" : "")
+        << ">\n<flag filterparent=\"disable\"/>\n"
         << "</option>\n<worldbody>\n";
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
     {

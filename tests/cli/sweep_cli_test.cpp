@@ -224,11 +224,11 @@ TEST(SweepCli, ExternalReferenceCsvMeasuresTheMethodsOwnError)
 
     // The same reference declared by the scene (its CSV relative to the scene's folder) gives the
     // same errors; `run` accepts the key; a body that is not in the scene is named at its line.
-    const std::string declared = dir.write(
-        "declared.yaml", readText(scene) + "reference: {csv: box.csv, body: box}\n");
+    const std::string declared =
+        dir.write("declared.yaml", readText(scene) + "reference: {csv: box.csv, body: box}\n");
     const std::string declaredOut = dir.out("declared");
-    const Result d = dir.run("sweep " + shellQuote(declared) + " --dt 0.01,0.005 --integrator euler,rattle --out " +
-                             shellQuote(declaredOut));
+    const Result d = dir.run("sweep " + shellQuote(declared) +
+                             " --dt 0.01,0.005 --integrator euler,rattle --out " + shellQuote(declaredOut));
     ASSERT_EQ(d.exitCode, 0) << d.err;
     const std::vector<std::string> declaredRows = lines(readText(declaredOut + "/sweep.csv"));
     ASSERT_EQ(declaredRows.size(), rows.size());
