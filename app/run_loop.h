@@ -33,7 +33,7 @@ struct RunSummary
     double maxPenetrationM = 0.0;
     std::array<double, core::cStepStages> stageSeconds{}; // wall time per stage over the run (s)
     int maxContacts = 0;
-    long firstOrderSteps = 0; // rattle steps that stalled and were taken by euler instead
+    long firstOrderSteps = 0;  // rattle steps that stalled and were taken by euler instead
     long secondOrderSteps = 0; // rattle4 steps retaken as one rattle step (contact, limit or a stall)
     std::array<long, core::cContactRoutes> contactRoutes{}; // steps by core::ContactRoute
     long contactSweeps = 0;         // Gauss-Seidel sweeps of the contact problem, all steps

@@ -61,7 +61,7 @@ void DriftCorrection::addPredictedDrift(const State& state, BlockVector& rhs, do
 // impact, a changed drive) starts over; a step without the prediction leaves none. A joint whose
 // own miss exceeds a tenth of its prediction starts over alone: its drift is not smooth in time,
 // and feeding a stale prediction back makes the zigzag of light links under high tension grow
-// (the 1000-link chain came apart at 0.74 s with a global rule alone, holds its 1 s with this).
+// (the 1000-link chain of the stability suite needs this to hold its second).
 void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& state)
 {
     constexpr double cJointMiss = 0.1;
