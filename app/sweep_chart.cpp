@@ -269,9 +269,9 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
     std::vector<std::string> labels;
     for (const SweepCell& c : result.cells)
     {
-        if (std::find(labels.begin(), labels.end(), c.method.label()) == labels.end())
+        if (std::find(labels.begin(), labels.end(), cellLabel(c)) == labels.end())
         {
-            labels.push_back(c.method.label());
+            labels.push_back(cellLabel(c));
         }
     }
     // The Pareto front first, under the methods' lines.
@@ -310,7 +310,7 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         for (std::size_t i = 0; i < result.cells.size(); ++i)
         {
             const SweepCell& c = result.cells[i];
-            if (c.method.label() == label && plottable(c))
+            if (cellLabel(c) == label && plottable(c))
             {
                 points += point(c);
                 one.cells.push_back(i);
@@ -432,9 +432,10 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
 
     char title[512];
     std::snprintf(title, sizeof title,
-                  "%s: speed against accuracy (reference %s at dt %g s, %g s simulated, %zu sample times)",
+                  "%s: speed against accuracy (reference %s at dt %g s, %g s simulated, %zu sample time%s)",
                   sceneName.c_str(), result.reference.method.label().c_str(), result.reference.dt,
-                  result.schedule.durationS(), result.schedule.sampleUnits.size());
+                  result.schedule.durationS(), result.schedule.sampleUnits.size(),
+                  result.schedule.sampleUnits.size() == 1 ? "" : "s");
     std::string titleExpression = gnuplotQuote(title);
     if (errorRanksNothing(result.cells))
     {
@@ -503,9 +504,9 @@ bool errorRanksNothing(const std::vector<SweepCell>& cells)
     std::vector<std::string> labels;
     for (const SweepCell& c : cells)
     {
-        if (std::find(labels.begin(), labels.end(), c.method.label()) == labels.end())
+        if (std::find(labels.begin(), labels.end(), cellLabel(c)) == labels.end())
         {
-            labels.push_back(c.method.label());
+            labels.push_back(cellLabel(c));
         }
     }
     bool judged = false;
@@ -514,7 +515,7 @@ bool errorRanksNothing(const std::vector<SweepCell>& cells)
         std::vector<std::pair<double, double>> runs; // dt (s), error (m)
         for (const SweepCell& c : cells)
         {
-            if (c.method.label() == label && c.survived && std::isfinite(c.trajectoryErrorM) &&
+            if (cellLabel(c) == label && c.survived && std::isfinite(c.trajectoryErrorM) &&
                 c.trajectoryErrorM > 0.0 && c.dt > 0.0)
             {
                 runs.emplace_back(c.dt, c.trajectoryErrorM);

@@ -22,6 +22,7 @@ namespace frontier::app
 {
 
 // The sweep's results (study/sweep.h).
+using study::cellLabel;
 using study::paretoFront;
 using study::SweepCell;
 using study::SweepResult;

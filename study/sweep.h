@@ -91,7 +91,14 @@ struct SweepCell
     double energyDriftRel = 0.0;      // energyDriftJ / |E(0)| (NaN when E(0) = 0)
     double maxPenetrationM = 0.0;     // deepest contact overlap over the run (m)
     std::string failure;              // why the run failed (empty when it survived)
+    std::string engine;               // another engine's name when it ran the cell (bench/peers), else empty
 };
+
+// The name a cell's series goes by in charts: the other engine's, or the Frontier method's label.
+inline std::string cellLabel(const SweepCell& cell)
+{
+    return cell.engine.empty() ? cell.method.label() : cell.engine;
+}
 
 // A reference the methods did not make: the world position of one moving body's centre of mass
 // (m) as a function of the time (s), from a closed form or from another code's or a measurement's

@@ -3,6 +3,7 @@
 //
 //   frontier_peers --chain 100 --duration 1 --csv peers.csv --markdown peers.md
 //   frontier_peers --scene scenes/chain30.yaml --engines frontier-euler,mujoco
+//   frontier_peers --scene scenes/chain30.yaml --dt 0.002,0.001,0.0005 --reference-dt 5e-6 --chart out/peers
 //
 // Per engine: wall time of its steps alone (us per step and per body-step), the largest joint gap
 // after any step (m), the energy by central differences of its poses (engine-independent: the
@@ -10,10 +11,13 @@
 // and the largest centre-of-mass distance at the end from a reference run (Frontier rattle at
 // dt / --reference-divisions), and the deepest overlap between two bodies that may collide over
 // the run (m), found by Frontier's contact detection on the engine's poses after every step. An
-// engine that exceeds --max-seconds stops early and says so.
+// engine that exceeds --max-seconds stops early and says so. With several time steps every engine
+// runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
+// (app/sweep_chart.h), one line per engine.
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
+#include "app/sweep_chart.h"
 #include "bench/peers/measures.h"
 #include "io/scene.h"
 
@@ -22,6 +26,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -38,6 +43,7 @@ constexpr double cNan = std::numeric_limits<double>::quiet_NaN();
 struct Row
 {
     std::string engine;
+    double dt = 0.0; // s
     long steps = 0;
     double secondsStepping = 0.0;
     double maxGapM = 0.0;
@@ -70,10 +76,11 @@ void checkStartPose(const core::Model& model, const std::vector<Pose>& poses, co
     }
 }
 
-std::vector<Pose> referenceEnd(const core::Model& model, const Settings& s)
+// The poses at the end of a Frontier rattle run at the time step referenceDt (s).
+std::vector<Pose> referenceEnd(const core::Model& model, double referenceDt, const Settings& s)
 {
     core::Model fine = model;
-    fine.simulation.dt = model.simulation.dt / s.referenceDivisions;
+    fine.simulation.dt = referenceDt;
     const auto engine = makeFrontier(fine, core::IntegratorKind::Rattle);
     const long steps = std::lround(s.duration / fine.simulation.dt);
     for (long k = 0; k < steps; ++k)
@@ -96,6 +103,7 @@ Row run(const std::string& name, const core::Model& model, const std::vector<Pos
 {
     Row row;
     row.engine = name;
+    row.dt = model.simulation.dt;
     std::unique_ptr<Engine> engine;
     try
     {
@@ -169,6 +177,39 @@ std::string csvField(const std::string& s)
     return out + "\"";
 }
 
+// Error against cost, every engine a series: the cells of a sweep (study/sweep.h) whose reference
+// is Frontier rattle at referenceDt and whose one sample time is the end of the run.
+void drawChart(const std::string& folder, const core::Model& model, const std::vector<Row>& rows,
+               double referenceDt, const Settings& s)
+{
+    app::SweepResult result;
+    result.bodies = static_cast<int>(model.bodies.size());
+    result.schedule.unitS = s.duration;
+    result.schedule.units = 1;
+    result.schedule.sampleUnits = {1};
+    result.reference.method.integrator = core::IntegratorKind::Rattle;
+    result.reference.dt = referenceDt;
+    for (const Row& r : rows)
+    {
+        app::SweepCell cell;
+        cell.engine = r.engine;
+        cell.dt = r.dt;
+        cell.steps = std::lround(s.duration / r.dt);
+        cell.stepsRun = r.steps;
+        cell.bodies = result.bodies;
+        cell.survived = r.note.empty() && std::isfinite(r.errorM);
+        cell.wallSeconds = r.secondsStepping;
+        cell.secondsPerSimSecond = r.steps ? r.secondsStepping / (static_cast<double>(r.steps) * r.dt) : cNan;
+        cell.trajectoryErrorM = r.errorM;
+        cell.finalErrorM = r.errorM;
+        cell.failure = r.note;
+        result.cells.push_back(cell);
+    }
+    std::filesystem::create_directories(folder);
+    if (!app::drawSweepChart(folder, model.name, result))
+        std::cerr << "frontier_peers: gnuplot is not installed: " << folder << "/sweep.png not drawn\n";
+}
+
 } // namespace
 
 int runHarness(int argc, char** argv)
@@ -177,7 +218,9 @@ int runHarness(int argc, char** argv)
     std::string scene;
     int chain = 0;
     double tipRatio = 1.0;
-    double dt = 0.0;
+    std::vector<double> dts;
+    double referenceDt = 0.0;
+    std::string chartDir;
     std::string engines;
     std::string csvPath, markdownPath;
     Settings s;
@@ -186,11 +229,18 @@ int runHarness(int argc, char** argv)
         ->check(CLI::Range(1, 10000000));
     app.add_option("--tip-mass-ratio", tipRatio, "the chain's last link's mass over the others'")
         ->check(CLI::PositiveNumber);
-    app.add_option("--dt", dt, "time step (s); default: the scene's")->check(CLI::PositiveNumber);
+    app.add_option("--dt", dts, "time steps (s), comma-separated, each run by every engine; default: the scene's")
+        ->delimiter(',')
+        ->check(CLI::PositiveNumber);
     app.add_option("--duration", s.duration, "simulated time (s)")->check(CLI::PositiveNumber);
     app.add_option("--engines", engines, "comma-separated engine names; default: all");
     app.add_option("--reference-divisions", s.referenceDivisions, "the reference's dt is dt / this")
         ->check(CLI::Range(1, 1000));
+    app.add_option("--reference-dt", referenceDt,
+                   "the reference's dt (s), one reference for every dt (instead of --reference-divisions)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--chart", chartDir,
+                   "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, DIR/sweep.dat)");
     app.add_option("--max-seconds", s.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
     app.add_option("--csv", csvPath, "write the rows as CSV");
@@ -230,17 +280,30 @@ int runHarness(int argc, char** argv)
         std::cerr << "frontier_peers: " << e.what() << "\n";
         return 2;
     }
-    if (dt > 0.0)
-        model.simulation.dt = dt;
-
-    const std::vector<Pose> reference = referenceEnd(model, s);
-    std::vector<Row> rows;
-    for (const std::string& name : names)
+    if (dts.empty())
+        dts.push_back(model.simulation.dt);
+    if (!chartDir.empty() && dts.size() > 1 && referenceDt <= 0.0)
     {
-        rows.push_back(run(name, model, reference, s));
-        const Row& r = rows.back();
-        std::cerr << name << ": "
-                  << (r.steps ? number(1e6 * r.secondsStepping / r.steps) + " us/step" : r.note) << "\n";
+        std::cerr << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
+        return 2;
+    }
+
+    std::vector<Row> rows;
+    std::vector<Pose> reference;
+    if (referenceDt > 0.0)
+        reference = referenceEnd(model, referenceDt, s);
+    for (const double dt : dts)
+    {
+        model.simulation.dt = dt;
+        if (referenceDt <= 0.0)
+            reference = referenceEnd(model, dt / s.referenceDivisions, s);
+        for (const std::string& name : names)
+        {
+            rows.push_back(run(name, model, reference, s));
+            const Row& r = rows.back();
+            std::cerr << name << " dt " << dt << " s: "
+                      << (r.steps ? number(1e6 * r.secondsStepping / r.steps) + " us/step" : r.note) << "\n";
+        }
     }
 
     const int n = static_cast<int>(model.bodies.size());
@@ -248,30 +311,30 @@ int runHarness(int argc, char** argv)
     csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,max_penetration_m,"
            "energy_change_j,"
            "energy_change_percent_of_max_kinetic,error_m,note\n";
-    md << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of max "
-          "kinetic) "
-          "| error at "
-       << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|---|\n";
-    for (const Row& r : rows)
+    for (std::size_t i = 0; i < rows.size(); ++i)
     {
+        const Row& r = rows[i];
+        if (i == 0 || r.dt != rows[i - 1].dt)
+            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt << " s\n\n"
+               << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of max "
+                  "kinetic) | error at "
+               << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|---|\n";
         const double perStep = r.steps ? 1e6 * r.secondsStepping / r.steps : cNan;
-        csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(model.simulation.dt, "%g")
-            << "," << r.steps << "," << number(perStep) << "," << number(perStep / n) << ","
-            << number(r.steps ? r.maxGapM : cNan) << "," << number(r.steps ? r.maxPenetrationM : cNan) << ","
-            << number(r.energyChangeJ) << "," << number(r.energyChangePercent) << "," << number(r.errorM)
-            << "," << csvField(r.note) << "\n";
+        csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(r.dt, "%g") << "," << r.steps
+            << "," << number(perStep) << "," << number(perStep / n) << "," << number(r.steps ? r.maxGapM : cNan)
+            << "," << number(r.steps ? r.maxPenetrationM : cNan) << "," << number(r.energyChangeJ) << ","
+            << number(r.energyChangePercent) << "," << number(r.errorM) << "," << csvField(r.note) << "\n";
         md << "| " << r.engine << " | " << number(perStep) << " | " << number(perStep / n) << " | "
-           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan)
-           << " | " << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note
-           << " |\n";
+           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan) << " | "
+           << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note << " |\n";
     }
-    std::cout << "# " << model.name << " (" << n << " bodies), dt = " << model.simulation.dt << " s\n\n"
-              << md.str();
+    std::cout << md.str();
     if (!csvPath.empty())
         std::ofstream(csvPath) << csv.str();
     if (!markdownPath.empty())
-        std::ofstream(markdownPath) << "# " << model.name << ", dt = " << model.simulation.dt << " s\n\n"
-                                    << md.str();
+        std::ofstream(markdownPath) << md.str();
+    if (!chartDir.empty())
+        drawChart(chartDir, model, rows, referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions, s);
     return 0;
 }
 
