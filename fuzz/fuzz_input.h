@@ -15,7 +15,8 @@
 namespace frontier::fuzz
 {
 
-// A directory of this process (/tmp/frontier-fuzz-PID), removed at exit.
+// A directory of this process (TMPDIR/frontier-fuzz-PID; scripts/fuzz.sh gives each target a
+// TMPDIR of its own in the build folder), removed at exit.
 inline const std::filesystem::path& scratchDir()
 {
     static const std::filesystem::path dir = []

@@ -55,10 +55,13 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
 # One target for `seconds`; its exit status.
+# The target writes each input to a file under TMPDIR (fuzz/fuzz_input.h): a folder of the build's,
+# emptied first, so a crashed run leaves nothing in /tmp.
 run_one() {
   local t=$1
   mkdir -p "$build/corpus/$t"
-  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-5}" -rss_limit_mb=2048 -max_len=65536 \
+  rm -rf "$build/tmp/$t" && mkdir -p "$build/tmp/$t"
+  TMPDIR=$(cd "$build/tmp/$t" && pwd) "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-5}" -rss_limit_mb=2048 -max_len=65536 \
     -dict="fuzz/$t.dict" -artifact_prefix="$build/findings/$t-" -print_final_stats=1 \
     "$build/corpus/$t" "$build/seeds/$t" >"$build/logs/$t.log" 2>&1
 }
