@@ -14,10 +14,10 @@
 // engine that exceeds --max-seconds stops early and says so. With several time steps every engine
 // runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
 // (app/sweep_chart.h), one line per engine.
+#include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
-#include "app/sweep_chart.h"
 #include "bench/peers/measures.h"
 #include "io/scene.h"
 
@@ -229,7 +229,8 @@ int runHarness(int argc, char** argv)
         ->check(CLI::Range(1, 10000000));
     app.add_option("--tip-mass-ratio", tipRatio, "the chain's last link's mass over the others'")
         ->check(CLI::PositiveNumber);
-    app.add_option("--dt", dts, "time steps (s), comma-separated, each run by every engine; default: the scene's")
+    app.add_option("--dt", dts,
+                   "time steps (s), comma-separated, each run by every engine; default: the scene's")
         ->delimiter(',')
         ->check(CLI::PositiveNumber);
     app.add_option("--duration", s.duration, "simulated time (s)")->check(CLI::PositiveNumber);
@@ -240,7 +241,8 @@ int runHarness(int argc, char** argv)
                    "the reference's dt (s), one reference for every dt (instead of --reference-divisions)")
         ->check(CLI::PositiveNumber);
     app.add_option("--chart", chartDir,
-                   "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, DIR/sweep.dat)");
+                   "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, "
+                   "DIR/sweep.dat)");
     app.add_option("--max-seconds", s.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
     app.add_option("--csv", csvPath, "write the rows as CSV");
@@ -284,7 +286,8 @@ int runHarness(int argc, char** argv)
         dts.push_back(model.simulation.dt);
     if (!chartDir.empty() && dts.size() > 1 && referenceDt <= 0.0)
     {
-        std::cerr << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
+        std::cerr
+            << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
         return 2;
     }
 
@@ -301,8 +304,9 @@ int runHarness(int argc, char** argv)
         {
             rows.push_back(run(name, model, reference, s));
             const Row& r = rows.back();
-            std::cerr << name << " dt " << dt << " s: "
-                      << (r.steps ? number(1e6 * r.secondsStepping / r.steps) + " us/step" : r.note) << "\n";
+            std::cerr << name << " dt " << dt
+                      << " s: " << (r.steps ? number(1e6 * r.secondsStepping / r.steps) + " us/step" : r.note)
+                      << "\n";
         }
     }
 
@@ -315,18 +319,22 @@ int runHarness(int argc, char** argv)
     {
         const Row& r = rows[i];
         if (i == 0 || r.dt != rows[i - 1].dt)
-            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt << " s\n\n"
-               << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of max "
+            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt
+               << " s\n\n"
+               << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of "
+                  "max "
                   "kinetic) | error at "
                << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|---|\n";
         const double perStep = r.steps ? 1e6 * r.secondsStepping / r.steps : cNan;
-        csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(r.dt, "%g") << "," << r.steps
-            << "," << number(perStep) << "," << number(perStep / n) << "," << number(r.steps ? r.maxGapM : cNan)
-            << "," << number(r.steps ? r.maxPenetrationM : cNan) << "," << number(r.energyChangeJ) << ","
-            << number(r.energyChangePercent) << "," << number(r.errorM) << "," << csvField(r.note) << "\n";
+        csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(r.dt, "%g") << ","
+            << r.steps << "," << number(perStep) << "," << number(perStep / n) << ","
+            << number(r.steps ? r.maxGapM : cNan) << "," << number(r.steps ? r.maxPenetrationM : cNan) << ","
+            << number(r.energyChangeJ) << "," << number(r.energyChangePercent) << "," << number(r.errorM)
+            << "," << csvField(r.note) << "\n";
         md << "| " << r.engine << " | " << number(perStep) << " | " << number(perStep / n) << " | "
-           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan) << " | "
-           << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note << " |\n";
+           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan)
+           << " | " << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note
+           << " |\n";
     }
     std::cout << md.str();
     if (!csvPath.empty())
@@ -334,7 +342,8 @@ int runHarness(int argc, char** argv)
     if (!markdownPath.empty())
         std::ofstream(markdownPath) << md.str();
     if (!chartDir.empty())
-        drawChart(chartDir, model, rows, referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions, s);
+        drawChart(chartDir, model, rows, referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions,
+                  s);
     return 0;
 }
 
