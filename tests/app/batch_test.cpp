@@ -165,18 +165,20 @@ TEST(Batch, ListExpandsTheGridWithStableDistinctIds)
 TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
 {
     TestDir dir;
-    const std::string ball = scenesDir() + "/bouncing_ball.yaml";
+    dir.write("ball.yaml", readText(scenesDir() + "/bouncing_ball.yaml"));
     const std::vector<std::pair<std::string, std::string>> cases = {
         // plan text, expected message part (line 3 in each)
-        {"scenes: [" + ball + "]\nduration: 0.1\nvery: {dt: [0.001]}\n", ":3:1: error: unknown key 'very'"},
-        {"scenes: [" + ball + "]\nvary:\n  solver: [linear, fast]\n", ":3:19: error: unknown solver 'fast'"},
-        {"scenes: [" + ball + "]\nvary:\n  dt: [0.001, -1]\n", ":3:16: error: expected a positive number"},
-        {"scenes: [" + ball + "]\nvary:\n  bodies.nope.mass: [1, 2]\n",
-         ":3:22: error: 'bodies.nope.mass' does not fit"},
-        {"scenes: [" + ball + "]\nvary:\n  colour: [1]\n",
+        {"scenes: [ball.yaml]\nduration: 0.1\nvery: {dt: [0.001]}\n", ":3:1: error: unknown key 'very'"},
+        {"scenes: [ball.yaml]\nvary:\n  solver: [linear, fast]\n", ":3:20: error: unknown solver 'fast'"},
+        {"scenes: [ball.yaml]\nvary:\n  dt: [0.001, -1]\n", ":3:15: error: expected a positive number"},
+        {"scenes: [ball.yaml]\nvary:\n  bodies.nope.mass: [1, 2]\n",
+         ":3:22: error: 'bodies.nope.mass' does not fit ball.yaml: no entry named 'nope'"},
+        {"scenes: [ball.yaml]\nvary:\n  colour: [1]\n",
          ":3:3: error: unknown key 'colour' in 'vary'; expected dt"},
-        {"duration: 1\nvary: {dt: [0.001]}\nscenes: [" + scenesDir() + "/*.nothing]\n",
-         ":3:10: error: the glob"},
+        {"duration: 1\nvary: {dt: [0.001]}\nscenes: [missing.yaml, '*.nothing']\n",
+         ":3:10: error: no scene file"},
+        {"duration: 1\nvary: {dt: [0.001]}\nscenes: ['*.nothing']\n",
+         ":3:10: error: the glob '*.nothing' matches no file"},
     };
     for (const auto& [text, expected] : cases)
     {
@@ -255,7 +257,7 @@ TEST(Batch, ResumesAfterSigtermWithoutRedoingFinishedJobs)
     const std::string plan =
         dir.write("plan.yaml", "scenes: [" + scenesDir() +
                                    "/pendulum.yaml]\n"
-                                   "duration: 2\n"
+                                   "duration: 5\n"
                                    "outputs: [stats, trajectory]\n"
                                    "vary:\n"
                                    "  dt: [0.0005, 0.00051, 0.00052, 0.00053, 0.00054, 0.00055]\n");
@@ -395,6 +397,20 @@ TEST(Batch, ShardsPartitionTheJobsAndMergeLikeOneMachine)
     ASSERT_EQ(
         dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --jobs 2 --quiet").exitCode, 0);
     ASSERT_EQ(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge").exitCode, 0);
+    // The chart of one column against another, drawn as the sweep's (gnuplot); a column that is not
+    // there is bad input.
+    const Result chart =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge --chart dt,steps");
+    EXPECT_EQ(chart.exitCode, 0) << chart.err;
+    EXPECT_NE(readText(one + "/chart.dat").find("0.002 50 "), std::string::npos);
+    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+    {
+        EXPECT_TRUE(fs::exists(one + "/chart.png"));
+    }
+    const Result badChart =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge --chart dt,speed");
+    EXPECT_EQ(badChart.exitCode, 2);
+    EXPECT_NE(badChart.err.find("no column 'speed' in batch.csv"), std::string::npos) << badChart.err;
     for (int i = 0; i < 3; ++i)
     {
         const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(three) +
