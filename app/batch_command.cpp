@@ -142,6 +142,11 @@ int batchCommand(const BatchOptions& options)
         {
             shard = shardFromEnvironment(options.shardVariable, options.shards, plan.shards);
         }
+        if (!options.chart.empty() && !options.merge && !options.slurm)
+        {
+            throw io::InputError("--chart", 0, 0,
+                                 "--chart X,Y draws the merge's chart: give it with --merge or --slurm");
+        }
     }
     catch (const io::InputError& e)
     {

@@ -322,6 +322,7 @@ bool drawChart(const std::string& folder, const Table& table, const std::string&
         gnuplotQuote(x) + " noenhanced\nset ylabel " + gnuplotQuote(y) +
         " noenhanced\n"
         "set grid\n"
+        "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n"
         "plot 'chart.dat' using 1:2 with points pt 7 ps 1.2 notitle\n";
     return drawGnuplotChart(folder, {"chart.gp", script, "chart.dat", data, "chart.png"});
 }

@@ -79,15 +79,11 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
                                                               const YAML::Node& node)
 {
     std::vector<std::pair<std::string, std::string>> scenes; // label, path
-    const YAML::Node list = node.IsSequence() ? node : YAML::Node(YAML::NodeType::Sequence);
-    if (!node.IsSequence())
+    if (!node.IsSequence() && !node.IsScalar())
     {
-        if (!node.IsScalar())
-        {
-            failAt(source, node,
-                   "expected a scene file, a glob or a list of them for 'scenes', got " +
-                       io::detail::describeNode(node));
-        }
+        failAt(source, node,
+               "expected a scene file, a glob or a list of them for 'scenes', got " +
+                   io::detail::describeNode(node));
     }
     std::vector<YAML::Node> entries;
     if (node.IsSequence())

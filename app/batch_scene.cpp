@@ -4,8 +4,10 @@
 #include "io/file_util.h"
 #include "io/scene.h"
 
+#include <array>
 #include <charconv>
 #include <numeric>
+#include <optional>
 
 namespace frontier::app
 {

@@ -217,8 +217,7 @@ void addBatchOptions(CLI::App& batch, BatchOptions& o)
                 o.shardVariable = value;
             },
             "the shard from SLURM_ARRAY_TASK_ID/_COUNT, JOB_COMPLETION_INDEX (count from --shards or the "
-            "plan's "
-            "shards:), or the variable VAR")
+            "plan's shards:), or the variable VAR (give it after the plan, or as --shard-from-env=VAR)")
         ->expected(0, 1)
         ->excludes(shard);
     batch
@@ -245,6 +244,11 @@ void addBatchOptions(CLI::App& batch, BatchOptions& o)
         ->needs(slurm);
     batch.add_flag("--quiet", o.quiet, "no line per job");
     addPackagePathOption(batch, o.urdf.packagePaths);
+    batch.footer(
+        "Jobs go to DIR/jobs/ID/; complete jobs are skipped, each job is locked while it runs. Exit "
+        "codes: 0 every job of the shard is done; 1 a job failed (--merge: a job failed or is "
+        "missing); 2 a bad plan or flags (PLAN:LINE:COLUMN); 128 + the signal after SIGINT, SIGTERM, "
+        "SIGHUP (run again to finish).");
 }
 } // namespace
 
