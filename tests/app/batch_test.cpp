@@ -247,6 +247,31 @@ TEST(Batch, ScenePathsAndSeedsChangeTheInitialStateAsAsked)
                   readText(out3 + "/jobs/" + id + "/trajectory.csv"));
     }
     EXPECT_NE(starts[0], starts[1]);
+
+    // A body hinged to the world is not moved by a seed (a move would open its joint); a free one
+    // gets a velocity change of at most perturb.velocity per axis.
+    const std::string jointed =
+        dir.write("jointed.yaml", "scenes: [" + scenesDir() + "/pendulum.yaml, " + scenesDir() +
+                                      "/bouncing_ball.yaml]\n"
+                                      "duration: 0.01\n"
+                                      "outputs: [trajectory]\n"
+                                      "perturb: {position: 0.05, velocity: 0.1}\n"
+                                      "seed: 3\n");
+    const std::string out4 = dir.out("j");
+    ASSERT_EQ(dir.run("batch " + shellQuote(jointed) + " --out " + shellQuote(out4) + " --quiet").exitCode,
+              0);
+    const std::vector<std::string> two =
+        ids(dir.run("batch " + shellQuote(jointed) + " --out " + shellQuote(out4) + " --list").out);
+    ASSERT_EQ(two.size(), 2U);
+    const auto pendulum = readCsvTable(out4 + "/jobs/" + two[0] + "/trajectory.csv");
+    EXPECT_EQ(pendulum.number(0, "px"), 0.8660254037844386);
+    EXPECT_EQ(pendulum.number(0, "pz"), 1.5);
+    EXPECT_EQ(pendulum.number(0, "vx"), 0.0);
+    const auto ball = readCsvTable(out4 + "/jobs/" + two[1] + "/trajectory.csv");
+    const double vx = ball.number(0, "vx"), vy = ball.number(0, "vy");
+    EXPECT_GT(std::abs(vx) + std::abs(vy), 1e-6);
+    EXPECT_LE(std::abs(vx), 0.1);
+    EXPECT_LE(std::abs(vy), 0.1);
 }
 
 // SIGTERM after the first of six jobs is complete: exit 143; the rerun leaves the finished jobs'
