@@ -214,6 +214,14 @@ int batchCommand(const BatchOptions& options)
                     }
                     else
                     {
+                        // Rows a failed attempt kept (failedPath names) would outlive this one.
+                        for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
+                        {
+                            if (!file->empty())
+                            {
+                                fs::remove(failedPath(*file));
+                            }
+                        }
                         std::string summary;
                         const int code = runOne(
                             runOptionsOf(plan, job, options), job.scenePath, files, 1,

@@ -322,6 +322,8 @@ TEST(Batch, ResumesAfterSigtermWithoutRedoingFinishedJobs)
         const fs::path folder = fs::path(out) / "jobs" / id;
         EXPECT_TRUE(completedStats(folder / "stats.json")) << id;
         EXPECT_TRUE(fs::exists(folder / "trajectory.csv")) << id;
+        EXPECT_FALSE(fs::exists(folder / "trajectory.failed.csv"))
+            << id << ": the interrupted attempt's rows remain";
         if (const auto it = finished.find(id); it != finished.end())
         {
             EXPECT_EQ(stamp(folder / "stats.json"), it->second.first) << id << " was redone";
