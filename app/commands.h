@@ -102,7 +102,30 @@ struct SweepOptions
     io::UrdfOptions urdf;
 };
 
+// `frontier batch` (README "Batches", docs/batch.md): a plan's jobs, resumable, sharded, merged.
+struct BatchOptions
+{
+    std::string plan;
+    std::string out;                // DIR: DIR/jobs/ID/, DIR/batch.csv, DIR/summary.md, DIR/slurm/
+    bool list = false;              // print the jobs, run nothing
+    std::string shard;              // "I/N": only jobs whose index mod N is I
+    bool shardFromEnv = false;      // the shard from Slurm, Kubernetes or `shardVariable`
+    std::string shardVariable;      // --shard-from-env VAR: the index's variable
+    std::optional<int> shards;      // shard count (--slurm's array; --shard-from-env's fallback)
+    int jobs = 2;                   // jobs at a time on this machine
+    bool merge = false;             // write DIR/batch.csv and DIR/summary.md
+    std::vector<std::string> chart; // --chart X,Y: DIR/chart.png of column Y against X
+    bool slurm = false;             // write DIR/slurm/batch.sbatch and merge.sbatch
+    std::string partition;          // #SBATCH --partition
+    std::string time;               // #SBATCH --time
+    int cpus = 1;                   // #SBATCH --cpus-per-task, and --jobs of each shard
+    bool submit = false;            // run sbatch on both scripts
+    bool quiet = false;
+    io::UrdfOptions urdf;
+};
+
 int runCommand(const RunOptions& options);
+int batchCommand(const BatchOptions& options);
 int checkCommand(const CheckOptions& options);
 int infoCommand(const InfoOptions& options);
 int renderCommand(const RenderCommandOptions& options);

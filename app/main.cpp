@@ -199,6 +199,57 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
         "sample times spread over the run, the last at its end. Exit codes: 0 done (failed cells are "
         "results), 1 the reference or every cell failed, or gnuplot failed; 2 bad input.");
 }
+void addBatchOptions(CLI::App& batch, BatchOptions& o)
+{
+    batch.add_option("plan", o.plan, "the batch plan .yaml (README \"Batches\", docs/batch.md)")->required();
+    batch.add_option("--out", o.out, "folder of the batch: jobs/ID/ per job, batch.csv, summary.md, slurm/")
+        ->required()
+        ->check(cPath);
+    batch.add_flag("--list", o.list, "print the jobs (of this shard): id, scene, variation; run nothing");
+    auto* shard = batch.add_option("--shard", o.shard,
+                                   "run only shard I of N: the jobs whose index mod N is I (0-based)");
+    batch
+        .add_option_function<std::string>(
+            "--shard-from-env",
+            [&o](const std::string& value)
+            {
+                o.shardFromEnv = true;
+                o.shardVariable = value;
+            },
+            "the shard from SLURM_ARRAY_TASK_ID/_COUNT, JOB_COMPLETION_INDEX (count from --shards or the "
+            "plan's shards:), or the variable VAR (give it after the plan, or as --shard-from-env=VAR)")
+        ->expected(0, 1)
+        ->excludes(shard);
+    batch
+        .add_option("--shards", o.shards, "shard count: the Slurm array's size (default: jobs, at most 100)")
+        ->transform(numberIn(1.0, 100000.0, false, true));
+    batch.add_option("--jobs", o.jobs, "jobs at a time on this machine")->transform(cJobs);
+    auto* merge =
+        batch.add_flag("--merge", o.merge, "write DIR/batch.csv and DIR/summary.md from the jobs' stats");
+    batch
+        .add_option("--chart", o.chart,
+                    "with --merge (or --slurm): DIR/chart.png of column Y against column X")
+        ->delimiter(',')
+        ->expected(2)
+        ->allow_extra_args(false);
+    auto* slurm =
+        batch.add_flag("--slurm", o.slurm, "write DIR/slurm/batch.sbatch (an array job) and merge.sbatch")
+            ->excludes(merge);
+    batch.add_option("--partition", o.partition, "#SBATCH --partition")->needs(slurm);
+    batch.add_option("--time", o.time, "#SBATCH --time (a shard's time limit)")->needs(slurm);
+    batch.add_option("--cpus", o.cpus, "#SBATCH --cpus-per-task, and each shard's --jobs")
+        ->transform(cJobs)
+        ->needs(slurm);
+    batch.add_flag("--submit", o.submit, "sbatch both scripts, the merge after the array (afterok)")
+        ->needs(slurm);
+    batch.add_flag("--quiet", o.quiet, "no line per job");
+    addPackagePathOption(batch, o.urdf.packagePaths);
+    batch.footer(
+        "Jobs go to DIR/jobs/ID/; complete jobs are skipped, each job is locked while it runs. Exit "
+        "codes: 0 every job of the shard is done; 1 a job failed (--merge: a job failed or is "
+        "missing); 2 a bad plan or flags (PLAN:LINE:COLUMN); 128 + the signal after SIGINT, SIGTERM, "
+        "SIGHUP (run again to finish).");
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -285,6 +336,12 @@ int main(int argc, char** argv)
         "speed against accuracy over time steps, solvers and integrators: DIR/sweep.csv, DIR/sweep.png");
     addSweepOptions(*sweep, sweepOptions);
 
+    BatchOptions batchOptions;
+    auto* batch = app.add_subcommand(
+        "batch",
+        "many runs from a plan (scenes x variations): resumable, sharded (Slurm), merged into one CSV");
+    addBatchOptions(*batch, batchOptions);
+
     try
     {
         app.parse(argc, argv);
@@ -321,6 +378,10 @@ int main(int argc, char** argv)
     if (sweep->parsed())
     {
         return sweepCommand(sweepOptions);
+    }
+    if (batch->parsed())
+    {
+        return batchCommand(batchOptions);
     }
     return infoCommand(infoOptions);
 }

@@ -22,10 +22,11 @@ void checkFiniteEnergy(const core::Model& model, const std::string& path)
     }
 }
 
-LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& options)
+namespace
 {
-    LoadedScene out;
-    out.model = io::loadScene(path, options, &out.report);
+// What every loaded scene goes through: finite energy, robots' starting overlaps excluded.
+LoadedScene finishLoading(LoadedScene out, const std::string& path)
+{
     checkFiniteEnergy(out.model, path);
     for (const auto& [a, b] : collision::startingOverlaps(out.model))
     {
@@ -42,6 +43,22 @@ LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& 
         }
     }
     return out;
+}
+} // namespace
+
+LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& options)
+{
+    LoadedScene out;
+    out.model = io::loadScene(path, options, &out.report);
+    return finishLoading(std::move(out), path);
+}
+
+LoadedScene loadSceneTextWithRobots(const std::string& yamlText, const std::string& path,
+                                    const io::UrdfOptions& options)
+{
+    LoadedScene out;
+    out.model = io::loadSceneFromString(yamlText, path, options, &out.report);
+    return finishLoading(std::move(out), path);
 }
 
 void printLoadWarnings(const io::LoadReport& report)

@@ -22,6 +22,9 @@ void checkFiniteEnergy(const core::Model& model, const std::string& path);
 
 // Throws io::InputError (also from checkFiniteEnergy).
 LoadedScene loadSceneWithRobots(const std::string& path, const io::UrdfOptions& options);
+// The same from the YAML text of a scene; `path` names it in messages and resolves its relative files.
+LoadedScene loadSceneTextWithRobots(const std::string& yamlText, const std::string& path,
+                                    const io::UrdfOptions& options);
 
 // Warnings of the load to stderr ("frontier: FILE:LINE: warning: ...").
 void printLoadWarnings(const io::LoadReport& report);

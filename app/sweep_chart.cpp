@@ -30,10 +30,9 @@ namespace fs = std::filesystem;
 constexpr const char* cScript = "sweep.gp";
 constexpr const char* cData = "sweep.dat";
 constexpr const char* cChart = "sweep.png";
-constexpr const char* cChartTemp = "sweep.png.tmp"; // renamed to sweep.png when gnuplot succeeded
 
-// A gnuplot single-quoted string: no escapes inside but '' for a quote; control characters (a
-// line break would end the command) become spaces.
+} // namespace
+
 std::string gnuplotQuote(const std::string& text)
 {
     std::string out = "'";
@@ -50,6 +49,9 @@ std::string gnuplotQuote(const std::string& text)
     }
     return out + "'";
 }
+
+namespace
+{
 
 bool plottable(const SweepCell& c)
 {
@@ -547,39 +549,43 @@ std::string sweepChartScript(const std::string& sceneName, const SweepResult& re
     return buildChart(sceneName, result).script;
 }
 
-bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result)
+bool drawGnuplotChart(const std::string& folder, const GnuplotChart& chart)
 {
-    const Chart chart = buildChart(sceneName, result);
-    const std::string& data = chart.data;
-    const std::string& script = chart.script;
     const fs::path dir(folder);
-    writeFile(dir / cData, data);
-    writeFile(dir / cScript, script);
+    const std::string chartTemp = chart.chart + ".tmp"; // renamed to the chart when gnuplot succeeded
+    writeFile(dir / chart.dataName, chart.data);
+    writeFile(dir / chart.scriptName, chart.script);
     std::error_code ignored;
-    fs::remove(dir / cChartTemp, ignored);
+    fs::remove(dir / chartTemp, ignored);
     const std::string gnuplot = findGnuplot();
     if (gnuplot.empty())
     {
-        fs::remove(dir / cChart, ignored);
+        fs::remove(dir / chart.chart, ignored);
         return false;
     }
     std::string errors;
     const int code =
-        runInFolder(gnuplot, folder, {"-e", "out = '" + std::string(cChartTemp) + "'", cScript}, errors);
-    if (code != 0 || !fs::exists(dir / cChartTemp))
+        runInFolder(gnuplot, folder, {"-e", "out = '" + chartTemp + "'", chart.scriptName}, errors);
+    if (code != 0 || !fs::exists(dir / chartTemp))
     {
-        fs::remove(dir / cChartTemp, ignored);
-        fs::remove(dir / cChart, ignored);
-        throw ChartError("gnuplot failed on " + (dir / cScript).string() + " (exit code " +
+        fs::remove(dir / chartTemp, ignored);
+        fs::remove(dir / chart.chart, ignored);
+        throw ChartError("gnuplot failed on " + (dir / chart.scriptName).string() + " (exit code " +
                          std::to_string(code) + ")" + (errors.empty() ? std::string() : ": " + errors));
     }
     std::error_code renamed;
-    fs::rename(dir / cChartTemp, dir / cChart, renamed);
+    fs::rename(dir / chartTemp, dir / chart.chart, renamed);
     if (renamed)
     {
-        throw io::OutputError((dir / cChart).string() + ": cannot write file: " + renamed.message());
+        throw io::OutputError((dir / chart.chart).string() + ": cannot write file: " + renamed.message());
     }
     return true;
+}
+
+bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result)
+{
+    const Chart chart = buildChart(sceneName, result);
+    return drawGnuplotChart(folder, {cScript, chart.script, cData, chart.data, cChart});
 }
 
 } // namespace frontier::app

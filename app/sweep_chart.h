@@ -48,6 +48,26 @@ bool errorRanksNothing(const std::vector<SweepCell>& cells);
 // The text of sweep.gp (for the data sweep.dat that drawSweepChart writes alongside it).
 std::string sweepChartScript(const std::string& sceneName, const SweepResult& result);
 
+// A gnuplot single-quoted string: no escapes inside but '' for a quote; control characters (a
+// line break would end the command) become spaces.
+std::string gnuplotQuote(const std::string& text);
+
+// A chart drawn by gnuplot: the script (which writes the PNG named by the variable `out`) and its
+// data, written as files of the chart's folder.
+struct GnuplotChart
+{
+    std::string scriptName; // "sweep.gp"
+    std::string script;
+    std::string dataName; // "sweep.dat"
+    std::string data;
+    std::string chart; // "sweep.png"
+};
+
+// Writes the script and data into `folder` and, when gnuplot is installed, runs it there to draw
+// the chart (through a temporary name, renamed when gnuplot succeeded). Returns false when gnuplot
+// is not installed (no PNG; an older one is removed). Throws io::OutputError, ChartError.
+bool drawGnuplotChart(const std::string& folder, const GnuplotChart& chart);
+
 // gnuplot on the PATH, or empty when it is not installed.
 std::string findGnuplot();
 

@@ -30,9 +30,10 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadR
         path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");
 }
 
-core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName)
+core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName,
+                                const UrdfOptions& options, LoadReport* report)
 {
-    return detail::loadYamlScene(yamlText, sourceName);
+    return detail::loadYamlScene(yamlText, sourceName, options, report);
 }
 
 } // namespace frontier::io

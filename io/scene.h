@@ -80,6 +80,7 @@ struct LoadReport
 // receives the warnings and what was welded, repaired and placed.
 core::Model loadScene(const std::string& path, const UrdfOptions& options = {}, LoadReport* report = nullptr);
 // Parses scene YAML text; sourceName is used in messages and to resolve relative files.
-core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName);
+core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName,
+                                const UrdfOptions& options = {}, LoadReport* report = nullptr);
 
 } // namespace frontier::io

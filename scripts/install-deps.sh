@@ -5,7 +5,8 @@
 #   is in the main list: the sweep test draws one in CI.
 #   --for-tests also installs dart-doc: real robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas)
 #   that the robot corpus test (tests/robots) runs; and clang with libclang-rt-14-dev (libFuzzer)
-#   for the fuzz targets (fuzz/, scripts/fuzz.sh).
+#   for the fuzz targets (fuzz/, scripts/fuzz.sh); and slurm-wlm with munge for the test of
+#   `frontier batch --slurm` on a private one-node cluster (tests/slurm).
 #   --with-peers also installs Bullet, ODE and MuJoCo for bench/peers (the comparison harness,
 #   cmake -DFRONTIER_PEERS=ON); scripts/test.sh builds and runs it.
 # Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
@@ -21,7 +22,7 @@ packages=(
 for option in "$@"; do
   case "$option" in
     --with-extras) packages+=(ffmpeg) ;;
-    --for-tests) packages+=(dart-doc clang libclang-rt-14-dev) ;;
+    --for-tests) packages+=(dart-doc clang libclang-rt-14-dev slurm-wlm munge) ;;
     --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
     *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests or --with-peers)" >&2; exit 2 ;;
   esac

@@ -1,0 +1,295 @@
+// app/batch_command.cpp: `frontier batch`: the plan's jobs of this shard, each in DIR/jobs/ID/
+// under a lock, complete ones skipped; or --list, --merge, --slurm.
+#include "app/batch_jobs.h"
+#include "app/batch_plan.h"
+#include "app/batch_scene.h"
+#include "app/commands.h"
+#include "app/job_board.h"
+#include "app/run_loop.h"
+#include "app/run_one.h"
+#include "io/atomic_file.h"
+#include "io/scene.h"
+#include "io/stats.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <sys/file.h>
+#include <unistd.h>
+
+namespace frontier::app
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+enum class Outcome
+{
+    NotStarted, // an interrupt came first
+    Done,
+    Complete, // complete before this run: skipped
+    Locked,   // another process holds its lock: skipped
+    Failed,
+};
+
+// "dt=0.001 solver=pgs"
+std::string describeVariation(const PlanJob& job)
+{
+    std::string text;
+    for (const BatchSetting& s : job.variation)
+    {
+        text += (text.empty() ? "" : " ") + s.key + "=" + s.value;
+    }
+    return text;
+}
+
+// The flags of `frontier run` that the job's settings stand for.
+RunOptions runOptionsOf(const BatchPlan& plan, const PlanJob& job, const BatchOptions& options)
+{
+    RunOptions run;
+    run.scenes = {job.scenePath};
+    if (const std::string* v = findSetting(job, "dt"))
+    {
+        run.dt = std::stod(*v);
+    }
+    if (const std::string* v = findSetting(job, "duration"))
+    {
+        run.duration = std::stod(*v);
+    }
+    if (const std::string* v = findSetting(job, "solver"))
+    {
+        run.solver = *v;
+    }
+    if (const std::string* v = findSetting(job, "integrator"))
+    {
+        run.integrator = *v;
+    }
+    if (const std::string* v = findSetting(job, "pgs_iterations"))
+    {
+        run.pgsIterations = std::stoi(*v);
+    }
+    run.recordEvery = plan.recordEvery;
+    run.fps = plan.fps;
+    run.width = plan.width;
+    run.height = plan.height;
+    run.jobs = 1; // render threads: the batch runs jobs in parallel instead
+    run.quiet = true;
+    run.urdf = options.urdf;
+    return run;
+}
+
+// A lock on DIR/jobs/ID/.lock (flock(2): the kernel releases it when the holder ends, even killed).
+class JobLock
+{
+  public:
+    explicit JobLock(const std::string& folder)
+    {
+        const std::string path = (fs::path(folder) / ".lock").string();
+        mFd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        if (mFd < 0)
+        {
+            throw io::OutputError(path + ": cannot open the job's lock: " + std::strerror(errno));
+        }
+        mHeld = ::flock(mFd, LOCK_EX | LOCK_NB) == 0;
+    }
+    ~JobLock() { ::close(mFd); }
+    JobLock(const JobLock&) = delete;
+    JobLock& operator=(const JobLock&) = delete;
+    bool held() const { return mHeld; }
+
+  private:
+    int mFd = -1;
+    bool mHeld = false;
+};
+
+// A job that failed before its run could write stats (bad input, an output error) says so in them.
+void writeFailedStats(const PlanJob& job, const JobOutputs& files, const std::string& message)
+{
+    io::RunStats stats;
+    stats.scene = job.scenePath;
+    stats.completed = false;
+    stats.failure = message;
+    io::writeStats(files.stats, stats);
+}
+
+int listJobs(const std::vector<const PlanJob*>& jobs)
+{
+    for (const PlanJob* job : jobs)
+    {
+        std::printf("%s  %s  %s\n", job->id.c_str(), job->scene.c_str(), describeVariation(*job).c_str());
+    }
+    return cExitOk;
+}
+} // namespace
+
+int batchCommand(const BatchOptions& options)
+{
+    BatchPlan plan;
+    Shard shard;
+    try
+    {
+        plan = readBatchPlan(options.plan);
+        if (!options.shard.empty())
+        {
+            shard = parseShard(options.shard);
+        }
+        else if (options.shardFromEnv)
+        {
+            shard = shardFromEnvironment(options.shardVariable, options.shards, plan.shards);
+        }
+        if (!options.chart.empty() && !options.merge && !options.slurm)
+        {
+            throw io::InputError("--chart", 0, 0,
+                                 "--chart X,Y draws the merge's chart: give it with --merge or --slurm");
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    if (options.slurm)
+    {
+        return slurmBatch(plan, options);
+    }
+    if (options.merge)
+    {
+        return mergeBatch(plan, options);
+    }
+    std::vector<const PlanJob*> selected; // fixed: index mod count, whatever is complete
+    for (const PlanJob& job : plan.jobs)
+    {
+        if (static_cast<int>(job.index % static_cast<std::size_t>(shard.count)) == shard.index)
+        {
+            selected.push_back(&job);
+        }
+    }
+    if (options.list)
+    {
+        return listJobs(selected);
+    }
+    try
+    {
+        fs::create_directories(fs::path(options.out) / "jobs");
+    }
+    catch (const fs::filesystem_error& e)
+    {
+        std::cerr << "frontier: " << options.out << ": cannot create the batch folder: " << e.code().message()
+                  << "\n";
+        return cExitBadInput;
+    }
+
+    installInterruptHandlers();
+    std::vector<Outcome> outcomes(selected.size(), Outcome::NotStarted);
+    std::vector<std::string> messages(selected.size());
+    std::mutex printing;
+    std::size_t ended = 0;
+    runJobs(selected.size(), options.jobs,
+            [&](std::size_t k)
+            {
+                if (interruptSignal() != 0)
+                {
+                    return 0;
+                }
+                const PlanJob& job = *selected[k];
+                const JobOutputs files = jobOutputs(plan, options.out, job);
+                Outcome outcome = Outcome::Failed;
+                std::string& message = messages[k];
+                try
+                {
+                    fs::create_directories(jobFolder(options.out, job));
+                    const JobLock lock(jobFolder(options.out, job));
+                    if (!lock.held())
+                    {
+                        outcome = Outcome::Locked;
+                    }
+                    else if (jobComplete(plan, files)) // also when another process finished it meanwhile
+                    {
+                        outcome = Outcome::Complete;
+                    }
+                    else
+                    {
+                        // Rows a failed attempt kept (failedPath names) would outlive this one.
+                        for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
+                        {
+                            if (!file->empty())
+                            {
+                                fs::remove(failedPath(*file));
+                            }
+                        }
+                        std::string summary;
+                        const int code = runOne(
+                            runOptionsOf(plan, job, options), job.scenePath, files, 1,
+                            [](const std::string&) {}, summary, message,
+                            [&]() { return loadBatchScene(plan, job, options.urdf); });
+                        if (code == cExitBadInput)
+                        {
+                            writeFailedStats(job, files, message);
+                        }
+                        outcome = code == cExitOk ? Outcome::Done : Outcome::Failed;
+                        if (code != cExitOk && interruptSignal() != 0)
+                        {
+                            outcome = Outcome::NotStarted; // stopped by the signal: redone next time
+                        }
+                    }
+                }
+                catch (const io::OutputError& e)
+                {
+                    message = e.what();
+                }
+                catch (const fs::filesystem_error& e)
+                {
+                    message = e.what();
+                }
+                outcomes[k] = outcome;
+                const std::lock_guard<std::mutex> guard(printing);
+                ++ended;
+                if (!options.quiet)
+                {
+                    const char* word = outcome == Outcome::Done       ? "done"
+                                       : outcome == Outcome::Complete ? "complete before, skipped"
+                                       : outcome == Outcome::Locked   ? "running elsewhere (locked), skipped"
+                                       : outcome == Outcome::Failed   ? "FAILED"
+                                                                      : "interrupted";
+                    std::fprintf(stderr, "[%zu/%zu] %s: %s%s%s\n", ended, selected.size(), job.id.c_str(),
+                                 word, outcome == Outcome::Failed ? ": " : "",
+                                 outcome == Outcome::Failed ? message.c_str() : "");
+                }
+                return 0;
+            });
+
+    std::size_t counts[5] = {};
+    for (const Outcome o : outcomes)
+    {
+        ++counts[static_cast<int>(o)];
+    }
+    if (!options.quiet)
+    {
+        std::printf("batch: %zu jobs (shard %d of %d): %zu run, %zu complete before, %zu running elsewhere, "
+                    "%zu failed, %zu not run\n",
+                    selected.size(), shard.index, shard.count, counts[static_cast<int>(Outcome::Done)],
+                    counts[static_cast<int>(Outcome::Complete)], counts[static_cast<int>(Outcome::Locked)],
+                    counts[static_cast<int>(Outcome::Failed)], counts[static_cast<int>(Outcome::NotStarted)]);
+    }
+    for (std::size_t k = 0; k < selected.size(); ++k)
+    {
+        if (outcomes[k] == Outcome::Failed)
+        {
+            std::cerr << "frontier: job " << selected[k]->id << " (" << selected[k]->scene << " "
+                      << describeVariation(*selected[k]) << ") failed: " << messages[k] << "\n";
+        }
+    }
+    if (const int signal = interruptSignal(); signal != 0)
+    {
+        std::cerr << "frontier: " << signalName(signal) << ": the batch stopped; run it again to finish it\n";
+        return interruptedExitCode(signal);
+    }
+    return counts[static_cast<int>(Outcome::Failed)] > 0 ? cExitFailed : cExitOk;
+}
+
+} // namespace frontier::app

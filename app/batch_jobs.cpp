@@ -1,0 +1,166 @@
+// app/batch_jobs.cpp: a batch job's files, its completeness, and the shard of this process.
+#include "app/batch_jobs.h"
+
+#include "app/frames.h"
+#include "io/file_util.h"
+#include "io/scene.h"
+#include "io/stats.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace frontier::app
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+// A whole number in [low, high] from text, or nullopt.
+std::optional<long long> wholeNumber(const char* text, long long low, long long high)
+{
+    if (text == nullptr)
+    {
+        return std::nullopt;
+    }
+    return io::detail::parseWholeNumber(text, low, high);
+}
+
+std::optional<long long> envNumber(const char* name)
+{
+    return wholeNumber(std::getenv(name), 0, 1000000000);
+}
+} // namespace
+
+std::string jobFolder(const std::string& out, const PlanJob& job)
+{
+    return (fs::path(out) / "jobs" / job.id).string();
+}
+
+JobOutputs jobOutputs(const BatchPlan& plan, const std::string& out, const PlanJob& job)
+{
+    const fs::path folder = jobFolder(out, job);
+    JobOutputs files;
+    files.stats = (folder / "stats.json").string();
+    files.trajectory = plan.outputs.trajectory ? (folder / "trajectory.csv").string() : "";
+    files.frames = plan.outputs.frames ? (folder / "frames").string() : "";
+    files.joints = plan.outputs.joints ? (folder / "joints.csv").string() : "";
+    files.contacts = plan.outputs.contacts ? (folder / "contacts.csv").string() : "";
+    return files;
+}
+
+bool jobComplete(const BatchPlan& plan, const JobOutputs& files)
+{
+    std::error_code error;
+    if (!fs::is_regular_file(files.stats, error))
+    {
+        return false;
+    }
+    try
+    {
+        if (!io::readStats(files.stats).completed)
+        {
+            return false;
+        }
+    }
+    catch (const io::InputError&)
+    {
+        return false;
+    }
+    for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
+    {
+        if (!file->empty() && !fs::is_regular_file(*file, error))
+        {
+            return false;
+        }
+    }
+    return !plan.outputs.frames || (fs::is_directory(files.frames, error) &&
+                                    !fs::exists(fs::path(files.frames) / cIncompleteMarker, error));
+}
+
+Shard parseShard(const std::string& text)
+{
+    const std::size_t slash = text.find('/');
+    const std::optional<long long> index =
+        slash == std::string::npos ? std::nullopt
+                                   : io::detail::parseWholeNumber(text.substr(0, slash), 0, 1000000);
+    const std::optional<long long> count =
+        slash == std::string::npos ? std::nullopt
+                                   : io::detail::parseWholeNumber(text.substr(slash + 1), 1, 1000000);
+    if (!index || !count || *index >= *count)
+    {
+        throw io::InputError("--shard", 0, 0,
+                             "expected I/N with 0 <= I < N (shard I of N), got '" + text + "'");
+    }
+    return {static_cast<int>(*index), static_cast<int>(*count)};
+}
+
+Shard shardFromEnvironment(const std::string& variable, std::optional<int> shards,
+                           std::optional<int> planShards)
+{
+    auto countFrom = [&](const std::string& indexName) -> int
+    {
+        if (shards)
+        {
+            return *shards;
+        }
+        if (planShards)
+        {
+            return *planShards;
+        }
+        if (const std::optional<long long> n = wholeNumber(std::getenv("FRONTIER_SHARD_COUNT"), 1, 1000000))
+        {
+            return static_cast<int>(*n);
+        }
+        throw io::InputError("--shard-from-env", 0, 0,
+                             indexName +
+                                 " gives the shard's index; the shard count comes from --shards N, the "
+                                 "plan's 'shards:' or FRONTIER_SHARD_COUNT, and none is set");
+    };
+    auto make = [](long long index, long long count, const std::string& from) -> Shard
+    {
+        if (index < 0 || count < 1 || index >= count)
+        {
+            throw io::InputError("--shard-from-env", 0, 0,
+                                 from + " gives shard " + std::to_string(index) + " of " +
+                                     std::to_string(count) + "; expected 0 <= index < count");
+        }
+        return {static_cast<int>(index), static_cast<int>(count)};
+    };
+    if (!variable.empty())
+    {
+        const std::optional<long long> index = envNumber(variable.c_str());
+        if (!index)
+        {
+            throw io::InputError("--shard-from-env", 0, 0,
+                                 "expected a whole number >= 0 in the environment variable " + variable +
+                                     (std::getenv(variable.c_str())
+                                          ? ", got '" + std::string(std::getenv(variable.c_str())) + "'"
+                                          : std::string(", which is not set")));
+        }
+        return make(*index, countFrom(variable), variable);
+    }
+    if (const std::optional<long long> task = envNumber("SLURM_ARRAY_TASK_ID"))
+    {
+        const long long low = envNumber("SLURM_ARRAY_TASK_MIN").value_or(0);
+        std::optional<long long> count = envNumber("SLURM_ARRAY_TASK_COUNT");
+        if (const std::optional<long long> high = envNumber("SLURM_ARRAY_TASK_MAX"); !count && high)
+        {
+            count = *high - low + 1;
+        }
+        if (!count)
+        {
+            return make(*task - low, countFrom("SLURM_ARRAY_TASK_ID"), "SLURM_ARRAY_TASK_ID");
+        }
+        return make(*task - low, *count, "SLURM_ARRAY_TASK_ID");
+    }
+    if (const std::optional<long long> index = envNumber("JOB_COMPLETION_INDEX"))
+    {
+        return make(*index, countFrom("JOB_COMPLETION_INDEX"), "JOB_COMPLETION_INDEX");
+    }
+    throw io::InputError("--shard-from-env", 0, 0,
+                         "no shard in the environment: expected SLURM_ARRAY_TASK_ID (a Slurm array job), "
+                         "JOB_COMPLETION_INDEX (a Kubernetes Indexed Job) or --shard-from-env VAR");
+}
+
+} // namespace frontier::app

@@ -1,0 +1,43 @@
+// app/batch_jobs.h: the parts of `frontier batch` (app/batch_command.cpp runs them): a job's folder
+// and files, when a job is complete, shards, the merge and the Slurm scripts.
+#pragma once
+
+#include "app/batch_plan.h"
+#include "app/commands.h"
+#include "app/outputs.h"
+
+#include <string>
+
+namespace frontier::app
+{
+
+// DIR/jobs/ID
+std::string jobFolder(const std::string& out, const PlanJob& job);
+// The job's files in its folder: stats.json always, trajectory.csv, frames/, joints.csv,
+// contacts.csv when the plan asks for them.
+JobOutputs jobOutputs(const BatchPlan& plan, const std::string& out, const PlanJob& job);
+// Complete: its stats say "completed": true and every other output is in place (a frames folder
+// without the INCOMPLETE marker).
+bool jobComplete(const BatchPlan& plan, const JobOutputs& files);
+
+// Which shard this process runs.
+struct Shard
+{
+    int index = 0; // 0-based
+    int count = 1;
+};
+// "I/N" with 0 <= I < N; throws io::InputError naming --shard.
+Shard parseShard(const std::string& text);
+// From the environment: `variable` when given (the count from --shards, the plan's `shards:` or
+// FRONTIER_SHARD_COUNT); else SLURM_ARRAY_TASK_ID with SLURM_ARRAY_TASK_COUNT (or _MIN and _MAX);
+// else JOB_COMPLETION_INDEX (a Kubernetes Indexed Job) with the count as for `variable`. Throws
+// io::InputError saying what is missing.
+Shard shardFromEnvironment(const std::string& variable, std::optional<int> shards,
+                           std::optional<int> planShards);
+
+// --merge: DIR/batch.csv, DIR/summary.md, with --chart DIR/chart.png. Returns the exit code.
+int mergeBatch(const BatchPlan& plan, const BatchOptions& options);
+// --slurm: DIR/slurm/batch.sbatch and merge.sbatch; with --submit, sbatch both. Returns the exit code.
+int slurmBatch(const BatchPlan& plan, const BatchOptions& options);
+
+} // namespace frontier::app

@@ -1,0 +1,412 @@
+// app/batch_merge.cpp: `frontier batch --merge`: DIR/batch.csv (one row per job, in job order),
+// DIR/summary.md, and with --chart X,Y the chart DIR/chart.png (drawn as the sweep's, by gnuplot).
+#include "app/batch_jobs.h"
+#include "app/sweep_chart.h"
+#include "io/atomic_file.h"
+#include "io/csv_output.h"
+#include "io/file_util.h"
+#include "io/scene.h"
+#include "io/stats.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace frontier::app
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+struct JobResult
+{
+    std::string status; // done, failed, missing
+    std::optional<io::RunStats> stats;
+};
+
+// The stats columns before the extra keys, as named in the stats JSON (README "Files").
+const std::vector<std::string> cStatsColumns = {"solver",
+                                                "integrator",
+                                                "pgs_iterations",
+                                                "dt",
+                                                "steps",
+                                                "simulated_seconds",
+                                                "bodies",
+                                                "static_bodies",
+                                                "joints",
+                                                "constraint_rows",
+                                                "degrees_of_freedom",
+                                                "max_joint_error_m",
+                                                "max_penetration_m",
+                                                "energy_initial_j",
+                                                "energy_final_j",
+                                                "max_contacts",
+                                                "finite",
+                                                "completed"};
+
+// Wall-clock keys of the stats: they differ from run to run, so they come last, named wall_*.
+bool isWallClock(const std::string& key)
+{
+    return key == "wall_seconds" || key.rfind("seconds_per_step", 0) == 0;
+}
+
+std::string wallColumn(const std::string& key)
+{
+    return key.rfind("wall_", 0) == 0 ? key : "wall_" + key;
+}
+
+std::string number(double value)
+{
+    std::string out;
+    io::appendNumber(out, value);
+    return out;
+}
+
+// The value of a stats column as CSV text (empty when the job has no stats or lacks the key).
+std::string statsField(const io::RunStats& s, const std::string& key)
+{
+    if (key == "solver")
+        return s.solver;
+    if (key == "integrator")
+        return s.integrator;
+    if (key == "pgs_iterations")
+        return std::to_string(s.pgsIterations);
+    if (key == "dt")
+        return number(s.dt);
+    if (key == "steps")
+        return std::to_string(s.steps);
+    if (key == "simulated_seconds")
+        return number(s.simulatedSeconds);
+    if (key == "bodies")
+        return std::to_string(s.bodies);
+    if (key == "static_bodies")
+        return std::to_string(s.staticBodies);
+    if (key == "joints")
+        return std::to_string(s.joints);
+    if (key == "constraint_rows")
+        return std::to_string(s.constraintRows);
+    if (key == "degrees_of_freedom")
+        return std::to_string(s.degreesOfFreedom);
+    if (key == "max_joint_error_m")
+        return number(s.maxJointErrorM);
+    if (key == "max_penetration_m")
+        return number(s.maxPenetrationM);
+    if (key == "energy_initial_j")
+        return number(s.energyInitialJ);
+    if (key == "energy_final_j")
+        return number(s.energyFinalJ);
+    if (key == "max_contacts")
+        return std::to_string(s.maxContacts);
+    if (key == "finite")
+        return s.finite ? "true" : "false";
+    if (key == "completed")
+        return s.completed ? "true" : "false";
+    if (key == "wall_seconds")
+        return number(s.wallSeconds);
+    if (key == "seconds_per_step")
+        return number(s.secondsPerStep);
+    const auto it = s.extra.find(key);
+    return it == s.extra.end() ? std::string() : number(it->second);
+}
+
+std::string csvField(const std::string& text)
+{
+    std::string out;
+    io::appendName(out, text);
+    return out;
+}
+
+struct Table
+{
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
+Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
+{
+    std::set<std::string> extra;
+    for (const JobResult& r : results)
+    {
+        if (r.stats)
+        {
+            for (const auto& [key, value] : r.stats->extra)
+            {
+                extra.insert(key);
+            }
+        }
+    }
+    std::vector<std::string> statsKeys;
+    std::vector<std::string> wallKeys = {"wall_seconds", "seconds_per_step"};
+    for (const std::string& key : cStatsColumns)
+    {
+        statsKeys.push_back(key);
+    }
+    for (const std::string& key : extra)
+    {
+        (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
+    }
+    // A varied setting has its column already (the value as the plan gives it).
+    std::erase_if(
+        statsKeys, [&](const std::string& key)
+        { return std::find(plan.varyKeys.begin(), plan.varyKeys.end(), key) != plan.varyKeys.end(); });
+    Table table;
+    table.header = {"job", "scene"};
+    table.header.insert(table.header.end(), plan.varyKeys.begin(), plan.varyKeys.end());
+    table.header.push_back("status");
+    table.header.insert(table.header.end(), statsKeys.begin(), statsKeys.end());
+    table.header.push_back("failure");
+    for (const std::string& key : wallKeys)
+    {
+        table.header.push_back(wallColumn(key));
+    }
+    for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+    {
+        const PlanJob& job = plan.jobs[j];
+        const JobResult& r = results[j];
+        std::vector<std::string> row = {job.id, job.scene};
+        for (const BatchSetting& s : job.variation)
+        {
+            row.push_back(s.value);
+        }
+        row.push_back(r.status);
+        for (const std::string& key : statsKeys)
+        {
+            row.push_back(r.stats ? statsField(*r.stats, key) : "");
+        }
+        row.push_back(r.stats ? r.stats->failure : "");
+        for (const std::string& key : wallKeys)
+        {
+            row.push_back(r.stats ? statsField(*r.stats, key) : "");
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+void writeCsv(const std::string& path, const BatchPlan& plan, const Table& table)
+{
+    std::string header;
+    for (const std::string& name : table.header)
+    {
+        header += (header.empty() ? "" : ",") + csvField(name);
+    }
+    io::CsvFile file(
+        path, "batch",
+        {{"plan", fs::path(plan.file).filename().string()}, {"jobs", std::to_string(plan.jobs.size())}},
+        header.c_str());
+    for (const std::vector<std::string>& row : table.rows)
+    {
+        std::string line;
+        for (std::size_t k = 0; k < row.size(); ++k)
+        {
+            line += (k == 0 ? "" : ",") + csvField(row[k]);
+        }
+        file.writeRow(line);
+    }
+    file.commit();
+}
+
+// A markdown table cell: no line breaks, '|' escaped.
+std::string cell(const std::string& text)
+{
+    std::string out;
+    for (const char c : text)
+    {
+        out += c == '|' ? std::string("\\|") : std::string(1, c == '\n' || c == '\r' ? ' ' : c);
+    }
+    return out;
+}
+
+void writeSummary(const std::string& path, const BatchPlan& plan, const std::vector<JobResult>& results)
+{
+    std::size_t done = 0, failed = 0, missing = 0;
+    double simulatedS = 0.0, wallS = 0.0;
+    for (const JobResult& r : results)
+    {
+        done += r.status == "done";
+        failed += r.status == "failed";
+        missing += r.status == "missing";
+        if (r.stats)
+        {
+            simulatedS += r.stats->simulatedSeconds;
+            wallS += r.stats->wallSeconds;
+        }
+    }
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "# Batch %s\n\n%zu jobs: %zu done, %zu failed, %zu missing (not run, or not finished).\n"
+                  "%.6g s simulated in %.3f s of wall time summed over the jobs.\n",
+                  fs::path(plan.file).filename().c_str(), plan.jobs.size(), done, failed, missing, simulatedS,
+                  wallS);
+    std::string out = text;
+    if (failed > 0)
+    {
+        out += "\n## Failed jobs\n\n| job | scene | variation | message |\n|---|---|---|---|\n";
+        for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+        {
+            if (results[j].status == "failed")
+            {
+                std::string variation;
+                for (const BatchSetting& s : plan.jobs[j].variation)
+                {
+                    variation += (variation.empty() ? "" : " ") + s.key + "=" + s.value;
+                }
+                out += "| " + plan.jobs[j].id + " | " + cell(plan.jobs[j].scene) + " | " + cell(variation) +
+                       " | " + cell(results[j].stats->failure) + " |\n";
+            }
+        }
+    }
+    if (missing > 0)
+    {
+        out += "\n## Missing jobs\n\n";
+        for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+        {
+            if (results[j].status == "missing")
+            {
+                out += "* " + plan.jobs[j].id + "\n";
+            }
+        }
+    }
+    io::AtomicFile file(path);
+    file.write(out);
+    file.commit();
+}
+
+// DIR/chart.png: column y against column x over the done jobs (gnuplot, as the sweep's chart).
+bool drawChart(const std::string& folder, const Table& table, const std::string& x, const std::string& y)
+{
+    auto column = [&](const std::string& name)
+    {
+        const auto it = std::find(table.header.begin(), table.header.end(), name);
+        if (it == table.header.end())
+        {
+            std::string names;
+            for (const std::string& h : table.header)
+            {
+                names += (names.empty() ? "" : ", ") + h;
+            }
+            throw io::InputError("--chart", 0, 0,
+                                 "no column '" + name + "' in batch.csv; expected one of " + names);
+        }
+        return static_cast<std::size_t>(it - table.header.begin());
+    };
+    const std::size_t cx = column(x), cy = column(y), status = column("status");
+    std::string data = "# " + x + " " + y + " job\n";
+    for (const std::vector<std::string>& row : table.rows)
+    {
+        const std::optional<double> vx = io::detail::parseFiniteNumber(row[cx]);
+        const std::optional<double> vy = io::detail::parseFiniteNumber(row[cy]);
+        if (row[status] == "done" && vx && vy)
+        {
+            data += number(*vx) + " " + number(*vy) + " " + row[0] + "\n";
+        }
+    }
+    const std::string script =
+        "# chart.gp: `gnuplot chart.gp` in this folder draws chart.png from chart.dat\n"
+        "if (!exists('out')) out = 'chart.png'\n"
+        "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+        "    set terminal pngcairo size 900,600 enhanced font ',10'\n"
+        "} else {\n"
+        "    set terminal png size 900,600 enhanced\n"
+        "}\n"
+        "set output out\n"
+        "set title " +
+        gnuplotQuote(y + " against " + x) +
+        " noenhanced\n"
+        "set xlabel " +
+        gnuplotQuote(x) + " noenhanced\nset ylabel " + gnuplotQuote(y) +
+        " noenhanced\n"
+        "set grid\n"
+        "set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\n"
+        "plot 'chart.dat' using 1:2 with points pt 7 ps 1.2 notitle\n";
+    return drawGnuplotChart(folder, {"chart.gp", script, "chart.dat", data, "chart.png"});
+}
+} // namespace
+
+int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
+{
+    std::vector<JobResult> results(plan.jobs.size());
+    for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+    {
+        const JobOutputs files = jobOutputs(plan, options.out, plan.jobs[j]);
+        std::error_code error;
+        results[j].status = "missing";
+        if (!fs::is_regular_file(files.stats, error))
+        {
+            continue;
+        }
+        try
+        {
+            results[j].stats = io::readStats(files.stats);
+        }
+        catch (const io::InputError& e)
+        {
+            std::cerr << "frontier: " << e.what() << "\n";
+            continue;
+        }
+        results[j].status = jobComplete(plan, files)      ? "done"
+                            : results[j].stats->completed ? "missing"
+                                                          : "failed";
+    }
+    const Table table = makeTable(plan, results);
+    const fs::path folder(options.out);
+    try
+    {
+        fs::create_directories(folder);
+        writeCsv((folder / "batch.csv").string(), plan, table);
+        writeSummary((folder / "summary.md").string(), plan, results);
+        if (!options.chart.empty())
+        {
+            if (options.chart.size() != 2)
+            {
+                throw io::InputError("--chart", 0, 0, "expected two column names X,Y");
+            }
+            if (!drawChart(options.out, table, options.chart[0], options.chart[1]))
+            {
+                std::cerr << "frontier: note: gnuplot is not installed, so there is no chart; `cd "
+                          << options.out << " && gnuplot chart.gp` draws it\n";
+            }
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    catch (const io::OutputError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    catch (const ChartError& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitFailed;
+    }
+    catch (const fs::filesystem_error& e)
+    {
+        std::cerr << "frontier: " << e.what() << "\n";
+        return cExitBadInput;
+    }
+    std::size_t bad = 0;
+    for (std::size_t j = 0; j < results.size(); ++j)
+    {
+        if (results[j].status != "done")
+        {
+            ++bad;
+            std::cerr << "frontier: job " << plan.jobs[j].id << " " << results[j].status
+                      << (results[j].status == "failed" ? ": " + results[j].stats->failure : std::string())
+                      << "\n";
+        }
+    }
+    std::printf("Wrote %s and %s: %zu jobs, %zu not done.\n", (folder / "batch.csv").c_str(),
+                (folder / "summary.md").c_str(), plan.jobs.size(), bad);
+    return bad > 0 ? cExitFailed : cExitOk;
+}
+
+} // namespace frontier::app

@@ -1,0 +1,215 @@
+// app/batch_scene.cpp: scene paths set in the scene's YAML, and the seeded perturbation.
+#include "app/batch_scene.h"
+
+#include "io/file_util.h"
+#include "io/scene.h"
+
+#include <array>
+#include <charconv>
+#include <numeric>
+#include <optional>
+
+namespace frontier::app
+{
+
+namespace
+{
+std::vector<std::string> splitPath(const std::string& path)
+{
+    std::vector<std::string> parts;
+    std::size_t begin = 0;
+    while (begin <= path.size())
+    {
+        const std::size_t end = std::min(path.find('.', begin), path.size());
+        parts.push_back(path.substr(begin, end - begin));
+        begin = end + 1;
+    }
+    return parts;
+}
+
+// The entry of a list named `part`: the map whose `name` is `part`, else the entry at index `part`.
+YAML::Node listEntry(const YAML::Node& list, const std::string& part, std::size_t& index)
+{
+    for (std::size_t i = 0; i < list.size(); ++i)
+    {
+        const YAML::Node entry = list[i];
+        if (entry.IsMap() && entry["name"] && entry["name"].IsScalar() && entry["name"].Scalar() == part)
+        {
+            index = i;
+            return entry;
+        }
+    }
+    std::size_t n = 0;
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), n);
+    if (error == std::errc() && end == part.data() + part.size() && n < list.size())
+    {
+        index = n;
+        return list[n];
+    }
+    return YAML::Node(YAML::NodeType::Undefined);
+}
+
+// splitmix64 (Steele, Lea and Flood, 2014): a fixed sequence for a seed on every platform.
+std::uint64_t splitmix64(std::uint64_t& state)
+{
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// Uniform in [-1, 1): the top 53 bits as a double.
+double symmetricUniform(std::uint64_t& state)
+{
+    return 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
+}
+} // namespace
+
+std::string applySceneSetting(YAML::Node root, const std::string& path, const YAML::Node& value)
+{
+    const std::vector<std::string> parts = splitPath(path);
+    YAML::Node node = root;
+    std::string at = "the scene";
+    for (std::size_t k = 0; k < parts.size(); ++k)
+    {
+        const std::string& part = parts[k];
+        const bool last = k + 1 == parts.size();
+        if (part.empty())
+        {
+            return "an empty key in the path";
+        }
+        if (node.IsMap())
+        {
+            if (last)
+            {
+                node[part] = value;
+                return {};
+            }
+            YAML::Node child = node[part];
+            if (!child.IsDefined() || child.IsNull())
+            {
+                return "no key '" + part + "' in " + at;
+            }
+            node.reset(child);
+        }
+        else if (node.IsSequence())
+        {
+            std::size_t index = 0;
+            YAML::Node entry = listEntry(node, part, index);
+            if (!entry.IsDefined())
+            {
+                return "no entry named '" + part + "' (nor index " + part + ") in " + at;
+            }
+            if (last)
+            {
+                node[index] = value;
+                return {};
+            }
+            node.reset(entry);
+        }
+        else
+        {
+            return at + " is not a map or a list, so it has no '" + part + "'";
+        }
+        at = "'" + part + "'";
+    }
+    return {};
+}
+
+void perturbInitialState(core::Model& model, std::uint64_t seed, double positionM, double velocityMps)
+{
+    const std::size_t n = model.bodies.size();
+    std::vector<std::size_t> group(n);
+    std::iota(group.begin(), group.end(), 0);
+    auto find = [&](std::size_t b)
+    {
+        while (group[b] != b)
+        {
+            b = group[b] = group[group[b]];
+        }
+        return b;
+    };
+    std::vector<bool> anchored(n, false);
+    for (std::size_t b = 0; b < n; ++b)
+    {
+        anchored[b] = model.bodies[b].isStatic;
+    }
+    for (const core::Joint& joint : model.joints)
+    {
+        const auto child = static_cast<std::size_t>(joint.child);
+        if (joint.parent == core::cWorld)
+        {
+            anchored[find(child)] = true;
+            continue;
+        }
+        const std::size_t a = find(static_cast<std::size_t>(joint.parent));
+        const std::size_t c = find(child);
+        if (a != c)
+        {
+            group[c] = a;
+            anchored[a] = anchored[a] || anchored[c];
+        }
+    }
+    std::uint64_t state = seed;
+    std::vector<std::optional<std::array<double, 6>>> draws(n);
+    for (std::size_t b = 0; b < n; ++b) // groups in the order of their first body
+    {
+        const std::size_t root = find(b);
+        if (anchored[root] || model.bodies[b].isStatic)
+        {
+            continue;
+        }
+        if (!draws[root])
+        {
+            std::array<double, 6> u{};
+            for (double& x : u)
+            {
+                x = symmetricUniform(state);
+            }
+            draws[root] = u;
+        }
+        const std::array<double, 6>& u = *draws[root];
+        model.bodies[b].position_W += positionM * core::Vec3(u[0], u[1], u[2]);
+        model.bodies[b].velocity_W += velocityMps * core::Vec3(u[3], u[4], u[5]);
+    }
+}
+
+LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
+{
+    bool scenePaths = false;
+    for (const BatchSetting& s : job.settings)
+    {
+        scenePaths = scenePaths || !isRunSetting(s.key);
+    }
+    LoadedScene loaded;
+    if (!scenePaths)
+    {
+        loaded = loadSceneWithRobots(job.scenePath, urdf);
+    }
+    else
+    {
+        YAML::Node root = YAML::Load(io::detail::readTextFile(job.scenePath, "scene file"));
+        for (const BatchSetting& s : job.settings)
+        {
+            if (!isRunSetting(s.key))
+            {
+                const std::string problem = applySceneSetting(root, s.key, YAML::Load(s.value));
+                if (!problem.empty())
+                {
+                    throw io::InputError(job.scenePath, 0, 0, "'" + s.key + "': " + problem);
+                }
+            }
+        }
+        YAML::Emitter text;
+        text << root;
+        loaded = loadSceneTextWithRobots(text.c_str(), job.scenePath, urdf);
+    }
+    if (const std::string* seed = findSetting(job, "seed"))
+    {
+        perturbInitialState(loaded.model, std::stoull(*seed), plan.perturbPositionM, plan.perturbVelocityMps);
+        checkFiniteEnergy(loaded.model, job.scenePath);
+    }
+    return loaded;
+}
+
+} // namespace frontier::app

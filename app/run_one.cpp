@@ -1,0 +1,367 @@
+// app/run_one.cpp: one scene of `frontier run` (and one job of `frontier batch`): load, simulate,
+// record, summarize.
+#include "app/run_one.h"
+
+#include "app/frames.h"
+#include "app/model_overrides.h"
+#include "app/progress.h"
+#include "app/run_loop.h"
+#include "app/step_outputs.h"
+#include "core/impulse_solver.h"
+#include "io/atomic_file.h"
+#include "io/scene.h"
+#include "io/stats.h"
+#include "io/trajectory.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace frontier::app
+{
+
+namespace
+{
+int movingBodies(const core::Model& model)
+{
+    int n = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        n += body.isStatic ? 0 : 1;
+    }
+    return n;
+}
+
+int constraintRows(const core::Model& model)
+{
+    int rows = 0;
+    for (const core::Joint& joint : model.joints)
+    {
+        rows += core::jointRowCount(joint.type);
+    }
+    return rows;
+}
+
+std::string formatSummary(const core::Model& model, const RunSummary& s)
+{
+    const double simulated = static_cast<double>(s.steps) * model.simulation.dt;
+    const double perStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
+    const double change = s.energyFinalJ - s.energyInitialJ;
+    // A relative change needs a start to be relative to: near zero (a robot at the height where its
+    // potential energy is zero) the change is given in joules.
+    char changeText[64];
+    if (std::abs(s.energyInitialJ) > 1e-9 * std::max(1.0, std::abs(s.energyFinalJ)))
+    {
+        std::snprintf(changeText, sizeof changeText, "%+.3g%%", 100.0 * change / std::abs(s.energyInitialJ));
+    }
+    else
+    {
+        std::snprintf(changeText, sizeof changeText, "%+.3g J", change);
+    }
+    char text[1024];
+    std::snprintf(
+        text, sizeof text,
+        "%s: %ld steps of %g s (%.3f s simulated) in %.3f s wall, %.2f us per step (%.1fx real time); "
+        "%d bodies, %zu joints, %d constraint rows; largest joint error %.3g m, %.3g rad; "
+        "energy %.6g J -> %.6g J (%s); max contacts %d, max penetration %.3g m%s",
+        model.name.c_str(), s.steps, model.simulation.dt, simulated, s.wallSeconds, perStep * 1e6,
+        s.wallSeconds > 0 ? simulated / s.wallSeconds : 0.0, movingBodies(model), model.joints.size(),
+        constraintRows(model), s.maxJointErrorM, s.maxJointErrorRad, s.energyInitialJ, s.energyFinalJ,
+        changeText, s.maxContacts, s.maxPenetrationM, s.completed ? "." : "; the run FAILED.");
+    return text;
+}
+
+io::RunStats makeStats(const std::string& scene, const core::Model& model, const RunSummary& s)
+{
+    io::RunStats stats;
+    io::fillModelCounts(stats, model);
+    stats.scene = scene;
+    stats.solver = core::solverName(model.simulation.solver);
+    stats.integrator = core::integratorName(model.simulation.integrator);
+    stats.dt = model.simulation.dt;
+    stats.steps = s.steps;
+    stats.wallSeconds = s.wallSeconds;
+    stats.secondsPerStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
+    stats.maxJointErrorM = s.maxJointErrorM;
+    stats.pgsIterations = model.simulation.pgsIterations;
+    stats.simulatedSeconds = static_cast<double>(s.steps) * model.simulation.dt;
+    stats.extra["max_joint_error_rad"] = s.maxJointErrorRad;
+    stats.extra["energy_max_j"] = s.energyMaxJ;
+    if (model.simulation.integrator != core::IntegratorKind::Euler)
+    {
+        stats.extra["first_order_steps"] = static_cast<double>(s.firstOrderSteps);
+    }
+    if (model.simulation.integrator == core::IntegratorKind::Rattle4)
+    {
+        stats.extra["second_order_steps"] = static_cast<double>(s.secondOrderSteps); // retaken by rattle
+    }
+    // How the contact problem was solved (core::ContactRoute): steps that kept the last impulses,
+    // that finished on a recent step's Delassus matrix, that built their own; sweeps in all.
+    stats.extra["contact_steps_carried"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Carried)]);
+    stats.extra["contact_steps_reused"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Reused)]);
+    stats.extra["contact_steps_built"] =
+        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Built)]);
+    stats.extra["contact_sweeps"] = static_cast<double>(s.contactSweeps);
+    // How often a limit held: joint limits that pushed, actuators at their effort limit (steps).
+    stats.extra["limit_steps"] = static_cast<double>(s.limitSteps);
+    stats.extra["max_actuator_effort"] = s.maxActuatorEffort;
+    stats.extra["actuator_limit_steps"] = static_cast<double>(s.actuatorLimitSteps);
+    // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
+    const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
+                                                "seconds_per_step_solve", "seconds_per_step_integrate"};
+    for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
+    {
+        stats.extra[stageKeys[stage]] =
+            s.steps > 0 ? s.stageSeconds[stage] / static_cast<double>(s.steps) : 0.0;
+    }
+    stats.maxPenetrationM = s.maxPenetrationM;
+    stats.energyInitialJ = s.energyInitialJ;
+    stats.energyFinalJ = s.energyFinalJ;
+    stats.maxContacts = s.maxContacts;
+    stats.finite = s.finite;
+    return stats;
+}
+} // namespace
+
+namespace
+{
+// The folder an output file goes into, made when missing.
+void makeFolderFor(const std::string& file)
+{
+    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+    std::filesystem::create_directories(parent.empty() ? std::filesystem::path(".") : parent);
+}
+
+} // namespace
+
+int runOne(const RunOptions& options, const std::string& scene, const JobOutputs& out, int renderThreads,
+           const std::function<void(const std::string&)>& status, std::string& summaryText,
+           std::string& error, const SceneLoader& load)
+{
+    core::Model model;
+    long steps = 0;
+    std::unique_ptr<io::TrajectoryWriter> trajectory;
+    std::unique_ptr<StepOutputs> stepOutputs; // --joints, --contacts
+    try
+    {
+        LoadedScene loaded = load ? load() : loadSceneWithRobots(scene, options.urdf);
+        if (!options.quiet)
+        {
+            printLoadWarnings(loaded.report);
+        }
+        model = std::move(loaded.model);
+        steps = applyOverrides(options, model);
+        if (!out.frames.empty())
+        {
+            checkFrameCount(model.simulation.duration, options.fps, static_cast<double>(steps) + 1.0, scene);
+        }
+        io::TrajectoryMetadata metadata =
+            io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
+        io::addUrdfOptions(metadata, options.urdf);
+        for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts, &out.stats})
+        {
+            if (!file->empty())
+            {
+                makeFolderFor(*file);
+            }
+        }
+        if (!out.stats.empty())
+        {
+            io::AtomicFile probe(out.stats); // the stats can be written (removed again, never committed)
+        }
+        if (!out.trajectory.empty())
+        {
+            trajectory = std::make_unique<io::TrajectoryWriter>(out.trajectory, metadata);
+        }
+        if (!out.joints.empty() || !out.contacts.empty())
+        {
+            stepOutputs = std::make_unique<StepOutputs>(out.joints, out.contacts, metadata);
+        }
+        if (!out.frames.empty())
+        {
+            prepareFrameFolder(out.frames);
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
+    catch (const io::OutputError& e)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
+    catch (const std::filesystem::filesystem_error& e)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
+
+    std::vector<core::State> frames;
+    FrameSampler sampler(options.fps);
+    const Recorder record = [&](const core::State& state, const core::Simulator* lastStep)
+    {
+        const bool due = state.step % options.recordEvery == 0;
+        if (trajectory && due)
+        {
+            trajectory->writeState(model, state);
+        }
+        if (stepOutputs && due)
+        {
+            stepOutputs->record(model, state, lastStep);
+        }
+        if (!out.frames.empty() && sampler.due(state.time))
+        {
+            frames.push_back(state);
+        }
+    };
+    RunSettings settings;
+    settings.steps = steps;
+    const double dt = model.simulation.dt;
+    long lastShown = -1;
+    settings.progress = [&](long step)
+    {
+        const long percent = 100 * step / std::max(1L, steps);
+        if (percent != lastShown)
+        {
+            lastShown = percent;
+            char text[96];
+            std::snprintf(text, sizeof text, "simulating %3ld%%  t = %.3f / %.3f s", percent,
+                          static_cast<double>(step) * dt, static_cast<double>(steps) * dt);
+            status(text);
+        }
+    };
+
+    RunSummary summary;
+    try
+    {
+        summary = runSimulation(model, settings, record);
+    }
+    catch (const core::UnsupportedModelError& e)
+    {
+        error = scene + ": " + e.what();
+        return cExitBadInput;
+    }
+    catch (const core::SingularJointError& e) // singular at the start (the simulator's construction)
+    {
+        summary.completed = false;
+        summary.failure = e.what();
+    }
+    catch (const io::OutputError& e) // an output file could not be written on (a full disk)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
+
+    // A passive scene cannot gain energy; when it does, the step was too large for it (or worse).
+    const double rise = passiveEnergyRise(model, summary);
+    std::vector<std::string> warnings;
+    if (rise > cEnergyGainTolerance)
+    {
+        char text[256];
+        std::snprintf(
+            text, sizeof text,
+            "the energy of this passive scene (no actuators, no loads) rose by %.3g J, %.3g%% of its "
+            "scale %.3g J (tolerance %g%%): a smaller dt or --integrator rattle may hold it",
+            summary.energyMaxJ - summary.energyInitialJ, 100.0 * rise, summary.energyScaleJ,
+            100.0 * cEnergyGainTolerance);
+        warnings.push_back(text);
+    }
+    std::string failure = summary.failure;
+    if (summary.completed && options.strict && !warnings.empty())
+    {
+        failure = "--strict: " + warnings.front();
+    }
+    const bool ok = failure.empty();
+    // A run that failed keeps its rows up to the failure under names that say so (failedPath).
+    std::vector<std::string> written;
+    try
+    {
+        if (trajectory)
+        {
+            written.push_back(ok ? out.trajectory : failedPath(out.trajectory));
+            trajectory->commitAs(written.back());
+        }
+        if (stepOutputs)
+        {
+            if (ok)
+            {
+                stepOutputs->commit();
+            }
+            else
+            {
+                for (const std::string& file : stepOutputs->commitFailed())
+                {
+                    written.push_back(file);
+                }
+            }
+        }
+        if (!out.stats.empty())
+        {
+            io::RunStats stats = makeStats(scene, model, summary);
+            stats.completed = ok;
+            stats.failure = failure;
+            stats.warnings = warnings;
+            if (isPassive(model))
+            {
+                stats.extra["energy_rise_fraction"] = rise; // of energy_scale_j
+                stats.extra["energy_scale_j"] = summary.energyScaleJ;
+            }
+            io::writeStats(out.stats, stats);
+            written.push_back(out.stats);
+        }
+        if (!out.frames.empty() && ok)
+        {
+            const std::size_t rendered =
+                renderFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
+                             [&](std::size_t done) {
+                                 status("rendering " + std::to_string(done) + " / " +
+                                        std::to_string(frames.size()) + " frames");
+                             });
+            if (const int signal = interruptSignal(); signal != 0)
+            {
+                error = interruptedFramesMessage(signal, rendered, frames.size(), out.frames);
+                return interruptedExitCode(signal);
+            }
+            if (!out.video.empty())
+            {
+                assembleVideo(out.frames, options.fps, out.video);
+            }
+        }
+    }
+    catch (const io::OutputError& e)
+    {
+        error = e.what();
+        return cExitBadInput;
+    }
+    summaryText = formatSummary(model, summary);
+    for (const std::string& warning : warnings)
+    {
+        summaryText += " Warning: " + warning + ".";
+    }
+    if (!out.frames.empty() && ok)
+    {
+        summaryText += " Wrote " + std::to_string(frames.size()) + " frames to " + out.frames + ".";
+    }
+    if (!ok)
+    {
+        // Every file of a failed run says so: rows under .failed names, stats with "completed": false.
+        error = (summary.interruptedBy != 0 ? "" : scene + ": ") + failure;
+        for (std::size_t k = 0; k < written.size(); ++k)
+        {
+            error += (k == 0 ? "; partial outputs kept in " : ", ") + written[k];
+        }
+        if (written.empty())
+        {
+            error += "; nothing written";
+        }
+        return summary.interruptedBy != 0 ? interruptedExitCode(summary.interruptedBy) : cExitFailed;
+    }
+    return cExitOk;
+}
+
+} // namespace frontier::app

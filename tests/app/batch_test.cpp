@@ -1,0 +1,467 @@
+// tests/app/batch_test.cpp: `frontier batch` end to end: the plan's expansion and ids, bad plans
+// (exit 2, file:line), scene paths and seeds that change the physics as asked, resume after a
+// SIGTERM without redoing finished jobs, locks, shards, and the merge of sharded runs equal to a
+// single machine's.
+#include "app_test_util.h"
+#include "csv_table.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <map>
+#include <set>
+#include <sstream>
+#include <sys/file.h>
+#include <sys/stat.h>
+
+namespace
+{
+using frontier::app::test::readText;
+using frontier::app::test::Result;
+using frontier::app::test::shellQuote;
+using frontier::app::test::spawnFrontier;
+using frontier::app::test::TestDir;
+using frontier::app::test::waitForExit;
+using frontier::app::test::waitForHandler;
+using frontier::test::readCsvTable;
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines(const std::string& text)
+{
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line))
+    {
+        out.push_back(line);
+    }
+    return out;
+}
+
+// The ids of `--list` lines ("ID  SCENE  VARIATION").
+std::vector<std::string> ids(const std::string& listing)
+{
+    std::vector<std::string> out;
+    for (const std::string& line : lines(listing))
+    {
+        out.push_back(line.substr(0, line.find(' ')));
+    }
+    return out;
+}
+
+// A plan in the test folder naming the bundled scenes by absolute path (globs too).
+std::string scenesDir()
+{
+    return frontier::app::test::sourcePath("scenes");
+}
+
+// 2 scenes x 2 dt x 2 solvers: 8 jobs of 0.1 s.
+std::string smallPlan()
+{
+    return "scenes: [" + scenesDir() + "/bouncing_ball.yaml, " + scenesDir() +
+           "/pendulum.yaml]\n"
+           "duration: 0.1\n"
+           "outputs: [stats, trajectory]\n"
+           "vary:\n"
+           "  dt: [0.001, 0.002]\n"
+           "  solver: [linear, pgs]\n";
+}
+
+struct FileStamp
+{
+    ino_t inode = 0;
+    long long mtimeNs = 0;
+    bool operator==(const FileStamp&) const = default;
+};
+
+FileStamp stamp(const fs::path& path)
+{
+    struct stat info
+    {
+    };
+    if (::stat(path.c_str(), &info) != 0)
+    {
+        return {};
+    }
+    return {info.st_ino, static_cast<long long>(info.st_mtim.tv_sec) * 1000000000LL + info.st_mtim.tv_nsec};
+}
+
+bool completedStats(const fs::path& stats)
+{
+    const std::string text = readText(stats);
+    return text.find("\"completed\": true") != std::string::npos;
+}
+
+// batch.csv without its wall-clock columns (those named wall_*).
+std::string withoutWallClock(const std::string& csvPath)
+{
+    std::string out;
+    std::vector<bool> keep;
+    for (const std::string& line : lines(readText(csvPath)))
+    {
+        if (!line.empty() && line.front() == '#')
+        {
+            out += line + "\n";
+            continue;
+        }
+        const std::vector<std::string> fields = frontier::test::splitCsvLine(line);
+        if (keep.empty())
+        {
+            for (const std::string& name : fields)
+            {
+                keep.push_back(name.rfind("wall_", 0) != 0);
+            }
+        }
+        for (std::size_t k = 0; k < fields.size(); ++k)
+        {
+            if (keep.at(k))
+            {
+                out += fields[k] + ",";
+            }
+        }
+        out += "\n";
+    }
+    return out;
+}
+
+TEST(Batch, ListExpandsTheGridWithStableDistinctIds)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", smallPlan());
+    const Result first =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")) + " --list");
+    ASSERT_EQ(first.exitCode, 0) << first.err;
+    const std::vector<std::string> listed = lines(first.out);
+    ASSERT_EQ(listed.size(), 8U);
+    // Scenes outer, the last vary key fastest.
+    EXPECT_NE(listed[0].find("bouncing_ball.yaml  dt=0.001 solver=linear"), std::string::npos) << listed[0];
+    EXPECT_NE(listed[1].find("dt=0.001 solver=pgs"), std::string::npos) << listed[1];
+    EXPECT_NE(listed[7].find("pendulum.yaml  dt=0.002 solver=pgs"), std::string::npos) << listed[7];
+    const std::vector<std::string> a = ids(first.out);
+    EXPECT_EQ(std::set<std::string>(a.begin(), a.end()).size(), 8U);
+    EXPECT_EQ(a[0].substr(0, 5), "0000-");
+    // Read again: the same ids. A value added to an axis: the jobs that were there keep their hash.
+    EXPECT_EQ(
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")) + " --list").out), a);
+    std::string widened = smallPlan();
+    widened.replace(widened.find("[linear, pgs]"), 13, "[linear, dense, pgs]");
+    const std::string plan2 = dir.write("plan2.yaml", widened);
+    const std::vector<std::string> b =
+        ids(dir.run("batch " + shellQuote(plan2) + " --out " + shellQuote(dir.out("b")) + " --list").out);
+    ASSERT_EQ(b.size(), 12U);
+    auto hash = [](const std::string& id) { return id.substr(id.rfind('-')); };
+    std::set<std::string> hashes;
+    for (const std::string& id : b)
+    {
+        hashes.insert(hash(id));
+    }
+    for (const std::string& id : a)
+    {
+        EXPECT_EQ(hashes.count(hash(id)), 1U) << id;
+    }
+    // Nothing ran.
+    EXPECT_FALSE(fs::exists(dir.out("b")));
+}
+
+TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
+{
+    TestDir dir;
+    dir.write("ball.yaml", readText(scenesDir() + "/bouncing_ball.yaml"));
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        // plan text, expected message part (line 3 in each)
+        {"scenes: [ball.yaml]\nduration: 0.1\nvery: {dt: [0.001]}\n", ":3:1: error: unknown key 'very'"},
+        {"scenes: [ball.yaml]\nvary:\n  solver: [linear, fast]\n", ":3:20: error: unknown solver 'fast'"},
+        {"scenes: [ball.yaml]\nvary:\n  dt: [0.001, -1]\n", ":3:15: error: expected a positive number"},
+        {"scenes: [ball.yaml]\nvary:\n  bodies.nope.mass: [1, 2]\n",
+         ":3:22: error: 'bodies.nope.mass' does not fit ball.yaml: no entry named 'nope'"},
+        {"scenes: [ball.yaml]\nvary:\n  colour: [1]\n",
+         ":3:3: error: unknown key 'colour' in 'vary'; expected dt"},
+        {"duration: 1\nvary: {dt: [0.001]}\nscenes: [missing.yaml, '*.nothing']\n",
+         ":3:10: error: no scene file"},
+        {"duration: 1\nvary: {dt: [0.001]}\nscenes: ['*.nothing']\n",
+         ":3:10: error: the glob '*.nothing' matches no file"},
+    };
+    for (const auto& [text, expected] : cases)
+    {
+        const std::string plan = dir.write("plan.yaml", text);
+        const Result r =
+            dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")) + " --list");
+        EXPECT_EQ(r.exitCode, 2) << text;
+        EXPECT_NE(r.err.find("plan.yaml" + expected), std::string::npos) << text << "\n" << r.err;
+    }
+}
+
+// The scene paths reach the physics: a box on a 20 degree incline sticks at friction 0.5 and
+// slides at 0.1 (a = g (sin 20 - 0.1 cos 20) = 2.43 m/s^2: 0.30 m in 0.5 s); the ball starts where
+// its position says; a seed moves the free ball by at most `perturb.position` per axis, the same
+// seed the same way.
+TEST(Batch, ScenePathsAndSeedsChangeTheInitialStateAsAsked)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", "scenes: [" + scenesDir() +
+                                                        "/box_incline.yaml]\n"
+                                                        "duration: 0.5\n"
+                                                        "outputs: [trajectory]\n"
+                                                        "vary:\n"
+                                                        "  contact.friction: [0.5, 0.1]\n");
+    const std::string out = dir.out("b");
+    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 2U);
+    auto travel = [&](const std::string& id)
+    {
+        const auto t = readCsvTable(out + "/jobs/" + id + "/trajectory.csv");
+        const std::size_t last = t.rows.size() - 1;
+        return std::hypot(t.number(last, "px") - t.number(0, "px"), t.number(last, "pz") - t.number(0, "pz"));
+    };
+    EXPECT_LT(travel(jobs[0]), 1e-3);
+    EXPECT_NEAR(travel(jobs[1]), 0.30, 0.05);
+
+    const std::string seeds = dir.write("seeds.yaml", "scenes: [" + scenesDir() +
+                                                          "/bouncing_ball.yaml]\n"
+                                                          "duration: 0.01\n"
+                                                          "outputs: [trajectory]\n"
+                                                          "perturb: {position: 0.05}\n"
+                                                          "set: {bodies.ball.position: [0, 0, 2]}\n"
+                                                          "vary:\n"
+                                                          "  seed: [1, 2]\n");
+    const std::string out2 = dir.out("s");
+    const std::string out3 = dir.out("s2");
+    ASSERT_EQ(dir.run("batch " + shellQuote(seeds) + " --out " + shellQuote(out2) + " --quiet").exitCode, 0);
+    ASSERT_EQ(dir.run("batch " + shellQuote(seeds) + " --out " + shellQuote(out3) + " --quiet").exitCode, 0);
+    const std::vector<std::string> seeded =
+        ids(dir.run("batch " + shellQuote(seeds) + " --out " + shellQuote(out2) + " --list").out);
+    ASSERT_EQ(seeded.size(), 2U);
+    std::vector<std::array<double, 3>> starts;
+    for (const std::string& id : seeded)
+    {
+        const auto t = readCsvTable(out2 + "/jobs/" + id + "/trajectory.csv");
+        const std::array<double, 3> p = {t.number(0, "px"), t.number(0, "py"), t.number(0, "pz")};
+        EXPECT_LE(std::abs(p[0]), 0.05);
+        EXPECT_LE(std::abs(p[1]), 0.05);
+        EXPECT_LE(std::abs(p[2] - 2.0), 0.05);
+        EXPECT_GT(std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2] - 2.0), 1e-6);
+        starts.push_back(p);
+        EXPECT_EQ(readText(out2 + "/jobs/" + id + "/trajectory.csv"),
+                  readText(out3 + "/jobs/" + id + "/trajectory.csv"));
+    }
+    EXPECT_NE(starts[0], starts[1]);
+
+    // A body hinged to the world is not moved by a seed (a move would open its joint); a free one
+    // gets a velocity change of at most perturb.velocity per axis.
+    const std::string jointed =
+        dir.write("jointed.yaml", "scenes: [" + scenesDir() + "/pendulum.yaml, " + scenesDir() +
+                                      "/bouncing_ball.yaml]\n"
+                                      "duration: 0.01\n"
+                                      "outputs: [trajectory]\n"
+                                      "perturb: {position: 0.05, velocity: 0.1}\n"
+                                      "seed: 3\n");
+    const std::string out4 = dir.out("j");
+    ASSERT_EQ(dir.run("batch " + shellQuote(jointed) + " --out " + shellQuote(out4) + " --quiet").exitCode,
+              0);
+    const std::vector<std::string> two =
+        ids(dir.run("batch " + shellQuote(jointed) + " --out " + shellQuote(out4) + " --list").out);
+    ASSERT_EQ(two.size(), 2U);
+    const auto pendulum = readCsvTable(out4 + "/jobs/" + two[0] + "/trajectory.csv");
+    EXPECT_EQ(pendulum.number(0, "px"), 0.8660254037844386);
+    EXPECT_EQ(pendulum.number(0, "pz"), 1.5);
+    EXPECT_EQ(pendulum.number(0, "vx"), 0.0);
+    const auto ball = readCsvTable(out4 + "/jobs/" + two[1] + "/trajectory.csv");
+    const double vx = ball.number(0, "vx"), vy = ball.number(0, "vy");
+    EXPECT_GT(std::abs(vx) + std::abs(vy), 1e-6);
+    EXPECT_LE(std::abs(vx), 0.1);
+    EXPECT_LE(std::abs(vy), 0.1);
+}
+
+// SIGTERM after the first of six jobs is complete: exit 143; the rerun leaves the finished jobs'
+// files alone (same inode and mtime) and does the rest.
+TEST(Batch, ResumesAfterSigtermWithoutRedoingFinishedJobs)
+{
+    TestDir dir;
+    const std::string plan =
+        dir.write("plan.yaml", "scenes: [" + scenesDir() +
+                                   "/pendulum.yaml]\n"
+                                   "duration: 5\n"
+                                   "outputs: [stats, trajectory]\n"
+                                   "vary:\n"
+                                   "  dt: [0.0005, 0.00051, 0.00052, 0.00053, 0.00054, 0.00055]\n");
+    const std::string out = dir.out("b");
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 6U);
+    const pid_t pid = spawnFrontier(dir, {"batch", plan, "--out", out, "--jobs", "1"});
+    ASSERT_TRUE(waitForHandler(pid, SIGTERM, 20.0));
+    const fs::path firstStats = fs::path(out) / "jobs" / jobs[0] / "stats.json";
+    const auto start = std::chrono::steady_clock::now();
+    while (!completedStats(firstStats) && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(completedStats(firstStats));
+    ::kill(pid, SIGTERM);
+    EXPECT_EQ(waitForExit(pid, 30.0), 143);
+    std::map<std::string, std::pair<FileStamp, FileStamp>> finished;
+    for (const std::string& id : jobs)
+    {
+        const fs::path folder = fs::path(out) / "jobs" / id;
+        if (completedStats(folder / "stats.json"))
+        {
+            finished[id] = {stamp(folder / "stats.json"), stamp(folder / "trajectory.csv")};
+        }
+    }
+    ASSERT_GE(finished.size(), 1U);
+    ASSERT_LT(finished.size(), jobs.size()) << "the batch ended before the signal; make its jobs longer";
+
+    const Result again = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --jobs 2");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_NE(again.out.find(std::to_string(finished.size()) + " complete before"), std::string::npos)
+        << again.out;
+    for (const std::string& id : jobs)
+    {
+        const fs::path folder = fs::path(out) / "jobs" / id;
+        EXPECT_TRUE(completedStats(folder / "stats.json")) << id;
+        EXPECT_TRUE(fs::exists(folder / "trajectory.csv")) << id;
+        EXPECT_FALSE(fs::exists(folder / "trajectory.failed.csv"))
+            << id << ": the interrupted attempt's rows remain";
+        if (const auto it = finished.find(id); it != finished.end())
+        {
+            EXPECT_EQ(stamp(folder / "stats.json"), it->second.first) << id << " was redone";
+            EXPECT_EQ(stamp(folder / "trajectory.csv"), it->second.second) << id << " was redone";
+        }
+    }
+}
+
+// A job whose lock another process holds is skipped; a job that fails records why, the batch
+// exits 1 naming it, and the merge lists it.
+TEST(Batch, LockedJobsAreSkippedAndFailuresRecorded)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", "scenes: [" + scenesDir() +
+                                                        "/bouncing_ball.yaml]\n"
+                                                        "duration: 0.05\n"
+                                                        "vary:\n"
+                                                        "  bodies.ball.mass: [0.5, -1, 2]\n");
+    const std::string out = dir.out("b");
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 3U);
+    const fs::path lockedFolder = fs::path(out) / "jobs" / jobs[2];
+    fs::create_directories(lockedFolder);
+    const int fd = ::open((lockedFolder / ".lock").c_str(), O_RDWR | O_CREAT, 0644);
+    ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out));
+    ::close(fd);
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find(jobs[2] + ": running elsewhere"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("job " + jobs[1] + " (" + scenesDir() +
+                         "/bouncing_ball.yaml bodies.ball.mass=-1) failed: "),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(completedStats(fs::path(out) / "jobs" / jobs[0] / "stats.json"));
+    EXPECT_FALSE(fs::exists(lockedFolder / "stats.json"));
+    const std::string failed = readText(fs::path(out) / "jobs" / jobs[1] / "stats.json");
+    EXPECT_NE(failed.find("\"completed\": false"), std::string::npos) << failed;
+    EXPECT_NE(failed.find("mass"), std::string::npos) << failed;
+
+    const Result merged = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --merge");
+    EXPECT_EQ(merged.exitCode, 1);
+    const auto table = readCsvTable(out + "/batch.csv");
+    ASSERT_EQ(table.rows.size(), 3U);
+    EXPECT_EQ(table.text(0, "status"), "done");
+    EXPECT_EQ(table.text(1, "status"), "failed");
+    EXPECT_EQ(table.text(2, "status"), "missing");
+    EXPECT_EQ(table.text(1, "bodies.ball.mass"), "-1");
+    const std::string summary = readText(out + "/summary.md");
+    EXPECT_NE(summary.find("3 jobs: 1 done, 1 failed, 1 missing"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| " + jobs[1] + " |"), std::string::npos) << summary;
+}
+
+// Three shards: disjoint, their union every job, by index mod 3; from the environment as Slurm and
+// Kubernetes give it. Run as three processes, their merge is the single machine's, byte for byte
+// apart from the wall-clock columns; each row's steps are duration / dt.
+TEST(Batch, ShardsPartitionTheJobsAndMergeLikeOneMachine)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", smallPlan());
+    const std::string one = dir.out("one");
+    const std::string three = dir.out("three");
+    const std::vector<std::string> all =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --list").out);
+    ASSERT_EQ(all.size(), 8U);
+    std::set<std::string> seen;
+    for (int i = 0; i < 3; ++i)
+    {
+        const std::string shard = std::to_string(i) + "/3";
+        const std::vector<std::string> part = ids(
+            dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(three) + " --list --shard " + shard)
+                .out);
+        for (const std::string& id : part)
+        {
+            EXPECT_TRUE(seen.insert(id).second) << id << " is in two shards";
+            EXPECT_EQ(std::stoi(id.substr(0, 4)) % 3, i) << id;
+        }
+        const std::string env = "SLURM_ARRAY_TASK_ID=" + std::to_string(i + 5) +
+                                " SLURM_ARRAY_TASK_MIN=5 SLURM_ARRAY_TASK_MAX=7 ";
+        const std::string binary = std::string(FRONTIER_BINARY_DIR) + "/app/frontier";
+        const Result slurm = dir.run("batch " + shellQuote(plan) + " --out x --list --shard-from-env");
+        EXPECT_EQ(slurm.exitCode, 2); // no shard in the environment
+        const std::string listSlurm = "cd " + shellQuote(FRONTIER_SOURCE_DIR) + " && env " + env +
+                                      shellQuote(binary) + " batch " + shellQuote(plan) +
+                                      " --out x --list --shard-from-env > " +
+                                      shellQuote((dir.path() / "slurm.txt").string());
+        ASSERT_EQ(std::system(listSlurm.c_str()), 0);
+        EXPECT_EQ(ids(readText(dir.path() / "slurm.txt")), part);
+        const std::string listK8s =
+            "cd " + shellQuote(FRONTIER_SOURCE_DIR) + " && env JOB_COMPLETION_INDEX=" + std::to_string(i) +
+            " " + shellQuote(binary) + " batch " + shellQuote(plan) +
+            " --out x --list --shards 3 --shard-from-env > " + shellQuote((dir.path() / "k8s.txt").string());
+        ASSERT_EQ(std::system(listK8s.c_str()), 0);
+        EXPECT_EQ(ids(readText(dir.path() / "k8s.txt")), part);
+    }
+    EXPECT_EQ(seen, std::set<std::string>(all.begin(), all.end()));
+
+    ASSERT_EQ(
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --jobs 2 --quiet").exitCode, 0);
+    ASSERT_EQ(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge").exitCode, 0);
+    // The chart of one column against another, drawn as the sweep's (gnuplot); a column that is not
+    // there is bad input.
+    const Result chart =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge --chart dt,steps");
+    EXPECT_EQ(chart.exitCode, 0) << chart.err;
+    EXPECT_NE(readText(one + "/chart.dat").find("0.002 50 "), std::string::npos);
+    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+    {
+        EXPECT_TRUE(fs::exists(one + "/chart.png"));
+    }
+    const Result badChart =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(one) + " --merge --chart dt,speed");
+    EXPECT_EQ(badChart.exitCode, 2);
+    EXPECT_NE(badChart.err.find("no column 'speed' in batch.csv"), std::string::npos) << badChart.err;
+    for (int i = 0; i < 3; ++i)
+    {
+        const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(three) +
+                                 " --quiet --shard " + std::to_string(i) + "/3");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    ASSERT_EQ(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(three) + " --merge").exitCode, 0);
+    EXPECT_EQ(withoutWallClock(one + "/batch.csv"), withoutWallClock(three + "/batch.csv"));
+    const auto table = readCsvTable(one + "/batch.csv");
+    ASSERT_EQ(table.rows.size(), 8U);
+    for (std::size_t row = 0; row < table.rows.size(); ++row)
+    {
+        EXPECT_EQ(table.text(row, "job"), all[row]);
+        EXPECT_EQ(table.text(row, "status"), "done");
+        EXPECT_EQ(table.number(row, "steps"), std::round(0.1 / table.number(row, "dt")));
+        EXPECT_EQ(table.text(row, "solver"), row % 2 == 0 ? "linear" : "pgs");
+    }
+    // Wall-clock columns come last.
+    const std::vector<std::string>& columns = table.columns;
+    const auto firstWall = std::find_if(columns.begin(), columns.end(),
+                                        [](const std::string& c) { return c.rfind("wall_", 0) == 0; });
+    ASSERT_NE(firstWall, columns.end());
+    EXPECT_TRUE(
+        std::all_of(firstWall, columns.end(), [](const std::string& c) { return c.rfind("wall_", 0) == 0; }));
+}
+
+} // namespace
