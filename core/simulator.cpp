@@ -446,10 +446,12 @@ void Simulator::removePenetration(State& state)
                        mActuation);
 }
 
-// The position update from the start-of-step pose (core/step/positions.h).
+// The position update from the start-of-step pose, each body's rotation update chosen for the
+// step (docs/method.md §4, eq. (8a); core/step/positions.h).
 void Simulator::integratePositions(State& state)
 {
-    core::integratePositions(mModel, mStart, mPrincipal, mRows, mH, mRattleStep, state);
+    chooseRotationUpdates(mModel, mRows, state, mH, mRattleStep, mFreeRotation);
+    core::integratePositions(mModel, mStart, mPrincipal, mRows, mFreeRotation, mH, state);
 }
 
 // w_{n+1} = I_W(R_{n+1})^-1 I_W(R_n) w (core/step/positions.h).
@@ -463,8 +465,8 @@ void Simulator::carryAngularMomentum(State& state)
 bool Simulator::stabilizeJoints(State& state)
 {
     const DriftCorrection::Outcome outcome =
-        mDrift.run(state, mStart, mPrincipal, mRows, mRowsAfter, mLoopBlocks, mSolution, mH, driveStep(),
-                   mRattleStep, mActuation);
+        mDrift.run(state, mStart, mPrincipal, mRows, mRowsAfter, mLoopBlocks, mSolution, mFreeRotation, mH,
+                   driveStep(), mRattleStep, mActuation);
     const JointErrors& errors = mDrift.errors();
     mStats.maxJointErrorM = errors.maxM;
     mStats.maxJointErrorRad = errors.maxRad;

@@ -27,7 +27,9 @@
 // angles across +-pi (State::jointAngles), which limits and servos read.
 // Velocity level (docs/method.md §4): u* = u + h M^-1 f, then the joint impulses
 // solve M u' = M u* + J^T lambda, J u' = 0 with the chosen solver. Positions: x += h v,
-// R = exp(h w) R (a rotation-vector update, so orientations stay unit).
+// R = exp(h w) R (a rotation-vector update, so orientations stay unit), or for a body whose angular
+// momentum turns relative to it within the step the free rotation at constant angular momentum
+// (docs/method.md §4, eq. (8a); core/step/positions.h).
 // Drift (docs/method.md §7): the joint position conditions C(q) are driven back to zero by a
 // further impulse along J^T, solved with the same factorization (a quasi-Newton iteration: J at
 // the start of the step stands for J at the end; re-factored once when that is slow); the impulse changes
@@ -195,6 +197,7 @@ class Simulator
     BlockVector mRhs, mSolution;
     std::vector<BodyState> mStart;         // poses at the start of the step
     std::vector<PrincipalAxes> mPrincipal; // principal axes per body (free rotation, momentum carry)
+    std::vector<std::uint8_t> mFreeRotation; // per body: the step turns it by the free rotation (§4)
     // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
     // next step's mRows when it starts there).
     std::vector<BodyState> mEndPose;

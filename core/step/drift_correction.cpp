@@ -106,8 +106,8 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
                                               const std::vector<PrincipalAxes>& principal,
                                               const RowSystem& rows, RowSystem& rowsAfter,
                                               std::vector<ExtraBlock>& loopBlocks, BlockVector& solution,
-                                              double dt, double driveStep, bool rattle,
-                                              const Actuation& actuation)
+                                              const std::vector<std::uint8_t>& freeRotation, double dt,
+                                              double driveStep, bool rattle, const Actuation& actuation)
 {
     constexpr double cSlowContraction = 0.1;
     constexpr double cJointBlowUp = 1e-3; // m or rad
@@ -214,7 +214,7 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
         {
             solution.joint[k] += mCorrection.joint[k];
         }
-        integratePositions(mModel, start, principal, rows, dt, rattle, state);
+        integratePositions(mModel, start, principal, rows, freeRotation, dt, state);
     }
     completeRows();
     return Outcome::Converged;

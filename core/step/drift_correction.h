@@ -8,6 +8,7 @@
 #include "core/step/step_options.h"
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <vector>
 
 namespace frontier::core
@@ -39,7 +40,8 @@ class DriftCorrection
 
     // Impulses along J^T that bring C(q_{n+1}) to zero. Each iteration solves
     // [M J^T; J 0][du; -dlambda] = [0; -C/h] and moves velocities by du and positions by h du
-    // (integratePositions from `start`). The first iterations reuse the step's factorization
+    // (integratePositions from `start`, each body by the rotation update `freeRotation` the step
+    // chose). The first iterations reuse the step's factorization
     // (quasi-Newton: J at the start of the step stands for J at the end); when an iteration
     // contracts the error by less than cSlowContraction (fast rotation, thin bodies, large steps),
     // the system is re-factored at the current configuration (once per step: re-factoring again
@@ -50,8 +52,9 @@ class DriftCorrection
     // the joint impulses to `solution`.
     Outcome run(State& state, const std::vector<BodyState>& start,
                 const std::vector<PrincipalAxes>& principal, const RowSystem& rows, RowSystem& rowsAfter,
-                std::vector<ExtraBlock>& loopBlocks, BlockVector& solution, double dt, double driveStep,
-                bool rattle, const Actuation& actuation);
+                std::vector<ExtraBlock>& loopBlocks, BlockVector& solution,
+                const std::vector<std::uint8_t>& freeRotation, double dt, double driveStep, bool rattle,
+                const Actuation& actuation);
 
     // The predicted drift (docs/method.md §7, eq. (11a)): the step's first velocity solve asks
     // J u = -D / h of each joint's condition rows, D = State::jointDrift the violation the last

@@ -18,9 +18,37 @@ Quat rotationFromVector(const Vec3& theta)
 }
 } // namespace
 
+void chooseRotationUpdates(const Model& model, const RowSystem& rows, const State& state, double dt,
+                           bool rattle, std::vector<std::uint8_t>& freeRotation)
+{
+    // docs/method.md §4, eq. (8a), compared squared (no roots): h |w x L| > cTurnRad |L|, and
+    // h |w| <= cStepTurnRad (beyond it the free rotations of two joined bodies differ by too much
+    // for the drift correction; exp(h w) turns them alike).
+    constexpr double cTurnRad = 1e-6;
+    constexpr double cStepTurnRad = 0.25;
+    freeRotation.assign(model.bodies.size(), rattle ? 1 : 0);
+    if (rattle)
+    {
+        return;
+    }
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (model.bodies[i].isStatic)
+        {
+            continue;
+        }
+        const Vec3& w = state.bodies[i].angularVelocity_W;
+        const Vec3 momentum = rows.inertia_W[i] * w; // N m s
+        const double hh = dt * dt;
+        const bool turns =
+            hh * w.cross(momentum).squaredNorm() > cTurnRad * cTurnRad * momentum.squaredNorm();
+        freeRotation[i] = turns && hh * w.squaredNorm() <= cStepTurnRad * cStepTurnRad ? 1 : 0;
+    }
+}
+
 void integratePositions(const Model& model, const std::vector<BodyState>& start,
-                        const std::vector<PrincipalAxes>& principal, const RowSystem& rows, double dt,
-                        bool rattle, State& state)
+                        const std::vector<PrincipalAxes>& principal, const RowSystem& rows,
+                        const std::vector<std::uint8_t>& freeRotation, double dt, State& state)
 {
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
@@ -31,9 +59,10 @@ void integratePositions(const Model& model, const std::vector<BodyState>& start,
         BodyState& s = state.bodies[i];
         s.position_W = start[i].position_W + dt * s.velocity_W;
         s.orientation_WB =
-            rattle ? rotateFreely(start[i].orientation_WB, principal[i],
-                                  rows.inertia_W[i] * s.angularVelocity_W, dt)
-                   : (rotationFromVector(dt * s.angularVelocity_W) * start[i].orientation_WB).normalized();
+            freeRotation[i] != 0
+                ? rotateFreely(start[i].orientation_WB, principal[i], rows.inertia_W[i] * s.angularVelocity_W,
+                               dt)
+                : (rotationFromVector(dt * s.angularVelocity_W) * start[i].orientation_WB).normalized();
     }
 }
 
