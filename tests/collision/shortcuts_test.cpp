@@ -86,6 +86,27 @@ double segmentDistance(const Axis& one, const Axis& two)
     return std::min({f(0.5 * (lo + hi)), f(0.0), f(1.0)});
 }
 
+// Random draws one per statement, in the order g++ took them when these tests were written: the
+// order in which a compiler evaluates the arguments of one call is unspecified (g++ goes right to
+// left, clang left to right), and the tests' inputs must not depend on it.
+template <class Draw> Quat drawQuat(Draw&& draw)
+{
+    const double z = draw(), y = draw(), x = draw(), w = draw();
+    return Quat(w, x, y, z).normalized();
+}
+
+template <class Draw> Vec3 drawVec(Draw&& draw)
+{
+    const double z = draw(), y = draw(), x = draw();
+    return Vec3(x, y, z);
+}
+
+template <class Radius, class Length> core::Shape drawCapsule(Radius&& radius, Length&& length)
+{
+    const double l = length();
+    return capsule(radius(), l);
+}
+
 } // namespace
 
 TEST(SweptSpheres, DepthsAndGapsMatchTheSegmentDistanceAndFcl)
@@ -99,11 +120,14 @@ TEST(SweptSpheres, DepthsAndGapsMatchTheSegmentDistanceAndFcl)
     double worstExact = 0.0, worstGapFcl = 0.0;
     for (int trial = 0; trial < 400; ++trial)
     {
-        const core::Shape a = trial % 4 == 0 ? sphere(radius(rng)) : capsule(radius(rng), length(rng));
-        const core::Shape b = trial % 3 == 0 ? sphere(radius(rng)) : capsule(radius(rng), length(rng));
-        const Quat qa = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
-        const Quat qb = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
-        const Vec3 pb = 0.25 * Vec3(unit(rng), unit(rng), unit(rng));
+        auto r = [&] { return radius(rng); };
+        auto l = [&] { return length(rng); };
+        auto u = [&] { return unit(rng); };
+        const core::Shape a = trial % 4 == 0 ? sphere(r()) : drawCapsule(r, l);
+        const core::Shape b = trial % 3 == 0 ? sphere(r()) : drawCapsule(r, l);
+        const Quat qa = drawQuat(u);
+        const Quat qb = drawQuat(u);
+        const Vec3 pb = 0.25 * drawVec(u);
         const double expected =
             a.radius + b.radius - segmentDistance(axisOf(a, Vec3::Zero(), qa), axisOf(b, pb, qb)); // m
 
@@ -185,20 +209,30 @@ TEST(SeparatedPairs, NoContactExactlyWhenFclSaysApartBeyondTheMargin)
             switch (k % 4)
             {
             case 0:
-                return box(size(rng), size(rng), size(rng));
+            {
+                const double z = size(rng), y = size(rng), x = size(rng); // one draw per statement
+                return box(x, y, z);
+            }
             case 1:
-                return cylinder(0.5 * size(rng), size(rng));
+            {
+                const double l = size(rng);
+                return cylinder(0.5 * size(rng), l);
+            }
             case 2:
-                return capsule(0.3 * size(rng), size(rng));
+            {
+                const double l = size(rng);
+                return capsule(0.3 * size(rng), l);
+            }
             default:
                 return sphere(0.5 * size(rng));
             }
         };
         const core::Shape a = shape(trial);
         const core::Shape b = shape(trial / 4 + (trial % 4 == 3 ? 0 : 1)); // not two spheres/capsules only
-        const Quat qa = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
-        const Quat qb = Quat(unit(rng), unit(rng), unit(rng), unit(rng)).normalized();
-        const Vec3 pb = 0.35 * Vec3(unit(rng), unit(rng), unit(rng));
+        auto u = [&] { return unit(rng); };
+        const Quat qa = drawQuat(u);
+        const Quat qb = drawQuat(u);
+        const Vec3 pb = 0.35 * drawVec(u);
         core::Model model;
         model.bodies.push_back(moving("a", a, Vec3::Zero(), qa));
         model.bodies.push_back(moving("b", b, pb, qb));

@@ -27,7 +27,11 @@ Columns randomColumns(std::ptrdiff_t n, unsigned seed)
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
     std::uniform_int_distribution<int> exponent(-12, 3);
-    auto value = [&] { return std::ldexp(mantissa(rng), exponent(rng)); };
+    auto value = [&]
+    {
+        const int e = exponent(rng); // one draw per statement: argument order is the compiler's
+        return std::ldexp(mantissa(rng), e);
+    };
     Columns c;
     for (std::vector<double>* x : {&c.v, &c.c0, &c.c1, &c.c2})
     {

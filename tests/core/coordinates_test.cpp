@@ -61,9 +61,13 @@ TEST(JointCoordinates, RowsAreTheDerivativeOfTheCoordinates)
         for (int trial = 0; trial < 20; ++trial)
         {
             core::Model model;
-            model.bodies.push_back(boxBody("a", 1.0, Vec3(0.3, 0.2, 0.1), rng.gaussianVec(), rng.rotation()));
-            model.bodies.push_back(boxBody("b", 1.0, Vec3(0.3, 0.2, 0.1), rng.gaussianVec(), rng.rotation()));
-            addJoint(model, "j", type, 0, 1, rng.gaussianVec(), rng.unitVec());
+            // One draw per statement (argument order is the compiler's), in the order g++ took them.
+            const Quat qa = rng.rotation();
+            model.bodies.push_back(boxBody("a", 1.0, Vec3(0.3, 0.2, 0.1), rng.gaussianVec(), qa));
+            const Quat qb = rng.rotation();
+            model.bodies.push_back(boxBody("b", 1.0, Vec3(0.3, 0.2, 0.1), rng.gaussianVec(), qb));
+            const Vec3 axis = rng.unitVec();
+            addJoint(model, "j", type, 0, 1, rng.gaussianVec(), axis);
             const core::Joint& joint = model.joints[0];
             // A pose away from the start: the child turned about the axis and slid along it, then
             // both moved together, so the joint's conditions hold.

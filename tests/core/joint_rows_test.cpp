@@ -55,8 +55,11 @@ struct Pair
 Pair randomPair(JointType type, Rng& rng)
 {
     Pair pair;
-    pair.model.bodies.push_back(boxBody("a", 1.0, Vec3(0.5, 0.3, 0.2), rng.gaussianVec(), rng.rotation()));
-    pair.model.bodies.push_back(boxBody("b", 2.0, Vec3(0.4, 0.4, 0.2), rng.gaussianVec(), rng.rotation()));
+    // One draw per statement (argument order is the compiler's): the rotation first, then the position.
+    const Quat qa = rng.rotation();
+    pair.model.bodies.push_back(boxBody("a", 1.0, Vec3(0.5, 0.3, 0.2), rng.gaussianVec(), qa));
+    const Quat qb = rng.rotation();
+    pair.model.bodies.push_back(boxBody("b", 2.0, Vec3(0.4, 0.4, 0.2), rng.gaussianVec(), qb));
     pair.parentMoves = type != JointType::Nail;
     pair.joint.name = "j";
     pair.joint.type = type;

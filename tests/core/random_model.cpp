@@ -28,10 +28,15 @@ Vec3 Rng::unitVec()
 
 Quat Rng::rotation()
 {
-    Quat q(normal(), normal(), normal(), normal());
+    auto draw = [this]
+    {
+        const double z = normal(), y = normal(), x = normal(), w = normal(); // one per statement, as gaussianVec
+        return Quat(w, x, y, z);
+    };
+    Quat q = draw();
     while (q.norm() < 1e-6)
     {
-        q = Quat(normal(), normal(), normal(), normal());
+        q = draw();
     }
     return q.normalized();
 }
@@ -84,7 +89,8 @@ void appendRandomTree(Model& model, Rng& rng, const RandomTreeOptions& options)
     {
         const int index = first + k;
         const double mass = rng.logUniform(options.minMass, options.maxMass);
-        const Vec3 size(rng.uniform(0.05, 1.0), rng.uniform(0.05, 1.0), rng.uniform(0.05, 1.0));
+        const double sz = rng.uniform(0.05, 1.0), sy = rng.uniform(0.05, 1.0), sx = rng.uniform(0.05, 1.0);
+        const Vec3 size(sx, sy, sz);
         int parent = -1;
         Vec3 position = origin;
         if (k > 0)
@@ -92,8 +98,8 @@ void appendRandomTree(Model& model, Rng& rng, const RandomTreeOptions& options)
             const int lo =
                 options.branching >= 1.0 ? 0 : std::max(0, k - 1 - static_cast<int>(options.branching * k));
             parent = first + rng.integer(lo, k - 1);
-            position = model.bodies[static_cast<std::size_t>(parent)].position_W +
-                       rng.uniform(0.3, 1.0) * rng.unitVec();
+            const Vec3 direction = rng.unitVec();
+            position = model.bodies[static_cast<std::size_t>(parent)].position_W + rng.uniform(0.3, 1.0) * direction;
         }
         Body body = boxBody(prefix + "b" + std::to_string(k), mass, size, position, rng.rotation());
         body.velocity_W = rng.gaussianVec();

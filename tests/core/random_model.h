@@ -30,7 +30,13 @@ class Rng
     double normal() { return std::normal_distribution<double>(0.0, 1.0)(mEngine); }
     int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(mEngine); } // [lo, hi]
     bool coin(double p = 0.5) { return uniform(0.0, 1.0) < p; }
-    Vec3 gaussianVec() { return Vec3(normal(), normal(), normal()); }
+    // Draws come one per statement, z first: a compiler's order for the arguments of one call is
+    // unspecified (g++ goes right to left, clang left to right), and the models must not depend on it.
+    Vec3 gaussianVec()
+    {
+        const double z = normal(), y = normal(), x = normal();
+        return Vec3(x, y, z);
+    }
     Vec3 unitVec();
     Quat rotation();
     std::mt19937& engine() { return mEngine; }

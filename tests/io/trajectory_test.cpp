@@ -45,9 +45,11 @@ TEST(Trajectory, RoundTripIsBitExact)
         s.time = step * 0.1; // 0.30000000000000004 and friends
         for (auto& body : s.bodies)
         {
-            body.position_W = core::Vec3(uniform(rng), uniform(rng) * 1e-300, std::nextafter(1.0, 2.0));
-            body.orientation_WB =
-                core::Quat(uniform(rng), uniform(rng), uniform(rng), uniform(rng)).normalized();
+            // One draw per statement (argument order is the compiler's), in the order g++ took them.
+            const double py = uniform(rng), px = uniform(rng);
+            body.position_W = core::Vec3(px, py * 1e-300, std::nextafter(1.0, 2.0));
+            const double qz = uniform(rng), qy = uniform(rng), qx = uniform(rng), qw = uniform(rng);
+            body.orientation_WB = core::Quat(qw, qx, qy, qz).normalized();
             body.velocity_W = core::Vec3(uniform(rng), -0.0, 5e-324);
             body.angularVelocity_W = core::Vec3(std::numeric_limits<double>::max(), 1.0 / 3.0, uniform(rng));
         }
