@@ -85,6 +85,7 @@ struct StabilityOptions
     std::optional<double> duration;   // s, instead of each scene's
     std::optional<double> dt;         // s, instead of each scene's
     int maxDenseRows = 2000;          // dense runs of larger KKT matrices are skipped
+    bool largestDt = false;           // also search each cell's largest time step that holds
     bool quiet = false;
 };
 

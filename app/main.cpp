@@ -328,6 +328,9 @@ int main(int argc, char** argv)
         ->add_option("--max-dense-rows", stabilityOptions.maxDenseRows,
                      "skip dense runs of larger KKT matrices")
         ->transform(cRows);
+    stability->add_flag("--largest-dt", stabilityOptions.largestDt,
+                        "also find, per scene and method, the largest time step (halving from 1/30 s, runs "
+                        "of at most 1 s) at which the scene still holds");
     stability->add_flag("--quiet", stabilityOptions.quiet, "no progress lines");
 
     SweepOptions sweepOptions;

@@ -35,6 +35,7 @@ int stabilityCommand(const StabilityOptions& options)
 
     std::vector<core::Model> scenes;
     std::vector<std::string> names;
+    study::StabilityReportExtras extras;
     try
     {
         if (!options.out.empty())
@@ -43,8 +44,11 @@ int stabilityCommand(const StabilityOptions& options)
         }
         for (const std::string& path : options.scenes)
         {
-            scenes.push_back(io::loadScene(path));
-            checkFiniteEnergy(scenes.back(), path);
+            // As `frontier run` loads it: the links of a robot that overlap at the start never collide.
+            LoadedScene loaded = loadSceneWithRobots(path, {});
+            printLoadWarnings(loaded.report);
+            scenes.push_back(std::move(loaded.model));
+            extras.criteria.push_back(loaded.report.stability.value_or(io::SceneStabilityCriteria{}));
             names.push_back(std::filesystem::path(path).stem().string());
             const core::SimulationSettings& sim = scenes.back().simulation;
             checkedStepCount(options.duration.value_or(sim.duration), options.dt.value_or(sim.dt), path);
@@ -70,7 +74,7 @@ int stabilityCommand(const StabilityOptions& options)
                 std::fprintf(stderr, "%s %s ...", names[s].c_str(), method.label().c_str());
                 std::fflush(stderr);
             }
-            cells.push_back(study::runStabilityCell(scenes[s], names[s], method, limits));
+            cells.push_back(study::runStabilityCell(scenes[s], names[s], method, limits, extras.criteria[s]));
             const study::StabilityCell& c = cells.back();
             if (!options.quiet)
             {
@@ -81,8 +85,33 @@ int stabilityCommand(const StabilityOptions& options)
         }
     }
 
+    if (options.largestDt)
+    {
+        for (std::size_t s = 0; s < scenes.size(); ++s)
+        {
+            for (const Method& method : methods)
+            {
+                if (!options.quiet)
+                {
+                    std::fprintf(stderr, "largest dt: %s %s ...", names[s].c_str(), method.label().c_str());
+                    std::fflush(stderr);
+                }
+                extras.largest.push_back(study::largestHoldingDt(scenes[s], names[s], method, limits,
+                                                                 extras.criteria[s], extras.search));
+                const study::LargestDtCell& c = extras.largest.back();
+                if (!options.quiet)
+                {
+                    std::fprintf(stderr, " %s after %d runs, %.2f s\n",
+                                 c.dt ? ("holds at " + std::to_string(*c.dt) + " s").c_str()
+                                      : (c.note.empty() ? "-" : c.note.c_str()),
+                                 c.runs, c.wallSeconds);
+                }
+            }
+        }
+    }
+
     const std::string table =
-        study::stabilityMarkdown(scenes, names, methods, cells, limits, study::machineDescription());
+        study::stabilityMarkdown(scenes, names, methods, cells, limits, study::machineDescription(), extras);
     std::cout << table;
     if (!options.out.empty())
     {

@@ -3,6 +3,7 @@
 
 #include "core/model.h"
 
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -68,11 +69,32 @@ struct SceneReference
     std::string body;    // a body of the scene (checked when loading)
 };
 
+// A scene's `stability:`: what the stability suite (`frontier stability`, docs/stability.md)
+// checks in it beyond what it checks everywhere (blow-up, joints apart, a singular joint,
+// tunnelling). A run that breaks one of these fails.
+struct StabilityJointCheck
+{
+    int joint = 0; // index into Model::joints: a revolute joint
+    // rad: the angle never further than this from the target of the joint's position servo.
+    std::optional<double> maxTrackingError;
+    // rad, the model file's convention (as limits and servo targets): the angle stays within.
+    std::optional<std::array<double, 2>> range;
+    // rad: the angle's magnitude exceeds this at some time (a joint meant to pass +-pi does).
+    std::optional<double> reach;
+};
+struct SceneStabilityCriteria
+{
+    std::optional<double> maxSpeed;      // m/s: of every moving body's centre of mass
+    std::optional<double> maxEnergyRise; // J: the total energy above its initial value
+    std::vector<StabilityJointCheck> joints;
+};
+
 struct LoadReport
 {
     std::vector<std::string> warnings; // "FILE:LINE:COL: warning: TEXT"
     std::vector<RobotReport> robots;
-    std::optional<SceneReference> reference; // the scene's `reference:`, when it has one
+    std::optional<SceneReference> reference;         // the scene's `reference:`, when it has one
+    std::optional<SceneStabilityCriteria> stability; // the scene's `stability:`, when it has one
 };
 
 // Loads a .yaml/.yml scene or a .urdf model (a URDF alone is dropped onto a floor with defaults).

@@ -23,22 +23,6 @@ const char* coordinateName(core::JointCoordinate coordinate)
     return coordinate == core::JointCoordinate::Rotation ? "rotation" : "slide";
 }
 
-int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what)
-{
-    const std::string name = toString(builder.source, node, what);
-    if (const auto it = builder.jointIndex.find(name); it != builder.jointIndex.end())
-    {
-        return it->second;
-    }
-    std::vector<std::string> names;
-    for (const core::Joint& joint : builder.model.joints)
-    {
-        names.push_back(joint.name);
-    }
-    failAt(builder.source, node,
-           "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));
-}
-
 core::ActuatorKind readKind(const MapNode& map)
 {
     const YAML::Node node = map.require("type");
@@ -147,6 +131,22 @@ void readActuator(SceneBuilder& builder, const YAML::Node& node, std::size_t ind
 }
 
 } // namespace
+
+int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what)
+{
+    const std::string name = toString(builder.source, node, what);
+    if (const auto it = builder.jointIndex.find(name); it != builder.jointIndex.end())
+    {
+        return it->second;
+    }
+    std::vector<std::string> names;
+    for (const core::Joint& joint : builder.model.joints)
+    {
+        names.push_back(joint.name);
+    }
+    failAt(builder.source, node,
+           "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));
+}
 
 void readActuators(SceneBuilder& builder, const YAML::Node& actuators)
 {

@@ -17,8 +17,9 @@ namespace frontier::io::detail
 namespace
 {
 
-const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact",   "bodies", "joints",
-                                             "models", "camera",     "actuators", "loads",  "reference"};
+const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact",  "bodies",
+                                             "joints", "models",     "camera",   "actuators",
+                                             "loads",  "reference",  "stability"};
 const std::vector<std::string> cReferenceKeys = {"csv", "body"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
@@ -460,6 +461,14 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
             if (report != nullptr)
             {
                 report->reference = std::move(reference);
+            }
+        }
+        if (root.has("stability"))
+        {
+            SceneStabilityCriteria criteria = readStabilityCriteria(builder, root.get("stability"));
+            if (report != nullptr)
+            {
+                report->stability = std::move(criteria);
             }
         }
     }

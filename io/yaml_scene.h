@@ -63,10 +63,15 @@ void readJoints(SceneBuilder& builder, const YAML::Node& joints);
 int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
                     bool allowWorld);
 
+// A joint named by `node` (a string): its index. Errors name `what` and suggest the closest joint name.
+int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what);
+
 // `actuators:` list, after all joints exist (core::Actuator).
 void readActuators(SceneBuilder& builder, const YAML::Node& actuators);
 // `loads:` list, after all bodies exist (core::Load).
 void readLoads(SceneBuilder& builder, const YAML::Node& loads);
+// `stability:` (the stability suite's criteria), after all joints and actuators exist.
+SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const YAML::Node& node);
 // An actuator's target (a number, or a map with sine, keyframes or csv), `what` naming it in
 // messages; a csv target's column defaults to defaultColumn.
 core::TimeFunction readTarget(const YamlSource& source, const YAML::Node& node, const std::string& what,

@@ -5,6 +5,7 @@
 #include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
+#include "study/stability_criteria.h"
 
 #include <algorithm>
 #include <cmath>
@@ -343,7 +344,7 @@ void judgeSurvivor(const StabilityLimits& limits, StabilityCell& cell)
 } // namespace
 
 StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const Method& method,
-                               const StabilityLimits& limits)
+                               const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria)
 {
     const core::Model model = cellModel(scene, method, limits);
     StabilityCell cell;
@@ -352,6 +353,7 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     cell.dt = model.simulation.dt;
     cell.steps = std::max(1L, stepsFor(model.simulation.duration, model.simulation.dt));
     cell.energyScaleJ = stabilityEnergyScale(model);
+    cell.passive = app::isPassive(model);
     if (method.solver == core::SolverKind::Dense && denseRows(model) > limits.maxDenseRows)
     {
         cell.outcome = StabilityOutcome::Skipped;
@@ -359,15 +361,18 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         return cell;
     }
 
-    // Measured on every recorded state: energy, angular momentum, centres tunnelling.
+    // Measured on every recorded state: energy, angular momentum, centres tunnelling, speeds and
+    // the scene's own criteria.
     const bool free = isFreeSystem(model);
     TunnelWatch tunnels(model);
     ConservationTrack conservation;
+    CriteriaWatch watch(model, criteria);
     const Recorder record = [&](const core::State& state, const core::Simulator*)
     {
         conservation.observe(model, state, cell);
         cell.stepsRun = state.step;
         tunnels.observe(state, cell.tunnelled);
+        watch.observe(state, cell);
     };
 
     RunSettings settings;
@@ -405,6 +410,7 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         cell.momentumDrift = conservation.momentumDrift / std::max(conservation.momentum0.norm(), 1e-300);
     }
     judgeSurvivor(limits, cell);
+    watch.judge(cell);
     return cell;
 }
 
@@ -434,8 +440,10 @@ std::string overviewText(const StabilityCell& cell)
     switch (cell.outcome)
     {
     case StabilityOutcome::Survived:
-        // Energy gained is a failure of its own kind (energy lost may be physics: contacts).
-        return cell.energyRise() > 0.01 ? "ok, but energy +" + percent(cell.energyRise()) : std::string("ok");
+        // Energy gained is a failure of its own kind (energy lost may be physics: contacts), where
+        // nothing in the scene adds energy (actuators and loads may).
+        return cell.passive && cell.energyRise() > 0.01 ? "ok, but energy +" + percent(cell.energyRise())
+                                                        : std::string("ok");
     case StabilityOutcome::Failed:
         return "**FAILED**: " + cell.note;
     case StabilityOutcome::Unavailable:
@@ -446,12 +454,53 @@ std::string overviewText(const StabilityCell& cell)
     return "";
 }
 
+// "1/240 s (4.17 ms)": a step of the halving from 1/30 s as its fraction, others as seconds.
+std::string stepText(double dt)
+{
+    const double inverse = 1.0 / dt;
+    const std::string exact = std::abs(inverse - std::round(inverse)) < 1e-9 * inverse
+                                  ? "1/" + format("%.0f", inverse) + " s"
+                                  : format("%.3g", dt) + " s";
+    return exact + (dt >= 1e-3 ? format(" (%.3g ms)", 1e3 * dt) : format(" (%.3g us)", 1e6 * dt));
+}
+
+std::string largestText(const LargestDtCell& cell)
+{
+    switch (cell.outcome)
+    {
+    case StabilityOutcome::Survived:
+        return cell.dt ? stepText(*cell.dt) : std::string("");
+    case StabilityOutcome::Failed:
+        return "none down to " + stepText(cell.smallestTriedDt) + ": " + cell.note;
+    case StabilityOutcome::Unavailable:
+        return "not available";
+    case StabilityOutcome::Skipped:
+        return cell.note;
+    }
+    return "";
+}
+
+// The watched joints of a cell: "-0.02 .. 4.00 rad; off target 3.1e-04 rad".
+std::string watchedText(const StabilityCell& cell)
+{
+    std::string text;
+    if (cell.angleLowRad && cell.angleHighRad)
+    {
+        text = format("%.3g", *cell.angleLowRad) + " .. " + format("%.3g", *cell.angleHighRad) + " rad";
+    }
+    if (cell.maxTrackingErrorRad)
+    {
+        text += (text.empty() ? "" : "; ") + ("off target " + sci(*cell.maxTrackingErrorRad) + " rad");
+    }
+    return text;
+}
+
 } // namespace
 
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
                               const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
-                              const std::string& machine)
+                              const std::string& machine, const StabilityReportExtras& extras)
 {
     std::map<std::pair<std::string, std::string>, const StabilityCell*> byKey;
     for (const StabilityCell& cell : cells)
@@ -490,9 +539,10 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
     }
 
     out << "\nThe scenes: energy drift is relative to E_ref = initial kinetic energy + M |g| D (M the moving "
-           "mass, D the diagonal of the box holding the initial centres of mass).\n\n"
-           "| scene | moving bodies | joint rows | dt (s) | duration (s) | E_ref (J) "
-           "|\n|---|---|---|---|---|---|\n";
+           "mass, D the diagonal of the box holding the initial centres of mass). A scene's own criteria "
+           "(its `stability:` map) fail a run that survives but breaks one.\n\n"
+           "| scene | moving bodies | joint rows | dt (s) | duration (s) | E_ref (J) | own criteria "
+           "|\n|---|---|---|---|---|---|---|\n";
     for (std::size_t s = 0; s < scenes.size(); ++s)
     {
         const core::Model& model = scenes[s];
@@ -505,14 +555,56 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
         const double dt = limits.dt ? *limits.dt : model.simulation.dt;
         out << "| " << sceneNames[s] << " | " << moving << " | " << denseRows(model) - 6 * moving << " | "
             << format("%.4g", dt) << " | " << format("%g", duration) << " | "
-            << format("%.4g", stabilityEnergyScale(model)) << " |\n";
+            << format("%.4g", stabilityEnergyScale(model)) << " | "
+            << (s < extras.criteria.size() ? criteriaText(model, extras.criteria[s]) : std::string())
+            << " |\n";
+    }
+
+    if (!extras.largest.empty())
+    {
+        std::map<std::pair<std::string, std::string>, const LargestDtCell*> largest;
+        for (const LargestDtCell& cell : extras.largest)
+        {
+            largest[{cell.scene, cell.method}] = &cell;
+        }
+        out << "\nWhere it ends: the largest time step at which each scene still holds (survives and meets "
+               "its "
+               "own criteria), halving from "
+            << stepText(extras.search.start) << ", each run for the scene's duration or "
+            << format("%g", extras.search.duration)
+            << " s if shorter (a failure that comes later is not seen), stopping at the first step that "
+               "holds "
+               "or after the first step below the scene's own that fails.\n\n| scene |";
+        for (const Method& method : methods)
+        {
+            out << " " << method.label() << " |";
+        }
+        out << "\n|---|";
+        for (std::size_t m = 0; m < methods.size(); ++m)
+        {
+            out << "---|";
+        }
+        out << "\n";
+        for (const std::string& scene : sceneNames)
+        {
+            out << "| " << scene << " |";
+            for (const Method& method : methods)
+            {
+                const auto it = largest.find({scene, method.label()});
+                out << " " << (it == largest.end() ? std::string("") : largestText(*it->second)) << " |";
+            }
+            out << "\n";
+        }
     }
 
     out << "\nDetails: the largest joint gap over the run (positional, angular), the energy's largest rise "
            "above and fall below its initial value (relative to E_ref), the total angular momentum's "
-           "largest relative change (free systems only), the deepest contact overlap, and the wall time.\n\n"
+           "largest relative change (free systems only), the deepest contact overlap, the largest speed of a "
+           "centre of mass, the watched joints' angle range and distance from their servo's target, and the "
+           "wall time.\n\n"
            "| scene | method | result | joint gap (m) | joint gap (rad) | energy rise | energy loss | "
-           "L drift | penetration (m) | wall (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+           "L drift | penetration (m) | max speed (m/s) | watched joints | wall (s) "
+           "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& scene : sceneNames)
     {
         for (const Method& method : methods)
@@ -526,13 +618,14 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
             out << "| " << scene << " | " << c.method << " | ";
             if (c.outcome == StabilityOutcome::Unavailable || c.outcome == StabilityOutcome::Skipped)
             {
-                out << c.note << " | | | | | | | |\n";
+                out << c.note << " | | | | | | | | | |\n";
                 continue;
             }
             out << (c.survived() ? std::string("ok") : "**FAILED**: " + c.note) << " | "
                 << sci(c.maxJointGapM) << " | " << sci(c.maxJointGapRad) << " | " << percent(c.energyRise())
                 << " | " << percent(c.energyLoss()) << " | " << (c.momentumDrift ? sci(*c.momentumDrift) : "")
-                << " | " << sci(c.maxPenetrationM) << " | " << format("%.2f", c.wallSeconds) << " |\n";
+                << " | " << sci(c.maxPenetrationM) << " | " << format("%.3g", c.maxSpeedMps) << " | "
+                << watchedText(c) << " | " << format("%.2f", c.wallSeconds) << " |\n";
         }
     }
     return out.str();

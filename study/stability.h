@@ -5,6 +5,7 @@
 
 #include "app/method.h"
 #include "core/model.h"
+#include "io/scene.h"
 
 #include <optional>
 #include <string>
@@ -59,6 +60,14 @@ struct StabilityCell
     // "'body' through 'static' at t = ... s" when a centre of mass passed right through a static
     // box within one step or ended below a static plane (empty: never).
     std::string tunnelled;
+    bool passive = true;      // no actuators, no loads (app::isPassive): nothing may add energy
+    double maxSpeedMps = 0.0; // largest speed of a moving body's centre of mass (m/s)
+    std::string fastestBody;  // whose
+    // The scene's watched joints (its `stability: joints`): the angle's extremes over the run (rad,
+    // the model file's convention) and the largest distance from a position servo's target (rad).
+    std::optional<double> angleLowRad;
+    std::optional<double> angleHighRad;
+    std::optional<double> maxTrackingErrorRad;
     double wallSeconds = 0.0;
 
     bool survived() const { return outcome == StabilityOutcome::Survived; }
@@ -75,16 +84,54 @@ double stabilityEnergyScale(const core::Model& model);
 int denseRows(const core::Model& model);
 
 // Runs `model` (its settings but the method's solver and integrator, and limits.dt and
-// limits.duration when given). Never throws for a failed run: the cell says what happened.
+// limits.duration when given). Never throws for a failed run: the cell says what happened. A run
+// that survived still fails when it broke one of the scene's own `criteria`
+// (study/stability_criteria.h).
 StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName, const Method& method,
-                               const StabilityLimits& limits);
+                               const StabilityLimits& limits,
+                               const io::SceneStabilityCriteria& criteria = {});
 
-// The markdown report: an overview (scene by method, survived or why not) and the details, one
-// row per cell; `machine` names the computer the wall times were measured on.
+// Where a method ends on a scene: the largest time step, halving from `start`, at which a run of
+// the scene (for the shorter of its duration and `duration`) holds, i.e. survives and meets the
+// scene's criteria. The search stops at the first step that holds, or after the first step below
+// the scene's own (limits.dt, else its dt) that does not.
+struct LargestDtOptions
+{
+    double start = 1.0 / 30.0; // s
+    double duration = 1.0;     // s: the longest run of the search
+};
+struct LargestDtCell
+{
+    std::string scene;
+    std::string method;
+    StabilityOutcome outcome = StabilityOutcome::Survived; // Failed: no step tried held
+    std::string note;             // skipped or unavailable: why; failed: the last failure
+    std::optional<double> dt;     // s: the largest step that held
+    double smallestTriedDt = 0.0; // s
+    double duration = 0.0;        // s simulated per run
+    int runs = 0;
+    double wallSeconds = 0.0; // all its runs
+};
+LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName, const Method& method,
+                               const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria,
+                               const LargestDtOptions& options = {});
+
+// What the report says beyond the cells: each scene's own criteria (one per scene, or empty) and
+// the largest-dt search's cells (empty: not searched).
+struct StabilityReportExtras
+{
+    std::vector<io::SceneStabilityCriteria> criteria;
+    std::vector<LargestDtCell> largest;
+    LargestDtOptions search;
+};
+
+// The markdown report: an overview (scene by method, survived or why not), the scenes, the
+// largest time steps that hold (when searched) and the details, one row per cell; `machine`
+// names the computer the wall times were measured on.
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
                               const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
-                              const std::string& machine);
+                              const std::string& machine, const StabilityReportExtras& extras = {});
 
 // "N cores, <model name>" from std::thread and /proc/cpuinfo.
 std::string machineDescription();

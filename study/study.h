@@ -7,8 +7,9 @@
 //                       parseTimeSteps, parseSolvers, parseIntegrators, defaultTimeSteps,
 //                       planSchedule, makeSweepGrid, runSweep, paretoFront
 // study/sweep_report.h  the sweep's results as sweep.csv and as a terminal table
-// study/stability.h     the stability suite: runStabilityCell per scene and method, and the
-//                       markdown report (stabilityMarkdown)
+// study/stability.h     the stability suite: runStabilityCell per scene and method (with the
+//                       scene's own criteria, study/stability_criteria.h), largestHoldingDt,
+//                       and the markdown report (stabilityMarkdown)
 #pragma once
 
 #include "study/stability.h"

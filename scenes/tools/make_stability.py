@@ -5,7 +5,8 @@
   python3 scenes/tools/make_stability.py chain1000  # one of them, to stdout
 
 Generated here: chain1000, heavy_tip_1e3, heavy_tip_1e6, doll_large_step (the bodies of
-make_doll.py falling), stack10, t_handle, whip. Written by hand: tunnelling.yaml,
+make_doll.py falling), stack10, t_handle, whip, stiff_servo, robot_in_floor (the KR5 of Debian's
+dart-doc), limit_beyond_pi. Written by hand: tunnelling.yaml,
 tunnelling_small_step.yaml, four_bar_redundant.yaml. Units: metres, kilograms, seconds, radians.
 """
 import math
@@ -236,6 +237,116 @@ def whip():
     return out + joints + ["camera: {position: [0, -5, 5], look_at: [0, 0, 2], fov: 50}"]
 
 
+def stiff_servo():
+    # Two 0.4 m bars (1 kg, 4 cm square) on horizontal hinges at one end, each driven by a position
+    # servo through +-1 rad at 0.5 Hz. The gains put a servo's natural frequency omega = sqrt(kp / I)
+    # at 10 / dt ('bar') and 1000 / dt ('bar_1000') for dt = 1 ms (I the bar's inertia about its
+    # hinge): an explicit spring would need omega dt < 2; an implicit one holds at any step.
+    dt = 0.001
+    mass, length, width = 1.0, 0.4, 0.04
+    inertia = mass * (length ** 2 + width ** 2) / 12 + mass * (length / 2) ** 2
+    zeta = 0.1
+    out = ["# The stability suite: stiff position servos. Two bars (0.4 m, 1 kg, 4 cm square) on",
+           "# horizontal hinges at one end, driven through +-1 rad at 0.5 Hz against gravity by servos",
+           f"# whose natural frequency sqrt(kp / I) (I = {inertia:.6g} kg m^2 about the hinge) makes",
+           f"# omega dt = 10 ('bar') and 1000 ('bar_1000') at dt = {dt:g} s, damping ratio {zeta:g}. An",
+           "# explicit spring blows up beyond omega dt = 2; Frontier's servos are implicit",
+           "# (core/actuation.h), so each bar must follow its target, the energy bounded by the motion's",
+           "# (each bar: m g (L/2) sin 1 = 1.65 J of potential, at most 0.26 J kinetic).",
+           GENERATED,
+           "name: stiff servo",
+           f"simulation: {{dt: {dt:g}, duration: 3.0, gravity: [0, 0, -9.81], solver: linear}}",
+           "bodies:"]
+    joints = ["joints:"]
+    actuators = ["actuators:"]
+    for name, omega_dt, y, height in (("bar", 10.0, 0.0, 1.0), ("bar_1000", 1000.0, 0.5, 1.5)):
+        omega = omega_dt / dt
+        kp = inertia * omega ** 2
+        kd = 2 * zeta * math.sqrt(kp * inertia)
+        out += [f"  - name: {name}",
+                f"    shape: {{type: box, size: {fmt((length, width, width))}}}",
+                f"    mass: {num(mass)}",
+                f"    position: {fmt((length / 2, y, height))}"]
+        joints.append(f"  - {{name: {name}_hinge, type: revolute, parent: world, child: {name}, "
+                      f"anchor: {fmt((0, y, height))}, axis: [0, 1, 0]}}")
+        actuators.append(f"  - {{joint: {name}_hinge, type: position, kp: {kp:.6g}, kd: {kd:.6g}, "
+                         "target: {sine: {amplitude: 1.0, frequency: 0.5}}}")
+    return (out + joints + actuators +
+            ["stability:",
+             "  max_speed: 2.0",
+             "  max_energy_rise: 5.0",
+             "  joints:",
+             "    - {joint: bar_hinge, max_tracking_error: 0.01}",
+             "    - {joint: bar_1000_hinge, max_tracking_error: 0.01}",
+             "camera: {position: [0.2, -2.5, 1.5], look_at: [0.2, 0.25, 1.2], fov: 40}"])
+
+
+KR5 = "/usr/share/doc/dart/data/urdf/KR5/KR5 sixx R650.urdf"
+KR5_RESTING_Z = 0.169282  # `frontier info "KR5 sixx R650.urdf" --free-base`: "moved up 0.169282 m so that its lowest collision point is 0 m above the floor"
+SINK = 0.03
+
+
+def robot_in_floor():
+    z = KR5_RESTING_Z - SINK
+    return ["# The stability suite: a robot started inside the floor. The KUKA KR5 sixx R650 of Debian's",
+            "# dart-doc (a file nobody here wrote; scripts/install-deps.sh --for-tests installs it), its",
+            f"# base freed from the world and placed {SINK * 100:g} cm lower than resting on the floor, its",
+            "# joints held by servos (hold). Overlap is removed by a bounded displacement, not a velocity",
+            "# (docs/method.md §6): it must be pushed out without launching anything (no centre of mass",
+            "# faster than 0.5 m/s), its energy rising by no more than lifting its 24.85 kg out of the",
+            "# floor (M g times the depth: 7.3 J) and 10%.",
+            GENERATED,
+            "name: KR5 started in the floor",
+            "simulation: {dt: 0.001, duration: 2.0, gravity: [0, 0, -9.81], solver: linear}",
+            "bodies:",
+            "  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1], offset: 0}}",
+            "models:",
+            f"  - {{urdf: \"{KR5}\", position: {fmt((0, 0, z))}, free_base: true, hold: true}}",
+            "stability: {max_speed: 0.5, max_energy_rise: 8.0}",
+            "camera: {position: [1.5, -1.5, 1.0], look_at: [0, 0, 0.4], fov: 45}"]
+
+
+def limit_beyond_pi():
+    # Two 0.5 m rods (1 kg) hanging from horizontal hinges limited to [-4, 4] rad (229 degrees, past
+    # the top by 49 degrees either way). The first is launched at 14 rad/s: it swings over the top
+    # and hits its upper limit at 4 rad; the second is turned the other way by a velocity motor
+    # (-5 rad/s, at most 15 N m, six times gravity's largest torque on it) into its lower limit.
+    length, radius, mass = 0.5, 0.01, 1.0
+    spin = 14.0
+    out = ["# The stability suite: joint limits beyond +-pi. Two rods (0.5 m, 1 kg) hang from horizontal",
+           "# hinges limited to [-4, 4] rad (past the top by 49 degrees either way). 'swung' starts at",
+           f"# {spin:g} rad/s, over the top and into its upper limit at 4 rad (about 10 rad/s at impact);",
+           "# 'driven' is turned the other way by a velocity motor (-5 rad/s, at most 15 N m) and pressed",
+           "# into its lower limit. The angle is counted through whole turns: it must pass pi, and a",
+           "# limit taken on the angle wrapped into [-pi, pi] would never hold (4 rad wraps to -2.28).",
+           GENERATED,
+           "name: joint limits beyond pi",
+           "simulation: {dt: 0.001, duration: 3.0, gravity: [0, 0, -9.81], solver: linear}",
+           "bodies:"]
+    joints = ["joints:"]
+    for i, name in enumerate(("swung", "driven")):
+        x = 1.0 * i
+        top = 1.5
+        out += [f"  - name: {name}",
+                f"    shape: {{type: capsule, radius: {num(radius)}, length: {num(length - 2 * radius)}}}",
+                f"    mass: {num(mass)}",
+                f"    position: {fmt((x, 0, top - length / 2))}"]
+        if name == "swung":
+            # w about +y: the centre (0.25 m below the hinge) moves along -x.
+            out += [f"    velocity: {fmt((-spin * length / 2, 0, 0))}",
+                    f"    angular_velocity: {fmt((0, spin, 0))}"]
+        joints.append(f"  - {{name: {name}_hinge, type: revolute, parent: world, child: {name}, "
+                      f"anchor: {fmt((x, 0, top))}, axis: [0, 1, 0], limits: [-4, 4]}}")
+    return (out + joints +
+            ["actuators:",
+             "  - {joint: driven_hinge, type: velocity, target: -5.0, effort_limit: 15}",
+             "stability:",
+             "  joints:",
+             "    - {joint: swung_hinge, range: [-4.05, 4.05], reach: 3.5}",
+             "    - {joint: driven_hinge, range: [-4.05, 4.05], reach: 3.5}",
+             "camera: {position: [0.5, -3.0, 1.2], look_at: [0.5, 0, 1.3], fov: 45}"])
+
+
 SCENES = {
     "chain1000": chain1000,
     "heavy_tip_1e3": lambda: heavy_tip(1e3, "1e3", "0.001", []),
@@ -244,6 +355,9 @@ SCENES = {
     "stack10": stack10,
     "t_handle": t_handle,
     "whip": whip,
+    "stiff_servo": stiff_servo,
+    "robot_in_floor": robot_in_floor,
+    "limit_beyond_pi": limit_beyond_pi,
 }
 
 

@@ -27,6 +27,19 @@ TEST(StabilityCli, WritesTheTable)
     EXPECT_TRUE(r.err.empty()) << r.err; // --quiet
 }
 
+// --largest-dt adds the table of where each scene ends: the joint limits beyond pi overshoot at 1/30 s
+// and 1/60 s (tests/stability/stability_criteria_test.cpp) and hold at 1/120 s.
+TEST(StabilityCli, LargestDtTable)
+{
+    TestDir dir;
+    const Result r = dir.run(
+        "stability scenes/stability/limit_beyond_pi.yaml --methods linear/euler --largest-dt --quiet");
+    ASSERT_EQ(r.exitCode, cExitOk) << r.err;
+    EXPECT_NE(r.out.find("Where it ends"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("| limit_beyond_pi | 1/120 s (8.33 ms) |"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("'swung_hinge' within [-4.05, 4.05] rad"), std::string::npos) << r.out;
+}
+
 TEST(StabilityCli, BadMethodOrSceneIsBadInput)
 {
     TestDir dir;
