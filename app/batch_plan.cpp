@@ -382,8 +382,10 @@ BatchPlan readBatchPlan(const std::string& path)
     }
 
     // Scene paths are checked against every scene: a path no scene has is a mistake of the plan.
-    for (const auto& [label, file] : scenes)
+    for (const auto& scene : scenes)
     {
+        const std::string& label = scene.first; // named copies: a lambda below uses them (clang 14
+        const std::string& file = scene.second; // cannot capture structured bindings)
         std::optional<YAML::Node> sceneRoot;
         auto checkPath = [&](const std::string& key, const YAML::Node& value)
         {
