@@ -408,8 +408,8 @@ int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
     }
     if (bad > cNamedAtMost)
     {
-        std::cerr << "frontier: ... and " << bad - cNamedAtMost << " more jobs not done (" << (folder / "summary.md").string()
-                  << " lists them)\n";
+        std::cerr << "frontier: ... and " << bad - cNamedAtMost << " more jobs not done ("
+                  << (folder / "summary.md").string() << " lists them)\n";
     }
     std::printf("Wrote %s and %s: %zu jobs, %zu not done.\n", (folder / "batch.csv").c_str(),
                 (folder / "summary.md").c_str(), plan.jobs.size(), bad);

@@ -30,7 +30,8 @@ Quat Rng::rotation()
 {
     auto draw = [this]
     {
-        const double z = normal(), y = normal(), x = normal(), w = normal(); // one per statement, as gaussianVec
+        const double z = normal(), y = normal(), x = normal(),
+                     w = normal(); // one per statement, as gaussianVec
         return Quat(w, x, y, z);
     };
     Quat q = draw();
@@ -99,7 +100,8 @@ void appendRandomTree(Model& model, Rng& rng, const RandomTreeOptions& options)
                 options.branching >= 1.0 ? 0 : std::max(0, k - 1 - static_cast<int>(options.branching * k));
             parent = first + rng.integer(lo, k - 1);
             const Vec3 direction = rng.unitVec();
-            position = model.bodies[static_cast<std::size_t>(parent)].position_W + rng.uniform(0.3, 1.0) * direction;
+            position =
+                model.bodies[static_cast<std::size_t>(parent)].position_W + rng.uniform(0.3, 1.0) * direction;
         }
         Body body = boxBody(prefix + "b" + std::to_string(k), mass, size, position, rng.rotation());
         body.velocity_W = rng.gaussianVec();
