@@ -195,8 +195,8 @@ class Simulator
     RowSystem mRows;                    // rows at the start of the step (the factored ones)
     RowSystem mRowsAfter;               // rows re-evaluated after the position update (errors only)
     BlockVector mRhs, mSolution;
-    std::vector<BodyState> mStart;         // poses at the start of the step
-    std::vector<PrincipalAxes> mPrincipal; // principal axes per body (free rotation, momentum carry)
+    std::vector<BodyState> mStart;           // poses at the start of the step
+    std::vector<PrincipalAxes> mPrincipal;   // principal axes per body (free rotation, momentum carry)
     std::vector<std::uint8_t> mFreeRotation; // per body: the step turns it by the free rotation (§4)
     // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
     // next step's mRows when it starts there).
