@@ -17,7 +17,7 @@ Eigen::MatrixXd DenseSolver::assemble(const RowSystem& system)
         {
             const std::size_t i = static_cast<std::size_t>(block.index);
             a.block<3, 3>(block.offset, block.offset) = system.mass[i] * Mat3::Identity();
-            a.block<3, 3>(block.offset + 3, block.offset + 3) = system.inertia_W[i];
+            a.block<3, 3>(block.offset + 3, block.offset + 3) = factoredInertia(system, i);
             continue;
         }
         const Joint& joint = model.joints[static_cast<std::size_t>(block.index)];

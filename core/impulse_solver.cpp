@@ -79,6 +79,7 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
     bodyRotations(model, state, system);
     system.mass.resize(nb);
     system.inertia_W.resize(nb);
+    system.geometricInertia.clear();
     for (std::size_t i = 0; i < nb; ++i)
     {
         const Body& body = model.bodies[i];

@@ -37,6 +37,10 @@ struct RowSystem
     LargeVector<Mat3> rotation_WB; // per body index: R_WB at the state the rows were evaluated at
     LargeVector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
     int rowCount = 0;              // tree joint rows in all
+    // Per body index, kg m^2: geometric stiffness h^2 k added to each diagonal entry of the
+    // rotational inertia in the factorization only (docs/method.md §7a; momenta use inertia_W).
+    // Empty: none, as assembleRows leaves it.
+    LargeVector<double> geometricInertia;
 };
 
 // Evaluates masses and joint rows at a state (docs/method.md §1-2), with the drive rows of a solve of
@@ -55,6 +59,15 @@ void assembleJointConditions(const Model& model, const State& state, RowSystem& 
 // duration driveStep with the joint's `gains`, empty as in assembleRows), as assembleRows writes them.
 void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const State& state, int jointIndex,
                         double driveStep, std::span<const JointDriveGains> gains, JointRows& out);
+
+// Body i's rotational inertia as the solvers factor it: inertia_W plus its geometric stiffness
+// (kg m^2, world frame).
+inline Mat3 factoredInertia(const RowSystem& system, std::size_t i)
+{
+    return system.geometricInertia.empty()
+               ? system.inertia_W[i]
+               : Mat3(system.inertia_W[i] + system.geometricInertia[i] * Mat3::Identity());
+}
 
 // Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
 struct BlockVector

@@ -11,7 +11,7 @@ Vec6 applyInverseMass(const RowSystem& system, int body, const Vec6& f)
     Vec6 out;
     const std::size_t i = static_cast<std::size_t>(body);
     out.head<3>() = f.head<3>() / system.mass[i];
-    out.tail<3>() = system.inertia_W[i].ldlt().solve(f.tail<3>());
+    out.tail<3>() = factoredInertia(system, i).ldlt().solve(f.tail<3>());
     return out;
 }
 } // namespace

@@ -4,6 +4,7 @@
 
 #include "core/joints/coordinates.h"
 #include "core/joints/drive.h"
+#include "core/step/geometric_stiffness.h"
 #include "core/step/positions.h"
 #include "core/step/velocity_stage.h"
 
@@ -170,7 +171,8 @@ void Simulator::stepEuler(State& state)
     do
     {
         rowsAtStart(state);
-        buildExtraRows(state); // contacts, loops, limits at the start-of-step pose (§5)
+        stiffenLoadedBodies(state); // light bodies under large joint forces turn implicitly (§7a)
+        buildExtraRows(state);      // contacts, loops, limits at the start-of-step pose (§5)
         setMomentumRhs(state, state.time + mDt);
         predictDrift(state);
         carryImpulses(); // the last step's impulses on those rows join the right-hand side
@@ -184,6 +186,7 @@ void Simulator::stepEuler(State& state)
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
+    recordJointLoads(state);
     carryAngularMomentum(state);
     finishStep(state);
     mEndPose = state.bodies;
@@ -215,6 +218,8 @@ Simulator::RattleOutcome Simulator::stepRattle(State& state, bool firstStage)
     StageClock clock(mStats.seconds);
     const bool stage = mRattle4Stage;
     checkState(state, "start of step");
+    state.jointLoads.clear(); // the geometric stiffness is euler's (§7a)
+    mStats.stiffenedBodies = 0;
     if (firstStage)
     {
         mActuation.beginStep();
@@ -407,6 +412,19 @@ void Simulator::setMomentumRhs(const State& state, double tEnd)
 // starts near C = 0, on steps whose first solve is the exact tree solve alone: extra rows
 // (contacts, limits, loops) are solved on top of it and would see the bias in their impulses, and
 // pgs solves approximately.
+// docs/method.md §7a, eq. (11c): the bodies whose joints' loads of the last step make them turn
+// stiffly take that stiffness implicitly in this step's factorization.
+void Simulator::stiffenLoadedBodies(const State& state)
+{
+    mStats.stiffenedBodies = core::stiffenLoadedBodies(mModel, state.jointLoads, mDt, mRows);
+}
+
+// The joints' loads of this step (its rows and impulses), for the next step's stiffness.
+void Simulator::recordJointLoads(State& state) const
+{
+    measureJointLoads(mModel, mRows, mSolution, state.jointLoads);
+}
+
 void Simulator::predictDrift(const State& state)
 {
     if (mOptions.predictDrift && mStats.extraRows == 0 && mModel.simulation.solver != SolverKind::Pgs)

@@ -3,13 +3,13 @@
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
 // reads like the physics, in Simulator::stepEuler() (stage timings: StepStage, core/step/step_stats.h):
 //   checkState -> detectContacts                                                       [Detect]
-//   -> computeFreeVelocities -> rowsAtStart -> buildExtraRows -> setMomentumRhs
+//   -> computeFreeVelocities -> rowsAtStart -> stiffenLoadedBodies -> buildExtraRows -> setMomentumRhs
 //   -> predictDrift -> carryImpulses
 //   -> factorAndSolve (O(n): elimination and the joint impulses in one pass)           [Factor]
 //   -> solveContactImpulses                                                            [Solve]
 //      (rowsAtStart .. solveContactImpulses again while an actuator went past its effort limit)
-//   -> integratePositions -> removePenetration -> stabilizeJoints -> carryAngularMomentum
-//   -> finishStep (joint angles, time, checkState)                                     [Integrate]
+//   -> integratePositions -> removePenetration -> stabilizeJoints -> recordJointLoads
+//   -> carryAngularMomentum -> finishStep (joint angles, time, checkState)                                     [Integrate]
 // Each stage is a unit of core/step/: the contact problem (contact_problem.h, with the warm start
 // of impulse_memory.h), positions (positions.h), the penetration projection
 // (penetration_projection.h), the drift correction (drift_correction.h), RATTLE's projection
@@ -164,6 +164,8 @@ class Simulator
     void rowsAtStart(const State& state);
     void buildExtraRows(const State& state);
     void setMomentumRhs(const State& state, double tEnd);
+    void stiffenLoadedBodies(const State& state);
+    void recordJointLoads(State& state) const;
     void predictDrift(const State& state);
     void carryImpulses();
     void factorAtStart(const State& state);

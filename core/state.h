@@ -29,6 +29,11 @@ struct State
     // left (m, rad), which the next step's first solve anticipates (docs/method.md §7, eq. (11a));
     // empty when there is none. Part of the state so that copies and restarts of a step agree.
     std::vector<Eigen::Matrix<double, 6, 1>> jointDrift;
+    // Two per Model::joints entry (its parent's end, its child's): the tension moments of the last
+    // steps (N s m, core/step/geometric_stiffness.h), which set the next step's geometric stiffness
+    // (docs/method.md §7a); empty before the first step. Part of the state so that copies and
+    // restarts of a step agree.
+    std::vector<double> jointLoads;
 };
 
 State initialState(const Model& model);

@@ -80,6 +80,15 @@ inline void setMassMatrix(double* pivot, double mass, const Mat3& inertia)
     }
 }
 
+// docs/method.md §7a: h^2 k on the rotational diagonal (kg m^2).
+inline void addGeometricInertia(double* pivot, double added)
+{
+    for (int i = 3; i < 6; ++i)
+    {
+        pivot[tri<6>(i, i)] += added;
+    }
+}
+
 inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
 {
     FRONTIER_UNROLL
@@ -409,6 +418,10 @@ void TreeSolver::eliminate(std::size_t b)
         else
         {
             setMassMatrix(own, system.mass[index], system.inertia_W[index]);
+        }
+        if (!system.geometricInertia.empty())
+        {
+            addGeometricInertia(own, system.geometricInertia[index]);
         }
         if (info.parent < 0)
         {

@@ -169,6 +169,7 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
             completeRows();
             refactored = true;
             mRowsRefactored = rowsAfter;
+            mRowsRefactored.geometricInertia = rows.geometricInertia; // the step's metric (§7a)
             mSolver.factor(mRowsRefactored);
             buildLoopBlocks(mModel, mLayout, mRowsRefactored, loopBlocks);
             loopsFactored = false;

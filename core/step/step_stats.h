@@ -46,6 +46,7 @@ struct StepStats
     int contacts = 0;      // contact points found this step
     int extraRows = 0;     // contact, loop, limit and joint friction rows this step
     int contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem
+    int stiffenedBodies = 0; // bodies given geometric stiffness this step (docs/method.md §7a)
     ContactRoute contactRoute = ContactRoute::None;
     double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
     bool firstOrderFallback = false; // a rattle step that stalled and was taken by euler instead

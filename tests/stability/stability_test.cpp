@@ -145,12 +145,17 @@ TEST(StabilitySuite, HeavyTip1e3)
     expectHeld(run("heavy_tip_1e3"), 5e-3);
 }
 
-// Heavy tip 1e6:1 at dt = 20 us (1 ms is too coarse for any method: the scene's comment): joints
-// held, energy within 0.1% of E_ref. Test: the first 1 s (the bottom of the swing, the largest
-// tension, is at 0.85 s).
+// Heavy tip 1e6:1 at the scene's dt = 1 ms (euler takes the tensioned links' geometric stiffness
+// implicitly, docs/method.md §7a): joints held, energy never above its start, less than 2% of
+// E_ref lost to the damping of the links' sideways mode (measured 0.76% at 1 s). Test: the first
+// 1 s (the bottom of the swing, the largest tension, is at 0.85 s).
 TEST(StabilitySuite, HeavyTip1e6)
 {
-    expectHeld(run("heavy_tip_1e6", "linear/euler", 1.0), 1e-3);
+    const StabilityCell c = run("heavy_tip_1e6", "linear/euler", 1.0);
+    EXPECT_TRUE(c.survived()) << c.note;
+    EXPECT_LT(c.maxJointGapM, cExactGapM);
+    EXPECT_LT(c.energyRise(), 1e-6);
+    EXPECT_LT(c.energyLoss(), 2e-2);
 }
 
 // The doll at dt = 1/30 s, 3 s. The bound: it survives with joints held to 1e-6 m and 1e-5 rad,
