@@ -1,7 +1,7 @@
 // tests/app/batch_test.cpp: `frontier batch` end to end: the plan's expansion and ids, bad plans
 // (exit 2, file:line), scene paths and seeds that change the physics as asked, resume after a
-// SIGTERM without redoing finished jobs, locks, shards, and the merge of sharded runs equal to a
-// single machine's.
+// SIGTERM without redoing finished jobs, after a SIGKILL without its temporary files, locks,
+// shards, and the merge of sharded runs equal to a single machine's.
 #include "app_test_util.h"
 #include "csv_table.h"
 
@@ -329,6 +329,53 @@ TEST(Batch, ResumesAfterSigtermWithoutRedoingFinishedJobs)
             EXPECT_EQ(stamp(folder / "stats.json"), it->second.first) << id << " was redone";
             EXPECT_EQ(stamp(folder / "trajectory.csv"), it->second.second) << id << " was redone";
         }
+    }
+}
+
+// The temporary files (NAME.tmp-XXXXXX) of files being written when the batch was killed outright
+// (SIGKILL: nothing could remove them) go when the rerun takes the job, which then completes.
+TEST(Batch, RerunRemovesTemporariesOfAKilledAttempt)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", "scenes: [" + scenesDir() +
+                                                        "/pendulum.yaml]\n"
+                                                        "duration: 5\n"
+                                                        "outputs: [stats, trajectory]\n"
+                                                        "vary:\n"
+                                                        "  dt: [0.0005, 0.00051]\n");
+    const std::string out = dir.out("b");
+    auto temporaries = [&]()
+    {
+        std::vector<std::string> found;
+        std::error_code error;
+        for (const auto& entry : fs::recursive_directory_iterator(out, error))
+        {
+            if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+            {
+                found.push_back(entry.path().string());
+            }
+        }
+        return found;
+    };
+    const pid_t pid = spawnFrontier(dir, {"batch", plan, "--out", out, "--jobs", "1"});
+    const auto start = std::chrono::steady_clock::now();
+    while (temporaries().empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ::kill(pid, SIGKILL);
+    EXPECT_EQ(waitForExit(pid, 30.0), -1); // ended by the signal: no exit code
+    const std::vector<std::string> left = temporaries();
+    ASSERT_FALSE(left.empty()) << "no temporary file was open when the batch was killed";
+
+    const Result again = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --jobs 2");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(temporaries(), std::vector<std::string>{});
+    for (const std::string& temporary : left)
+    {
+        const fs::path folder = fs::path(temporary).parent_path();
+        EXPECT_TRUE(completedStats(folder / "stats.json")) << folder;
+        EXPECT_TRUE(fs::exists(folder / "trajectory.csv")) << folder;
     }
 }
 
