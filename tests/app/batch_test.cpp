@@ -1,7 +1,7 @@
 // tests/app/batch_test.cpp: `frontier batch` end to end: the plan's expansion and ids, bad plans
 // (exit 2, file:line), scene paths and seeds that change the physics as asked, resume after a
 // SIGTERM without redoing finished jobs, after a SIGKILL without its temporary files, locks,
-// shards, and the merge of sharded runs equal to a single machine's.
+// shards, the merge of sharded runs equal to a single machine's, and the Slurm script's tasks.
 #include "app_test_util.h"
 #include "csv_table.h"
 
@@ -509,6 +509,39 @@ TEST(Batch, ShardsPartitionTheJobsAndMergeLikeOneMachine)
     ASSERT_NE(firstWall, columns.end());
     EXPECT_TRUE(
         std::all_of(firstWall, columns.end(), [](const std::string& c) { return c.rfind("wall_", 0) == 0; }));
+}
+
+// --slurm without --submit: batch.sbatch is an array of one task per shard, merge.sbatch merges.
+// A task submitted alone (`sbatch --array=1 batch.sbatch`, whose environment says task 1 of an
+// array of one) runs shard 1 of 3, not the whole plan.
+TEST(Batch, SlurmScriptTaskRunsItsShardAlsoWhenSubmittedAlone)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", smallPlan());
+    const std::string out = dir.out("s");
+    const Result written =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --slurm --shards 3");
+    ASSERT_EQ(written.exitCode, 0) << written.err;
+    EXPECT_NE(written.out.find("sbatch --parsable " + out + "/slurm/batch.sbatch"), std::string::npos)
+        << written.out;
+    const std::string script = readText(out + "/slurm/batch.sbatch");
+    EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("#SBATCH --output=" + out + "/slurm/shard-%a.out\n"), std::string::npos) << script;
+    EXPECT_NE(readText(out + "/slurm/merge.sbatch").find(" --merge"), std::string::npos);
+
+    const std::string log = (dir.path() / "task.txt").string();
+    const std::string task = "env SLURM_ARRAY_JOB_ID=7 SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_MIN=1 "
+                             "SLURM_ARRAY_TASK_MAX=1 SLURM_ARRAY_TASK_COUNT=1 bash " +
+                             shellQuote(out + "/slurm/batch.sbatch") + " > " + shellQuote(log) + " 2>&1";
+    ASSERT_EQ(std::system(task.c_str()), 0) << readText(log);
+    EXPECT_NE(readText(log).find("(shard 1 of 3)"), std::string::npos) << readText(log);
+    const std::vector<std::string> all =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(all.size(), 8U);
+    for (std::size_t k = 0; k < all.size(); ++k)
+    {
+        EXPECT_EQ(completedStats(fs::path(out) / "jobs" / all[k] / "stats.json"), k % 3 == 1) << all[k];
+    }
 }
 
 } // namespace
