@@ -214,13 +214,19 @@ int batchCommand(const BatchOptions& options)
                     }
                     else
                     {
-                        // Rows a failed attempt kept (failedPath names) would outlive this one.
+                        // Rows a failed attempt kept (failedPath names) would outlive this one, and
+                        // so would the temporary files of an attempt killed outright (SIGKILL).
                         for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
                         {
                             if (!file->empty())
                             {
                                 fs::remove(failedPath(*file));
                             }
+                        }
+                        io::removeStaleTemporaries(jobFolder(options.out, job));
+                        if (!files.frames.empty())
+                        {
+                            io::removeStaleTemporaries(files.frames);
                         }
                         std::string summary;
                         const int code = runOne(

@@ -1,6 +1,7 @@
-// app/batch_slurm.cpp: `frontier batch --slurm`: DIR/slurm/batch.sbatch (an array job, one task
-// per shard, each `frontier batch PLAN --out DIR --shard-from-env`) and DIR/slurm/merge.sbatch;
-// with --submit, sbatch runs both, the merge after the array succeeded (afterok).
+// app/batch_slurm.cpp: `frontier batch --slurm`: DIR/slurm/batch.sbatch (an array job, task I
+// running `frontier batch PLAN --out DIR --shards N --shard-from-env SLURM_ARRAY_TASK_ID`, shard I
+// of N) and DIR/slurm/merge.sbatch; with --submit, sbatch runs both, the merge after the array
+// succeeded (afterok).
 #include "app/batch_jobs.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
@@ -110,10 +111,14 @@ int slurmBatch(const BatchPlan& plan, const BatchOptions& options)
         std::string batch = header(options, "frontier-batch", (folder / "shard-%a.out").string());
         batch += "#SBATCH --array=0-" + std::to_string(std::max(shards, 1) - 1) + "\n";
         batch += "#SBATCH --cpus-per-task=" + std::to_string(options.cpus) + "\n";
+        // The shard is the task id itself, not its rank in the array: `sbatch --array=1 batch.sbatch`
+        // reruns shard 1 of N alone (Slurm's task count would be 1 there).
         batch += "# " + std::to_string(jobs) + " jobs in " + std::to_string(shards) +
-                 " shards: task I runs the jobs whose index mod " + std::to_string(shards) + " is I.\n";
+                 " shards: task I runs the jobs whose index mod " + std::to_string(shards) +
+                 " is I; sbatch --array=I reruns task I alone.\n";
         batch += "exec " + self + " batch " + planPath + " --out " + out + " --jobs " +
-                 std::to_string(options.cpus) + " --shards " + std::to_string(shards) + " --shard-from-env\n";
+                 std::to_string(options.cpus) + " --shards " + std::to_string(shards) +
+                 " --shard-from-env SLURM_ARRAY_TASK_ID\n";
         writeScript(batchScript, batch);
         std::string merge = header(options, "frontier-merge", (folder / "merge.out").string());
         merge += "exec " + self + " batch " + planPath + " --out " + out + " --merge";

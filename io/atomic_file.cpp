@@ -46,13 +46,36 @@ std::string outputPathProblem(const std::string& path)
     return path + " is " + what + ": an output must be a regular file (replaced) or a new path";
 }
 
+bool isTemporaryName(const std::string& fileName)
+{
+    const std::size_t infix = std::char_traits<char>::length(cTemporaryInfix);
+    const std::size_t tail = infix + cTemporaryRandomChars;
+    return fileName.size() > tail && fileName.compare(fileName.size() - tail, infix, cTemporaryInfix) == 0;
+}
+
+std::size_t removeStaleTemporaries(const std::string& folder)
+{
+    namespace fs = std::filesystem;
+    std::error_code error;
+    std::size_t removed = 0;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
+    {
+        if (entry.is_regular_file(error) && isTemporaryName(entry.path().filename().string()) &&
+            fs::remove(entry.path(), error))
+        {
+            ++removed;
+        }
+    }
+    return removed;
+}
+
 AtomicFile::AtomicFile(std::string path) : mPath(std::move(path))
 {
     if (const std::string problem = outputPathProblem(mPath); !problem.empty())
     {
         throw OutputError(problem);
     }
-    std::string pattern = mPath + ".tmp-XXXXXX";
+    std::string pattern = mPath + cTemporaryInfix + std::string(cTemporaryRandomChars, 'X');
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
     const int fd = ::mkstemp(buffer.data());

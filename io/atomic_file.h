@@ -24,6 +24,16 @@ class OutputError : public std::runtime_error
 // (renaming onto it would replace the link or the node itself, not write through it).
 std::string outputPathProblem(const std::string& path);
 
+// The temporary files AtomicFile names "PATH.tmp-XXXXXX" (render::writePng names its own so too).
+inline constexpr const char* cTemporaryInfix = ".tmp-";
+inline constexpr std::size_t cTemporaryRandomChars = 6; // mkstemp's XXXXXX
+// Whether the file name (no folder) is such a temporary.
+bool isTemporaryName(const std::string& fileName);
+// Removes the temporaries left in `folder` (not its subfolders) by a process killed with them open
+// (SIGKILL: no destructor ran), and returns how many. Only for a folder that no running process
+// writes into (a batch job's folder under its lock). A missing folder holds none.
+std::size_t removeStaleTemporaries(const std::string& folder);
+
 class AtomicFile
 {
   public:

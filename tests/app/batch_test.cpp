@@ -1,7 +1,7 @@
 // tests/app/batch_test.cpp: `frontier batch` end to end: the plan's expansion and ids, bad plans
 // (exit 2, file:line), scene paths and seeds that change the physics as asked, resume after a
-// SIGTERM without redoing finished jobs, locks, shards, and the merge of sharded runs equal to a
-// single machine's.
+// SIGTERM without redoing finished jobs, after a SIGKILL without its temporary files, locks,
+// shards, the merge of sharded runs equal to a single machine's, and the Slurm script's tasks.
 #include "app_test_util.h"
 #include "csv_table.h"
 
@@ -332,6 +332,53 @@ TEST(Batch, ResumesAfterSigtermWithoutRedoingFinishedJobs)
     }
 }
 
+// The temporary files (NAME.tmp-XXXXXX) of files being written when the batch was killed outright
+// (SIGKILL: nothing could remove them) go when the rerun takes the job, which then completes.
+TEST(Batch, RerunRemovesTemporariesOfAKilledAttempt)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", "scenes: [" + scenesDir() +
+                                                        "/pendulum.yaml]\n"
+                                                        "duration: 5\n"
+                                                        "outputs: [stats, trajectory]\n"
+                                                        "vary:\n"
+                                                        "  dt: [0.0005, 0.00051]\n");
+    const std::string out = dir.out("b");
+    auto temporaries = [&]()
+    {
+        std::vector<std::string> found;
+        std::error_code error;
+        for (const auto& entry : fs::recursive_directory_iterator(out, error))
+        {
+            if (entry.path().filename().string().find(".tmp-") != std::string::npos)
+            {
+                found.push_back(entry.path().string());
+            }
+        }
+        return found;
+    };
+    const pid_t pid = spawnFrontier(dir, {"batch", plan, "--out", out, "--jobs", "1"});
+    const auto start = std::chrono::steady_clock::now();
+    while (temporaries().empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(30))
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    ::kill(pid, SIGKILL);
+    EXPECT_EQ(waitForExit(pid, 30.0), -1); // ended by the signal: no exit code
+    const std::vector<std::string> left = temporaries();
+    ASSERT_FALSE(left.empty()) << "no temporary file was open when the batch was killed";
+
+    const Result again = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --jobs 2");
+    ASSERT_EQ(again.exitCode, 0) << again.err;
+    EXPECT_EQ(temporaries(), std::vector<std::string>{});
+    for (const std::string& temporary : left)
+    {
+        const fs::path folder = fs::path(temporary).parent_path();
+        EXPECT_TRUE(completedStats(folder / "stats.json")) << folder;
+        EXPECT_TRUE(fs::exists(folder / "trajectory.csv")) << folder;
+    }
+}
+
 // A job whose lock another process holds is skipped; a job that fails records why, the batch
 // exits 1 naming it, and the merge lists it.
 TEST(Batch, LockedJobsAreSkippedAndFailuresRecorded)
@@ -462,6 +509,39 @@ TEST(Batch, ShardsPartitionTheJobsAndMergeLikeOneMachine)
     ASSERT_NE(firstWall, columns.end());
     EXPECT_TRUE(
         std::all_of(firstWall, columns.end(), [](const std::string& c) { return c.rfind("wall_", 0) == 0; }));
+}
+
+// --slurm without --submit: batch.sbatch is an array of one task per shard, merge.sbatch merges.
+// A task submitted alone (`sbatch --array=1 batch.sbatch`, whose environment says task 1 of an
+// array of one) runs shard 1 of 3, not the whole plan.
+TEST(Batch, SlurmScriptTaskRunsItsShardAlsoWhenSubmittedAlone)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", smallPlan());
+    const std::string out = dir.out("s");
+    const Result written =
+        dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --slurm --shards 3");
+    ASSERT_EQ(written.exitCode, 0) << written.err;
+    EXPECT_NE(written.out.find("sbatch --parsable " + out + "/slurm/batch.sbatch"), std::string::npos)
+        << written.out;
+    const std::string script = readText(out + "/slurm/batch.sbatch");
+    EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("#SBATCH --output=" + out + "/slurm/shard-%a.out\n"), std::string::npos) << script;
+    EXPECT_NE(readText(out + "/slurm/merge.sbatch").find(" --merge"), std::string::npos);
+
+    const std::string log = (dir.path() / "task.txt").string();
+    const std::string task = "env SLURM_ARRAY_JOB_ID=7 SLURM_ARRAY_TASK_ID=1 SLURM_ARRAY_TASK_MIN=1 "
+                             "SLURM_ARRAY_TASK_MAX=1 SLURM_ARRAY_TASK_COUNT=1 bash " +
+                             shellQuote(out + "/slurm/batch.sbatch") + " > " + shellQuote(log) + " 2>&1";
+    ASSERT_EQ(std::system(task.c_str()), 0) << readText(log);
+    EXPECT_NE(readText(log).find("(shard 1 of 3)"), std::string::npos) << readText(log);
+    const std::vector<std::string> all =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(all.size(), 8U);
+    for (std::size_t k = 0; k < all.size(); ++k)
+    {
+        EXPECT_EQ(completedStats(fs::path(out) / "jobs" / all[k] / "stats.json"), k % 3 == 1) << all[k];
+    }
 }
 
 } // namespace

@@ -1,13 +1,14 @@
 // tests/io/csv_output_test.cpp: what the run's CSV files share (io/csv_output.h): names quoted only
 // when they must be, and read back whole by an RFC 4180 reader; metadata fields encoded and
 // decoded back; a file appears with its comment and header lines on commit, and not at all
-// without it.
+// without it; the temporaries a killed process left are told apart from other files and removed.
 #include "csv_table.h"
 #include "io/atomic_file.h"
 #include "io/csv_output.h"
 #include "io_test_util.h"
 
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
 
 namespace frontier::io::test
@@ -67,6 +68,31 @@ TEST(CsvOutput, UncommittedFileLeavesNothing)
     }
     EXPECT_EQ(filesIn(dir.path()), 0u);
     EXPECT_THROW(CsvFile("/nonexistent/dir/out.csv", "things", {}, "time"), OutputError);
+}
+
+// An AtomicFile's temporary is named as isTemporaryName expects; removeStaleTemporaries removes
+// such names in the folder only (not other files, not in subfolders).
+TEST(CsvOutput, StaleTemporariesAreRemovedAndNothingElse)
+{
+    TempDir dir;
+    {
+        AtomicFile file(dir.file("out.csv"));
+        EXPECT_TRUE(isTemporaryName(std::filesystem::path(file.tempPath()).filename().string()))
+            << file.tempPath();
+    }
+    for (const char* name : {"out.csv.tmp-Ab3dEf", "stats.json.tmp-000000", "out.csv", "out.tmp-csv",
+                             "notes.tmp-", "x.tmp-1234567", ".tmp-abcdef"})
+    {
+        std::ofstream(dir.file(name)) << "x";
+    }
+    std::filesystem::create_directory(dir.file("frames"));
+    std::ofstream(dir.file("frames/frame_00000.png.tmp-Qw12Er")) << "x";
+    EXPECT_EQ(removeStaleTemporaries(dir.path().string()), 2u);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out.csv.tmp-Ab3dEf")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("stats.json.tmp-000000")));
+    EXPECT_EQ(filesIn(dir.path()), 6u); // the five others and frames/
+    EXPECT_EQ(removeStaleTemporaries(dir.file("frames")), 1u);
+    EXPECT_EQ(removeStaleTemporaries(dir.file("missing")), 0u);
 }
 
 } // namespace
