@@ -29,26 +29,6 @@ struct JobResult
     std::optional<io::RunStats> stats;
 };
 
-// The stats columns before the extra keys, as named in the stats JSON (README "Files").
-const std::vector<std::string> cStatsColumns = {"solver",
-                                                "integrator",
-                                                "pgs_iterations",
-                                                "dt",
-                                                "steps",
-                                                "simulated_seconds",
-                                                "bodies",
-                                                "static_bodies",
-                                                "joints",
-                                                "constraint_rows",
-                                                "degrees_of_freedom",
-                                                "max_joint_error_m",
-                                                "max_penetration_m",
-                                                "energy_initial_j",
-                                                "energy_final_j",
-                                                "max_contacts",
-                                                "finite",
-                                                "completed"};
-
 // Wall-clock keys of the stats: they differ from run to run, so they come last, named wall_*.
 bool isWallClock(const std::string& key)
 {
@@ -140,11 +120,16 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
             }
         }
     }
+    // The stats JSON's keys (README "Files"), then the extra ones. The scene and the failure have
+    // columns of their own, the warnings none.
     std::vector<std::string> statsKeys;
-    std::vector<std::string> wallKeys = {"wall_seconds", "seconds_per_step"};
-    for (const std::string& key : cStatsColumns)
+    std::vector<std::string> wallKeys;
+    for (const std::string& key : io::statsKeys())
     {
-        statsKeys.push_back(key);
+        if (key != "scene" && key != "failure" && key != "warnings")
+        {
+            (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
+        }
     }
     for (const std::string& key : extra)
     {

@@ -1,6 +1,7 @@
 // app/frames.cpp: frame sampling, parallel rendering, video assembly.
 #include "app/frames.h"
 
+#include "app/commands.h"
 #include "app/run_loop.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
@@ -229,6 +230,26 @@ std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size
     return "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) + " of " +
            std::to_string(total) + " frames; " + folder + "/" + cIncompleteMarker +
            " marks the folder as incomplete";
+}
+
+int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
+                const FrameSettings& settings, double fps, const std::string& video,
+                const std::function<void(const std::string&)>& status, std::string& error)
+{
+    const std::size_t rendered = renderFrames(
+        model, frames, settings,
+        [&](std::size_t done)
+        { status("rendering " + std::to_string(done) + " / " + std::to_string(frames.size()) + " frames"); });
+    if (const int signal = interruptSignal(); signal != 0)
+    {
+        error = interruptedFramesMessage(signal, rendered, frames.size(), settings.folder);
+        return interruptedExitCode(signal);
+    }
+    if (!video.empty())
+    {
+        assembleVideo(settings.folder, fps, video);
+    }
+    return cExitOk;
 }
 
 } // namespace frontier::app

@@ -59,13 +59,22 @@ inline constexpr const char* cIncompleteMarker = "INCOMPLETE";
 std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                          const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
 
-// Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
-// not installed or fails.
 // The message of frames stopped by `signal` after `rendered` of `total`: the folder keeps its
 // cIncompleteMarker.
 std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
                                      const std::string& folder);
 
+// Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
+// not installed or fails.
 void assembleVideo(const std::string& folder, double fps, const std::string& video);
+
+// What `run --frames` and `render` do with their frames: renderFrames, with "rendering D / N
+// frames" to `status` as they go, then the video at `fps` when `video` is not empty
+// (assembleVideo). Returns cExitOk (app/commands.h); when a signal stopped the rendering, its
+// interruptedExitCode (app/run_loop.h), with `error` set to interruptedFramesMessage. Throws
+// io::OutputError.
+int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
+                const FrameSettings& settings, double fps, const std::string& video,
+                const std::function<void(const std::string&)>& status, std::string& error);
 
 } // namespace frontier::app

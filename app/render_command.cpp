@@ -112,20 +112,11 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
         }
         checkFrameCount(states.back().time, options.fps, static_cast<double>(frames.size()), path);
         prepareFrameFolder(out.frames);
-        const std::size_t rendered =
-            renderFrames(model, frames, {out.frames, options.width, options.height, threads},
-                         [&](std::size_t done) {
-                             status("rendering " + std::to_string(done) + " / " +
-                                    std::to_string(frames.size()) + " frames");
-                         });
-        if (const int signal = interruptSignal(); signal != 0)
+        if (const int code = writeFrames(model, frames, {out.frames, options.width, options.height, threads},
+                                         options.fps, out.video, status, error);
+            code != cExitOk)
         {
-            error = interruptedFramesMessage(signal, rendered, frames.size(), out.frames);
-            return interruptedExitCode(signal);
-        }
-        if (!out.video.empty())
-        {
-            assembleVideo(out.frames, options.fps, out.video);
+            return code;
         }
         summary = path + ": wrote " + std::to_string(frames.size()) + " frames to " + out.frames +
                   (out.video.empty() ? "" : " and " + out.video);

@@ -316,20 +316,12 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         if (!out.frames.empty() && ok)
         {
-            const std::size_t rendered =
-                renderFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
-                             [&](std::size_t done) {
-                                 status("rendering " + std::to_string(done) + " / " +
-                                        std::to_string(frames.size()) + " frames");
-                             });
-            if (const int signal = interruptSignal(); signal != 0)
+            if (const int code =
+                    writeFrames(model, frames, {out.frames, options.width, options.height, renderThreads},
+                                options.fps, out.video, status, error);
+                code != cExitOk)
             {
-                error = interruptedFramesMessage(signal, rendered, frames.size(), out.frames);
-                return interruptedExitCode(signal);
-            }
-            if (!out.video.empty())
-            {
-                assembleVideo(out.frames, options.fps, out.video);
+                return code;
             }
         }
     }

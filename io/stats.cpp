@@ -22,34 +22,6 @@ Json number(double value)
     return std::isfinite(value) ? Json(value) : Json(nullptr);
 }
 
-const std::vector<std::string>& knownKeys()
-{
-    static const std::vector<std::string> keys = {"scene",
-                                                  "solver",
-                                                  "integrator",
-                                                  "pgs_iterations",
-                                                  "dt",
-                                                  "steps",
-                                                  "simulated_seconds",
-                                                  "bodies",
-                                                  "static_bodies",
-                                                  "joints",
-                                                  "constraint_rows",
-                                                  "degrees_of_freedom",
-                                                  "wall_seconds",
-                                                  "seconds_per_step",
-                                                  "max_joint_error_m",
-                                                  "max_penetration_m",
-                                                  "energy_initial_j",
-                                                  "energy_final_j",
-                                                  "max_contacts",
-                                                  "finite",
-                                                  "completed",
-                                                  "failure",
-                                                  "warnings"};
-    return keys;
-}
-
 class Reader
 {
   public:
@@ -111,6 +83,34 @@ class Reader
 };
 
 } // namespace
+
+const std::vector<std::string>& statsKeys()
+{
+    static const std::vector<std::string> keys = {"scene",
+                                                  "solver",
+                                                  "integrator",
+                                                  "pgs_iterations",
+                                                  "dt",
+                                                  "steps",
+                                                  "simulated_seconds",
+                                                  "bodies",
+                                                  "static_bodies",
+                                                  "joints",
+                                                  "constraint_rows",
+                                                  "degrees_of_freedom",
+                                                  "wall_seconds",
+                                                  "seconds_per_step",
+                                                  "max_joint_error_m",
+                                                  "max_penetration_m",
+                                                  "energy_initial_j",
+                                                  "energy_final_j",
+                                                  "max_contacts",
+                                                  "finite",
+                                                  "completed",
+                                                  "failure",
+                                                  "warnings"};
+    return keys;
+}
 
 void fillModelCounts(RunStats& stats, const core::Model& model)
 {
@@ -234,7 +234,7 @@ RunStats readStats(const std::string& path)
     }
     for (const auto& [key, value] : json.items())
     {
-        const auto& known = knownKeys();
+        const auto& known = statsKeys();
         if (std::find(known.begin(), known.end(), key) == known.end() &&
             (value.is_number() || value.is_null()))
         {

@@ -41,6 +41,9 @@ struct RunStats
     std::map<std::string, double> extra; // further numeric keys, written at the top level
 };
 
+// The JSON keys of RunStats's members, in their order; every other key is an extra.
+const std::vector<std::string>& statsKeys();
+
 // Fills the model's counts: bodies (moving), static_bodies, joints, constraint_rows (joint rows)
 // and degrees_of_freedom (6 per moving body minus the joint rows).
 void fillModelCounts(RunStats& stats, const core::Model& model);

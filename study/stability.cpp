@@ -495,27 +495,26 @@ std::string watchedText(const StabilityCell& cell)
     return text;
 }
 
-} // namespace
-
-std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
-                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
-                              const std::string& machine, const StabilityReportExtras& extras)
+// Cells by (scene, method label).
+template <class Cell>
+std::map<std::pair<std::string, std::string>, const Cell*> cellsByKey(const std::vector<Cell>& cells)
 {
-    std::map<std::pair<std::string, std::string>, const StabilityCell*> byKey;
-    for (const StabilityCell& cell : cells)
+    std::map<std::pair<std::string, std::string>, const Cell*> byKey;
+    for (const Cell& cell : cells)
     {
         byKey[{cell.scene, cell.method}] = &cell;
     }
-    std::ostringstream out;
-    out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
-           "A run fails when it blows up, a joint comes apart (gap above "
-        << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
-        << " rad), a joint block becomes singular, or a centre of mass tunnels through a static box or "
-           "plane. "
-           "Wall times on "
-        << machine << ", one run at a time.\n\n";
+    return byKey;
+}
 
+// A table of a row per scene and a column per method, each cell text(cell), empty where there is
+// no cell.
+template <class Cell>
+void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNames,
+                      const std::vector<Method>& methods,
+                      const std::map<std::pair<std::string, std::string>, const Cell*>& byKey,
+                      std::string (*text)(const Cell&))
+{
     out << "| scene |";
     for (const Method& method : methods)
     {
@@ -533,10 +532,29 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
         for (const Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
-            out << " " << (it == byKey.end() ? std::string("") : overviewText(*it->second)) << " |";
+            out << " " << (it == byKey.end() ? std::string("") : text(*it->second)) << " |";
         }
         out << "\n";
     }
+}
+
+} // namespace
+
+std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
+                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
+                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
+                              const std::string& machine, const StabilityReportExtras& extras)
+{
+    const auto byKey = cellsByKey(cells);
+    std::ostringstream out;
+    out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
+           "A run fails when it blows up, a joint comes apart (gap above "
+        << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
+        << " rad), a joint block becomes singular, or a centre of mass tunnels through a static box or "
+           "plane. "
+           "Wall times on "
+        << machine << ", one run at a time.\n\n";
+    writeMethodTable(out, sceneNames, methods, byKey, overviewText);
 
     out << "\nThe scenes: energy drift is relative to E_ref = initial kinetic energy + M |g| D (M the moving "
            "mass, D the diagonal of the box holding the initial centres of mass). A scene's own criteria "
@@ -562,11 +580,6 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
 
     if (!extras.largest.empty())
     {
-        std::map<std::pair<std::string, std::string>, const LargestDtCell*> largest;
-        for (const LargestDtCell& cell : extras.largest)
-        {
-            largest[{cell.scene, cell.method}] = &cell;
-        }
         out << "\nWhere it ends: the largest time step at which each scene still holds (survives and meets "
                "its "
                "own criteria), halving from "
@@ -574,27 +587,8 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
             << format("%g", extras.search.duration)
             << " s if shorter (a failure that comes later is not seen), stopping at the first step that "
                "holds "
-               "or after the first step below the scene's own that fails.\n\n| scene |";
-        for (const Method& method : methods)
-        {
-            out << " " << method.label() << " |";
-        }
-        out << "\n|---|";
-        for (std::size_t m = 0; m < methods.size(); ++m)
-        {
-            out << "---|";
-        }
-        out << "\n";
-        for (const std::string& scene : sceneNames)
-        {
-            out << "| " << scene << " |";
-            for (const Method& method : methods)
-            {
-                const auto it = largest.find({scene, method.label()});
-                out << " " << (it == largest.end() ? std::string("") : largestText(*it->second)) << " |";
-            }
-            out << "\n";
-        }
+               "or after the first step below the scene's own that fails.\n\n";
+        writeMethodTable(out, sceneNames, methods, cellsByKey(extras.largest), largestText);
     }
 
     out << "\nDetails: the largest joint gap over the run (positional, angular), the energy's largest rise "

@@ -2,6 +2,7 @@
 // other: scenes/falling_doll.yaml (the paper's figure 8), scenes/pileup44.yaml (figure 7) and
 // scenes/doll_urdf_scene.yaml (two URDF dolls). Run to the end, each step checked.
 #include "contact_harness.h"
+#include "tests/soak.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -120,9 +121,11 @@ TEST(FallingDoll, LandsAndComesToRestWithRattle)
 
 // 44 capsules in four chains of 11 on ball joints, dropped crosswise onto each other and the
 // floor, 5 s. Bounds: finite; penetration under 5 mm (detector and geometry); joint error under
-// 1e-6 m every step; energy never above its start (1e-9 relative).
+// 1e-6 m every step; energy never above its start (1e-9 relative). A soak test: under the
+// sanitizers reference.pileup44 (tests/references) runs the same 5000 steps.
 TEST(Pileup44, PilesWithoutBlowingUp)
 {
+    FRONTIER_SOAK_TEST();
     SceneRun run(io::loadScene(scenePath("pileup44.yaml")));
     int moving = 0;
     for (const core::Body& b : run.model.bodies)
