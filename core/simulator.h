@@ -3,13 +3,13 @@
 // One step of the first-order scheme (`euler`: symplectic Euler with a SHAKE-type projection)
 // reads like the physics, in Simulator::stepEuler() (stage timings: StepStage, core/step/step_stats.h):
 //   checkState -> detectContacts                                                       [Detect]
-//   -> computeFreeVelocities -> rowsAtStart -> stiffenLoadedBodies -> buildExtraRows -> setMomentumRhs
-//   -> predictDrift -> carryImpulses
+//   -> computeFreeVelocities -> rowsAtStart -> stiffenLoadedBodies -> buildExtraRows
+//   -> setMomentumRhs -> predictDrift -> carryImpulses
 //   -> factorAndSolve (O(n): elimination and the joint impulses in one pass)           [Factor]
 //   -> solveContactImpulses                                                            [Solve]
 //      (rowsAtStart .. solveContactImpulses again while an actuator went past its effort limit)
 //   -> integratePositions -> removePenetration -> stabilizeJoints -> recordJointLoads
-//   -> carryAngularMomentum -> finishStep (joint angles, time, checkState)                                     [Integrate]
+//   -> carryAngularMomentum -> finishStep (joint angles, time, checkState)             [Integrate]
 // Each stage is a unit of core/step/: the contact problem (contact_problem.h, with the warm start
 // of impulse_memory.h), positions (positions.h), the penetration projection
 // (penetration_projection.h), the drift correction (drift_correction.h), RATTLE's projection
@@ -30,6 +30,9 @@
 // R = exp(h w) R (a rotation-vector update, so orientations stay unit), or for a body whose angular
 // momentum turns relative to it within the step the free rotation at constant angular momentum
 // (docs/method.md §4, eq. (8a); core/step/positions.h).
+// Geometric stiffness (docs/method.md §7a): a body whose joints pull on it hard enough that the
+// explicit directions would let its sideways mode grow gets h^2 k added to its rotational inertia
+// in the factorization (core/step/geometric_stiffness.h); all other bodies step as without it.
 // Drift (docs/method.md §7): the joint position conditions C(q) are driven back to zero by a
 // further impulse along J^T, solved with the same factorization (a quasi-Newton iteration: J at
 // the start of the step stands for J at the end; re-factored once when that is slow); the impulse changes

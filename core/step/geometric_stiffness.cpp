@@ -21,7 +21,8 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
         double parentEnd = 0.0;
         if (joint.parent >= 0)
         {
-            const Vec3 leverParent = rows.rotation_WB[static_cast<std::size_t>(joint.parent)] * joint.anchorParent;
+            const Vec3 leverParent =
+                rows.rotation_WB[static_cast<std::size_t>(joint.parent)] * joint.anchorParent;
             parentEnd = std::max(0.0, -onChild.dot(leverParent));
         }
         const double childEnd = std::max(0.0, onChild.dot(leverChild));
