@@ -162,6 +162,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             ++summary.contactRoutes[core::routeIndex(stats.contactRoute)];
             summary.contactSweeps += stats.contactSweeps;
             summary.limitSteps += simulator.pushingLimitRows() > 0 ? 1 : 0;
+            summary.stiffenedSteps += stats.stiffenedBodies > 0 ? 1 : 0;
             lastActuatorEfforts(model, simulator, efforts);
             bool atLimit = false;
             for (const CoordinateEffort& e : efforts)

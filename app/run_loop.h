@@ -38,6 +38,7 @@ struct RunSummary
     std::array<long, core::cContactRoutes> contactRoutes{}; // steps by core::ContactRoute
     long contactSweeps = 0;         // Gauss-Seidel sweeps of the contact problem, all steps
     long limitSteps = 0;            // steps in which some joint-limit row pushed
+    long stiffenedSteps = 0;        // steps in which some body took geometric stiffness (docs/method.md §7a)
     double maxActuatorEffort = 0.0; // largest |effort| of any actuator in any step (N or N m)
     long actuatorLimitSteps = 0;    // steps in which some actuator sat at its effort limit
     bool finite = true;             // every state stayed finite (false: the run blew up)

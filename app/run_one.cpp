@@ -109,6 +109,8 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.extra["limit_steps"] = static_cast<double>(s.limitSteps);
     stats.extra["max_actuator_effort"] = s.maxActuatorEffort;
     stats.extra["actuator_limit_steps"] = static_cast<double>(s.actuatorLimitSteps);
+    // Steps in which tensioned light bodies took their geometric stiffness (docs/method.md §7a).
+    stats.extra["geometric_stiffness_steps"] = static_cast<double>(s.stiffenedSteps);
     // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
     const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
                                                 "seconds_per_step_solve", "seconds_per_step_integrate"};

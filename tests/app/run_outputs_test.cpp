@@ -310,6 +310,20 @@ TEST(RunOutputs, HighFrameRateTakesAFramePerStep)
     EXPECT_FALSE(std::filesystem::exists(dir.out("many")));
 }
 
+// geometric_stiffness_steps: the 1e6:1 heavy tip's links are stiffened once the chain is taut
+// (from about step 30 of its 1 ms steps), so most of its first 0.3 s counts; the first steps
+// (the tip falling freely, no tension yet) do not.
+TEST(RunOutputs, StatsCountGeometricStiffnessSteps)
+{
+    const TestDir dir;
+    const std::string tip = dir.out("tip.json");
+    const Result r = dir.run("run scenes/stability/heavy_tip_1e6.yaml --quiet --duration 0.3 --stats " + shellQuote(tip));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const io::RunStats s = io::readStats(tip);
+    EXPECT_GT(s.extra.at("geometric_stiffness_steps"), 150.0);
+    EXPECT_LT(s.extra.at("geometric_stiffness_steps"), static_cast<double>(s.steps));
+}
+
 // limit_steps: the limits scene's rod and slider rest on their limits from about 1 s on, pressed
 // by gravity, so every step after that pushes a limit, and the first steps (both start between
 // their limits) do not; the pendulum has no limits. No actuators: both actuator keys are 0.
@@ -327,6 +341,7 @@ TEST(RunOutputs, StatsCountLimitStepsAndActuatorKeys)
     EXPECT_GE(a.extra.at("limit_steps"), 1000.0);
     EXPECT_LT(a.extra.at("limit_steps"), static_cast<double>(a.steps));
     EXPECT_EQ(b.extra.at("limit_steps"), 0.0);
+    EXPECT_EQ(a.extra.at("geometric_stiffness_steps"), 0.0); // no joint pulls hard enough
     for (const io::RunStats* s : {&a, &b})
     {
         EXPECT_EQ(s->extra.at("max_actuator_effort"), 0.0);
