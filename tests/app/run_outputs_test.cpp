@@ -317,7 +317,8 @@ TEST(RunOutputs, StatsCountGeometricStiffnessSteps)
 {
     const TestDir dir;
     const std::string tip = dir.out("tip.json");
-    const Result r = dir.run("run scenes/stability/heavy_tip_1e6.yaml --quiet --duration 0.3 --stats " + shellQuote(tip));
+    const Result r =
+        dir.run("run scenes/stability/heavy_tip_1e6.yaml --quiet --duration 0.3 --stats " + shellQuote(tip));
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const io::RunStats s = io::readStats(tip);
     EXPECT_GT(s.extra.at("geometric_stiffness_steps"), 150.0);
