@@ -408,10 +408,6 @@ void Simulator::setMomentumRhs(const State& state, double tEnd)
     core::setMomentumRhs(mModel, mRows, state, tEnd, driveStep(), mActuation, mRhs);
 }
 
-// docs/method.md §7, eq. (11a): the first solve asks J u = -C_pred / h so that the drift correction
-// starts near C = 0, on steps whose first solve is the exact tree solve alone: extra rows
-// (contacts, limits, loops) are solved on top of it and would see the bias in their impulses, and
-// pgs solves approximately.
 // docs/method.md §7a, eq. (11c): the bodies whose joints' loads of the last step make them turn
 // stiffly take that stiffness implicitly in this step's factorization.
 void Simulator::stiffenLoadedBodies(const State& state)
@@ -425,6 +421,10 @@ void Simulator::recordJointLoads(State& state) const
     measureJointLoads(mModel, mRows, mSolution, state.jointLoads);
 }
 
+// docs/method.md §7, eq. (11a): the first solve asks J u = -C_pred / h so that the drift correction
+// starts near C = 0, on steps whose first solve is the exact tree solve alone: extra rows
+// (contacts, limits, loops) are solved on top of it and would see the bias in their impulses, and
+// pgs solves approximately.
 void Simulator::predictDrift(const State& state)
 {
     if (mOptions.predictDrift && mStats.extraRows == 0 && mModel.simulation.solver != SolverKind::Pgs)

@@ -19,7 +19,7 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
         const Vec3 onChild = r.J_b.topLeftCorner(n, 3).transpose() * solution.joint[k].head(n); // N s
         const Vec3 leverChild = rows.rotation_WB[static_cast<std::size_t>(joint.child)] * joint.anchorChild;
         double parentEnd = 0.0;
-        if (joint.parent >= 0)
+        if (joint.parent >= 0 && !model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
         {
             const Vec3 leverParent =
                 rows.rotation_WB[static_cast<std::size_t>(joint.parent)] * joint.anchorParent;

@@ -43,9 +43,9 @@ struct StepStats
     double maxJointErrorM = 0.0;               // largest positional joint violation after the step (m)
     double maxJointErrorRad = 0.0;             // largest angular joint violation after the step (rad)
     int stabilizationIterations = 0;
-    int contacts = 0;      // contact points found this step
-    int extraRows = 0;     // contact, loop, limit and joint friction rows this step
-    int contactSweeps = 0; // Gauss-Seidel sweeps of the contact problem
+    int contacts = 0;        // contact points found this step
+    int extraRows = 0;       // contact, loop, limit and joint friction rows this step
+    int contactSweeps = 0;   // Gauss-Seidel sweeps of the contact problem
     int stiffenedBodies = 0; // bodies given geometric stiffness this step (docs/method.md §7a)
     ContactRoute contactRoute = ContactRoute::None;
     double maxPenetrationM = 0.0;    // deepest contact overlap at the start of the step (m)
