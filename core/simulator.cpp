@@ -183,6 +183,7 @@ void Simulator::stepEuler(State& state)
         solveContactImpulses(state); // the extra rows on top (§5)
         clock.lap(StepStage::Solve);
     } while (!actuatorsWithinLimits(state));
+    predictDriftAfterExtraRows(state);
     integratePositions(state);
     removePenetration(state);
     stabilizeJoints(state); // leaves mRowsAfter at the end-of-step pose
@@ -421,15 +422,29 @@ void Simulator::recordJointLoads(State& state) const
     measureJointLoads(mModel, mRows, mSolution, state.jointLoads);
 }
 
-// docs/method.md §7, eq. (11a): the first solve asks J u = -C_pred / h so that the drift correction
-// starts near C = 0, on steps whose first solve is the exact tree solve alone: extra rows
-// (contacts, limits, loops) are solved on top of it and would see the bias in their impulses, and
-// pgs solves approximately.
+// docs/method.md §7, eq. (11a): the velocities ask J u = -D_pred / h so that the drift correction
+// starts near C = 0. On steps whose first solve is the exact tree solve alone, that solve asks it
+// (one solve for both); extra rows (contacts, limits, loops) are solved on top of the first solve
+// and must not see the bias in their impulses, so those steps solve for it on its own after them
+// (predictDriftAfterExtraRows). pgs solves approximately and never predicts.
+bool Simulator::predictsDrift() const
+{
+    return mOptions.predictDrift && mModel.simulation.solver != SolverKind::Pgs;
+}
+
 void Simulator::predictDrift(const State& state)
 {
-    if (mOptions.predictDrift && mStats.extraRows == 0 && mModel.simulation.solver != SolverKind::Pgs)
+    if (predictsDrift() && mStats.extraRows == 0)
     {
         mDrift.addPredictedDrift(state, mRhs, mDt);
+    }
+}
+
+void Simulator::predictDriftAfterExtraRows(State& state)
+{
+    if (predictsDrift() && mStats.extraRows > 0)
+    {
+        mDrift.applyPredictedDrift(state, mSolution, mDt);
     }
 }
 

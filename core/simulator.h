@@ -8,6 +8,7 @@
 //   -> factorAndSolve (O(n): elimination and the joint impulses in one pass)           [Factor]
 //   -> solveContactImpulses                                                            [Solve]
 //      (rowsAtStart .. solveContactImpulses again while an actuator went past its effort limit)
+//   -> predictDriftAfterExtraRows
 //   -> integratePositions -> removePenetration -> stabilizeJoints -> recordJointLoads
 //   -> carryAngularMomentum -> finishStep (joint angles, time, checkState)             [Integrate]
 // Each stage is a unit of core/step/: the contact problem (contact_problem.h, with the warm start
@@ -169,7 +170,9 @@ class Simulator
     void setMomentumRhs(const State& state, double tEnd);
     void stiffenLoadedBodies(const State& state);
     void recordJointLoads(State& state) const;
+    bool predictsDrift() const;
     void predictDrift(const State& state);
+    void predictDriftAfterExtraRows(State& state);
     void carryImpulses();
     void factorAtStart(const State& state);
     void projectVelocities(State& state);

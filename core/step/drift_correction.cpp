@@ -96,6 +96,47 @@ void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& st
     }
 }
 
+void DriftCorrection::applyPredictedDrift(State& state, BlockVector& solution, double dt)
+{
+    mPredictionApplied = true;
+    double largest = 0.0; // m or rad
+    for (const Vec6& d : state.jointDrift)
+    {
+        largest = std::max(largest, d.cwiseAbs().maxCoeff());
+    }
+    if (state.jointDrift.size() != mModel.joints.size() || largest <= mOptions.stabilizationTolerance)
+    {
+        return; // nothing to predict beyond what the correction leaves
+    }
+    for (Vec6& p : mRhs.body)
+    {
+        p.setZero();
+    }
+    for (std::size_t k = 0; k < state.jointDrift.size(); ++k)
+    {
+        mRhs.joint[k] = -state.jointDrift[k] / dt;
+    }
+    mSolver.solve(mRhs, mCorrection);
+    addCorrection(state, solution);
+}
+
+// Velocities move by du (m/s, rad/s), the joints' impulses by dlambda.
+void DriftCorrection::addCorrection(State& state, BlockVector& solution) const
+{
+    for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
+    {
+        if (!mModel.bodies[i].isStatic)
+        {
+            state.bodies[i].velocity_W += mCorrection.body[i].head<3>();
+            state.bodies[i].angularVelocity_W += mCorrection.body[i].tail<3>();
+        }
+    }
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        solution.joint[k] += mCorrection.joint[k];
+    }
+}
+
 const JointErrors& DriftCorrection::measure(const RowSystem& rows)
 {
     mErrors = measureJointErrors(rows, mErrors.worstJoint);
@@ -203,18 +244,7 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
         {
             correctLoops(loopBlocks, dt);
         }
-        for (std::size_t i = 0; i < mModel.bodies.size(); ++i)
-        {
-            if (!mModel.bodies[i].isStatic)
-            {
-                state.bodies[i].velocity_W += mCorrection.body[i].head<3>();
-                state.bodies[i].angularVelocity_W += mCorrection.body[i].tail<3>();
-            }
-        }
-        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-        {
-            solution.joint[k] += mCorrection.joint[k];
-        }
+        addCorrection(state, solution);
         integratePositions(mModel, start, principal, rows, freeRotation, dt, state);
     }
     completeRows();

@@ -62,6 +62,10 @@ class DriftCorrection
     // projection starts close to the manifold. It moves the iteration's starting point, not what
     // it converges to. Adds -D / h to `rhs`; run() then updates State::jointDrift.
     void addPredictedDrift(const State& state, BlockVector& rhs, double dt);
+    // The same prediction on a step with extra rows (contacts, limits, loops), whose impulses must
+    // not see it: its own solve with the step's factorization after theirs, J du = -D / h, added
+    // to the velocities in `state` and to the joint impulses in `solution`.
+    void applyPredictedDrift(State& state, BlockVector& solution, double dt);
 
     const JointErrors& errors() const { return mErrors; } // after the last iteration
     int iterations() const { return mIterations; }        // iterations that moved the state
@@ -71,6 +75,7 @@ class DriftCorrection
     const JointErrors& measure(const RowSystem& rows);
 
   private:
+    void addCorrection(State& state, BlockVector& solution) const; // mCorrection
     void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
     void updatePredictedDrift(const RowSystem& rowsAfter, State& state);
     void addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks);

@@ -10,9 +10,10 @@ struct StepOptions
 {
     double stabilizationTolerance = 1e-10; // m (rad for angular rows)
     int stabilizationIterations = 40;
-    // The first solve of a step without extra rows asks J u = -D_pred / h, the drift the position
-    // update is predicted to leave (docs/method.md §7, eq. (11a)), so the projection starts near
-    // C = 0; false asks J u = 0 (the same result within stabilizationTolerance, more iterations).
+    // The step's velocities ask J u = -D_pred / h, the drift the position update is predicted to
+    // leave (docs/method.md §7, eq. (11a)), so the projection starts near C = 0 (on steps with
+    // extra rows, solved after their impulses); false asks J u = 0 (the same result within
+    // stabilizationTolerance, more iterations).
     bool predictDrift = true;
     double restitutionSpeed = 0.1; // m/s: slower impacts do not bounce, so things come to rest
     double penetrationSlop = 5e-4; // m: overlap left to the next steps' contacts, not projected
