@@ -4,6 +4,7 @@
 #include "core/joints/drive.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <numeric>
 
@@ -212,8 +213,10 @@ void linkBlocks(const Model& model, FrontierLayout& layout)
 
 FrontierLayout buildFrontierLayout(const Model& model)
 {
+    static std::atomic<std::uint64_t> layoutsMade{0};
     const std::size_t nb = model.bodies.size();
     FrontierLayout layout;
+    layout.id = ++layoutsMade;
     layout.bodyBlock.assign(nb, -1);
     layout.jointBlock.assign(model.joints.size(), -1);
     layout.treeOfBody.assign(nb, -1);

@@ -13,6 +13,7 @@
 
 #include "core/model.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace frontier::core
@@ -44,6 +45,9 @@ struct FrontierLayout
     std::vector<int> treeOfBody;     // body index -> tree id, -1 for static bodies
     int treeCount = 0;
     int size = 0; // scalar rows in all
+    // Unique to each layout buildFrontierLayout made (copies share it; 0: made another way), so a
+    // solver that factors the same layout again may keep what it derived from it.
+    std::uint64_t id = 0;
 };
 
 // True when the joint's parent is the world or a static body.

@@ -261,18 +261,18 @@ void TreeSolver::factorAndSolve(const RowSystem& system, const BlockVector& rhs,
     backwardSweep(solution);
 }
 
-// §3 step 2 in layout order; with a right-hand side, §3 step 3's forward sweep at each block as
-// soon as it is eliminated (its factors are still in cache).
-void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
+// The block table and the arena offsets of `layout`: one pass over it. Pivots are not
+// initialized in a pass of their own: a block's first child sets its pivot, and a node adds its
+// mass matrix when it is reached, so the arena is written in layout order and only the parent's
+// pivot is touched out of order. A layout made by buildFrontierLayout is laid out once.
+void TreeSolver::layOutBlocks(const FrontierLayout& layout)
 {
-    mSystem = &system;
-    const FrontierLayout& layout = *system.layout;
     const std::size_t nblocks = layout.blocks.size();
-
-    // Block table and arena offsets: one pass over the layout. Pivots are not initialized in a
-    // pass of their own: a block's first child sets its pivot, and a node adds its mass matrix
-    // when it is reached, so the arena is written in layout order and only the parent's pivot is
-    // touched out of order.
+    if (layout.id != 0 && layout.id == mBlocksOfLayout && mBlocks.size() == nblocks)
+    {
+        return;
+    }
+    mBlocksOfLayout = 0;
     mBlocks.resize(nblocks);
     mOffsets.resize(nblocks);
     mSeen.assign(nblocks, 0);
@@ -346,6 +346,17 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
             mUnmappedJoints.push_back(static_cast<int>(j));
         }
     }
+    mBlocksOfLayout = layout.id;
+}
+
+// §3 step 2 in layout order; with a right-hand side, §3 step 3's forward sweep at each block as
+// soon as it is eliminated (its factors are still in cache).
+void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
+{
+    mSystem = &system;
+    const FrontierLayout& layout = *system.layout;
+    const std::size_t nblocks = layout.blocks.size();
+    layOutBlocks(layout);
 
     // §3 step 2: eliminate in layout order.
     double* arena = mArena.data();

@@ -58,6 +58,7 @@ class TreeSolver final : public ImpulseSolver
         std::uint8_t flags = 0;     // the c* bits below
         std::uint8_t unused = 0;
     };
+    void layOutBlocks(const FrontierLayout& layout); // the block table and arena offsets
     void eliminateAll(const RowSystem& system, const BlockVector* rhs);
     void eliminate(std::size_t block);                           // §3 step 2 at one block
     void forwardStep(std::size_t block, const BlockVector& rhs); // §3 step 3, forward, one block
@@ -79,6 +80,7 @@ class TreeSolver final : public ImpulseSolver
     static constexpr std::uint8_t cDriven = 16;           // edge: ends with compliant drive rows
 
     LargeVector<BlockInfo> mBlocks; // layout order
+    std::uint64_t mBlocksOfLayout = 0; // FrontierLayout::id the table was laid out for (0: none)
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
     // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then
     // L_b = D_b^-1 H_bp, dim x parentDim column-major.

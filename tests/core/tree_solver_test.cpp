@@ -387,6 +387,41 @@ TEST(TreeSolver, RefactorAtANewConfigurationReusesStorage)
     }
 }
 
+// The block table is laid out once per layout (FrontierLayout::id): one solver alternating
+// between two layouts of the same number of blocks but different shapes (a chain and a bushy
+// tree) solves each exactly as a solver that only ever saw that one.
+TEST(TreeSolver, AlternatingLayoutsOfOneSizeSolveAsFreshSolvers)
+{
+    RandomTreeOptions chain;
+    chain.bodies = 40;
+    chain.branching = 0.0;
+    RandomTreeOptions bushy = chain;
+    bushy.branching = 1.0;
+    const Model a = randomTree(601, chain);
+    const Model b = randomTree(602, bushy);
+    const auto pa = makeProblem(a);
+    const auto pb = makeProblem(b);
+    ASSERT_EQ(pa->layout.blocks.size(), pb->layout.blocks.size());
+    ASSERT_NE(pa->layout.id, pb->layout.id);
+    const BlockVector ra = momentumRhs(a, pa->state, pa->system);
+    const BlockVector rb = momentumRhs(b, pb->state, pb->system);
+    BlockVector freshA, freshB;
+    core::TreeSolver onlyA, onlyB, both;
+    onlyA.factorAndSolve(pa->system, ra, freshA);
+    onlyB.factorAndSolve(pb->system, rb, freshB);
+    for (int round = 0; round < 2; ++round)
+    {
+        BlockVector x, y;
+        both.factorAndSolve(pa->system, ra, x);
+        both.factorAndSolve(pb->system, rb, y);
+        EXPECT_EQ(bodyDiff(x, freshA), 0.0) << "round " << round;
+        EXPECT_EQ(jointDiff(pa->system, x, freshA), 0.0) << "round " << round;
+        EXPECT_EQ(bodyDiff(y, freshB), 0.0) << "round " << round;
+        EXPECT_EQ(jointDiff(pb->system, y, freshB), 0.0) << "round " << round;
+    }
+    EXPECT_GT(bodyNorm(freshA), 0.0);
+}
+
 // factorAndSolve (the forward sweep fused into the elimination) computes exactly what factor()
 // then solve() do, in the same order: bit-identical results, also for later solves with the
 // same factorization.
