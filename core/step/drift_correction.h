@@ -77,7 +77,8 @@ class DriftCorrection
   private:
     void addCorrection(State& state, BlockVector& solution) const; // mCorrection
     void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
-    void updatePredictedDrift(const RowSystem& rowsAfter, State& state);
+    void updatePredictedDrift(const RowSystem& rowsAfter, State& state, double dt);
+    bool underTension(const Joint& joint) const; // mTension, for updatePredictedDrift
     void addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks);
 
     const Model& mModel;
@@ -87,6 +88,7 @@ class DriftCorrection
     JointErrors mErrors;
     int mIterations = 0;
     bool mPredictionApplied = false; // addPredictedDrift was called for this step
+    LargeVector<double> mTension;    // per body: 1 where its joints' loads put h^2 k / I past cTenseRatio (§7a)
     RowSystem mRowsRefactored;       // rows of a re-factorization when the quasi-Newton iteration is slow
     BlockVector mRhs, mCorrection;
     Eigen::MatrixXd mLoopG;

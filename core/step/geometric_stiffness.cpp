@@ -31,20 +31,19 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
     }
 }
 
-int stiffenLoadedBodies(const Model& model, const std::vector<double>& loads, double dt, RowSystem& rows)
+void geometricInertias(const Model& model, const std::vector<double>& loads, double dt, LargeVector<double>& out)
 {
-    rows.geometricInertia.clear();
+    // eq. (11c): h^2 k_i = h sum over body i's joint ends of Λ . ρ (kg m^2).
+    out.assign(model.bodies.size(), 0.0);
     if (loads.size() != 2 * model.joints.size())
     {
-        return 0;
+        return;
     }
-    // eq. (11c): h^2 k_i = h sum over body i's joint ends of Λ . ρ (kg m^2).
-    rows.geometricInertia.assign(model.bodies.size(), 0.0);
     const auto add = [&](int body, double load)
     {
         if (body >= 0 && !model.bodies[static_cast<std::size_t>(body)].isStatic)
         {
-            rows.geometricInertia[static_cast<std::size_t>(body)] += dt * load;
+            out[static_cast<std::size_t>(body)] += dt * load;
         }
     };
     for (std::size_t k = 0; k < model.joints.size(); ++k)
@@ -52,6 +51,16 @@ int stiffenLoadedBodies(const Model& model, const std::vector<double>& loads, do
         add(model.joints[k].parent, loads[2 * k]);
         add(model.joints[k].child, loads[2 * k + 1]);
     }
+}
+
+int stiffenLoadedBodies(const Model& model, const std::vector<double>& loads, double dt, RowSystem& rows)
+{
+    rows.geometricInertia.clear();
+    if (loads.size() != 2 * model.joints.size())
+    {
+        return 0;
+    }
+    geometricInertias(model, loads, dt, rows.geometricInertia);
     int stiffened = 0;
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {

@@ -5,6 +5,7 @@
 #include "sim_test_util.h"
 
 #include <cstddef>
+#include <cstdio>
 
 namespace frontier::sim::test
 {
@@ -58,10 +59,12 @@ TEST(DriftPrediction, SameStepResultWithFewerProjectionIterations)
     // h (velocities). Measured after 500 steps: 1.8e-10 m and 3.9e-8 m/s.
     EXPECT_LT(largestDifferenceM, 1e-8) << "speeds differ by " << largestSpeedDifference << " m/s";
     EXPECT_LT(largestSpeedDifference, 1e-6);
-    // Measured: 1 041 projection iterations without (2.1 a step), 814 with (1.6 a step; joints whose
-    // drift is not smooth start their prediction over, core/step/drift_correction.cpp).
-    EXPECT_LT(static_cast<double>(predicted.iterations), 0.85 * static_cast<double>(plain.iterations))
+    // Measured: 1 041 projection iterations without (2.1 a step), 654 with (1.3 a step). Joints
+    // under no large tension keep their prediction through misses of 4-15% a step
+    // (core/step/drift_correction.cpp); starting them over every other step took 814.
+    EXPECT_LT(static_cast<double>(predicted.iterations), 0.7 * static_cast<double>(plain.iterations))
         << predicted.iterations << " vs " << plain.iterations;
+    std::printf("chain30: %ld projection iterations without the prediction, %ld with\n", plain.iterations, predicted.iterations);
 }
 
 } // namespace
