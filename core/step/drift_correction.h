@@ -88,7 +88,7 @@ class DriftCorrection
     JointErrors mErrors;
     int mIterations = 0;
     bool mPredictionApplied = false; // addPredictedDrift was called for this step
-    LargeVector<double> mTension;    // per body: 1 where its joints' loads put h^2 k / I past cTenseRatio (§7a)
+    LargeVector<double> mTension;    // per body: 1 where h^2 k / I > cTenseRatio (§7a)
     RowSystem mRowsRefactored;       // rows of a re-factorization when the quasi-Newton iteration is slow
     BlockVector mRhs, mCorrection;
     Eigen::MatrixXd mLoopG;

@@ -31,7 +31,8 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
     }
 }
 
-void geometricInertias(const Model& model, const std::vector<double>& loads, double dt, LargeVector<double>& out)
+void geometricInertias(const Model& model, const std::vector<double>& loads, double dt,
+                       LargeVector<double>& out)
 {
     // eq. (11c): h^2 k_i = h sum over body i's joint ends of Λ . ρ (kg m^2).
     out.assign(model.bodies.size(), 0.0);

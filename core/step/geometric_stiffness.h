@@ -37,7 +37,8 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
 
 // h^2 k of every body for a step of dt (s), eq. (11c): h sum (Λ . ρ) over its joints' ends (kg m^2;
 // zeros when `loads` is empty).
-void geometricInertias(const Model& model, const std::vector<double>& loads, double dt, LargeVector<double>& out);
+void geometricInertias(const Model& model, const std::vector<double>& loads, double dt,
+                       LargeVector<double>& out);
 
 // Sets rows.geometricInertia for a step of dt (s) from the joints' loads (measureJointLoads; empty:
 // none): h sum (Λ . ρ) (kg m^2) on the bodies past cStiffRatio, left empty when there are none.

@@ -59,9 +59,10 @@ TEST(ContactDriftPrediction, SameLandingWithFewerProjectionIterations)
     double speed = 0.0; // m/s
     for (std::size_t i = 0; i < plain.state.bodies.size(); ++i)
     {
-        positionM = std::max(positionM,
-                             (plain.state.bodies[i].position_W - predicted.state.bodies[i].position_W).norm());
-        speed = std::max(speed, (plain.state.bodies[i].velocity_W - predicted.state.bodies[i].velocity_W).norm());
+        positionM = std::max(
+            positionM, (plain.state.bodies[i].position_W - predicted.state.bodies[i].position_W).norm());
+        speed =
+            std::max(speed, (plain.state.bodies[i].velocity_W - predicted.state.bodies[i].velocity_W).norm());
     }
     std::printf("contact steps %ld: projection iterations %ld without the prediction, %ld with; bodies apart "
                 "by %.3g m, %.3g m/s\n",
@@ -70,7 +71,8 @@ TEST(ContactDriftPrediction, SameLandingWithFewerProjectionIterations)
     // would move the bodies by millimetres.
     EXPECT_LT(positionM, 1e-6);
     EXPECT_LT(speed, 1e-4);
-    EXPECT_LT(static_cast<double>(predicted.contactIterations), 0.9 * static_cast<double>(plain.contactIterations));
+    EXPECT_LT(static_cast<double>(predicted.contactIterations),
+              0.9 * static_cast<double>(plain.contactIterations));
 }
 
 } // namespace

@@ -64,7 +64,8 @@ TEST(DriftPrediction, SameStepResultWithFewerProjectionIterations)
     // (core/step/drift_correction.cpp); starting them over every other step took 814.
     EXPECT_LT(static_cast<double>(predicted.iterations), 0.7 * static_cast<double>(plain.iterations))
         << predicted.iterations << " vs " << plain.iterations;
-    std::printf("chain30: %ld projection iterations without the prediction, %ld with\n", plain.iterations, predicted.iterations);
+    std::printf("chain30: %ld projection iterations without the prediction, %ld with\n", plain.iterations,
+                predicted.iterations);
 }
 
 } // namespace
