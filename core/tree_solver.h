@@ -79,7 +79,7 @@ class TreeSolver final : public ImpulseSolver
                                                           // body (LayoutBlock::childIsJointChild)
     static constexpr std::uint8_t cDriven = 16;           // edge: ends with compliant drive rows
 
-    LargeVector<BlockInfo> mBlocks; // layout order
+    LargeVector<BlockInfo> mBlocks;    // layout order
     std::uint64_t mBlocksOfLayout = 0; // FrontierLayout::id the table was laid out for (0: none)
     // Block b's factors start at mArena[mOffsets[b]]: the lower Cholesky factor of D_b (edges:
     // of -D_b) packed by columns with reciprocal diagonal, dim (dim + 1) / 2 doubles; then

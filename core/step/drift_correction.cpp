@@ -118,14 +118,8 @@ void DriftCorrection::applyPredictedDrift(State& state, BlockVector& solution, d
     {
         return; // nothing to predict beyond what the correction leaves
     }
-    for (Vec6& p : mRhs.body)
-    {
-        p.setZero();
-    }
-    for (std::size_t k = 0; k < state.jointDrift.size(); ++k)
-    {
-        mRhs.joint[k] = -state.jointDrift[k] / dt;
-    }
+    mRhs.setZero();
+    addPredictedDrift(state, mRhs, dt); // the joint rows ask -D / h, the bodies nothing
     mSolver.solve(mRhs, mCorrection);
     addCorrection(state, solution);
 }
