@@ -120,7 +120,7 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
             }
         }
     }
-    // The stats JSON's keys (README "Files"), then the extra ones. The scene and the failure have
+    // The stats JSON's keys (docs/files.md), then the extra ones. The scene and the failure have
     // columns of their own, the warnings none.
     std::vector<std::string> statsKeys;
     std::vector<std::string> wallKeys;

@@ -1,4 +1,4 @@
-// io/contacts_file.h: the contacts CSV of a run (`frontier run --contacts`, README "Files").
+// io/contacts_file.h: the contacts CSV of a run (`frontier run --contacts`, docs/files.md).
 //
 // Format (io/csv_output.h: comment line, header, 17 significant digits, atomic):
 //   # frontier contacts: scene=<path> dt=<s> ... (the trajectory's key=value pairs)

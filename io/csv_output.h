@@ -1,5 +1,5 @@
 // io/csv_output.h: what the CSV files of a run share (the trajectory, joints and contacts files,
-// README "Files"): a comment line `# frontier KIND: key=value ...` that makes the file
+// docs/files.md): a comment line `# frontier KIND: key=value ...` that makes the file
 // self-describing (pandas skips it with comment='#'), a header line, then one line per row;
 // numbers with 17 significant digits, so they read back bit for bit; written atomically
 // (io/atomic_file.h), so a failed run leaves no file that looks complete.

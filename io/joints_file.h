@@ -1,4 +1,4 @@
-// io/joints_file.h: the joints CSV of a run (`frontier run --joints`, README "Files"), long format.
+// io/joints_file.h: the joints CSV of a run (`frontier run --joints`, docs/files.md), long format.
 //
 // Format (io/csv_output.h: comment line, header, 17 significant digits, atomic):
 //   # frontier joints: scene=<path> dt=<s> ... (the trajectory's key=value pairs)

@@ -1,4 +1,4 @@
-// io/stats.h: the stats JSON of a run (README, "Files"; `frontier run --stats`).
+// io/stats.h: the stats JSON of a run (docs/files.md; `frontier run --stats`).
 #pragma once
 
 #include "core/model.h"

@@ -1,4 +1,4 @@
-// io/trajectory.h: the trajectory CSV (README, "Files"): write atomically, read back exactly.
+// io/trajectory.h: the trajectory CSV (docs/files.md): write atomically, read back exactly.
 //
 // Format:
 //   # frontier trajectory: scene=<path> dt=<s> solver=<name> ... (key=value pairs)
