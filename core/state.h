@@ -25,10 +25,14 @@ struct State
     // continuous across +-pi (rad, 0 at the model's initial pose; core/joints/coordinates.h); 0
     // for the other types. Part of the state so that copies and restarts of a step agree.
     std::vector<double> jointAngles;
-    // Per Model::joints entry: the violation of its conditions the last step's position update
-    // left (m, rad), which the next step's first solve anticipates (docs/method.md §7, eq. (11a));
-    // empty when there is none. Part of the state so that copies and restarts of a step agree.
+    // Per Model::joints entry: the violation of its conditions the next step's first solve
+    // anticipates (m, rad; docs/method.md §7, eq. (11a)); empty when there is none. Part of the
+    // state so that copies and restarts of a step agree.
     std::vector<Eigen::Matrix<double, 6, 1>> jointDrift;
+    // Per Model::joints entry: the drift the last step's position update would have left without
+    // a prediction (m, rad), from which the next prediction extrapolates (eq. (11a)); empty or
+    // zero when there is none.
+    std::vector<Eigen::Matrix<double, 6, 1>> jointDriftLast;
     // Two per Model::joints entry (its parent's end, its child's): the tension moments of the last
     // steps (N s m, core/step/geometric_stiffness.h), which set the next step's geometric stiffness
     // (docs/method.md §7a); empty before the first step. Part of the state so that copies and

@@ -56,6 +56,26 @@ void DriftCorrection::addPredictedDrift(const State& state, BlockVector& rhs, do
     mPredictionApplied = true;
 }
 
+// docs/method.md §7, eq. (11a): D_pred = D_n + beta (D_n - D_(n-1)) where the joint's drift changed
+// smoothly over the last step (by at most cSmoothChange of itself, and larger than cDriftFloor,
+// below which the change is round-off), D_n otherwise. beta < 1 damps the extrapolation: at 1 the
+// recurrence of the prediction's errors, z^2 = (1 + beta) z - beta, has a double root at 1, and the
+// linear and dense solvers' trajectories of a damped 4-link chain parted by 7.6e-10 m in 0.5 s
+// (3e-12 m at 0.9).
+Vec6 DriftCorrection::extrapolatedDrift(const Vec6& drift, const Vec6& lastDrift)
+{
+    constexpr double cBeta = 0.9;
+    constexpr double cSmoothChange = 0.2;
+    constexpr double cDriftFloor = 1e-8; // m or rad
+    const double size = drift.cwiseAbs().maxCoeff();
+    const Vec6 change = drift - lastDrift;
+    if (size > cDriftFloor && change.cwiseAbs().maxCoeff() <= cSmoothChange * size)
+    {
+        return drift + cBeta * change;
+    }
+    return drift;
+}
+
 // docs/method.md §7, eq. (11a). After the position update of a step that asked J u = -D / h, the
 // rows measure what the prediction missed; D + that is the drift the free update would have left
 // (to first order), the next step's prediction. A miss larger than the prediction itself (an
@@ -74,9 +94,11 @@ void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& st
     if (!applied)
     {
         state.jointDrift.clear();
+        state.jointDriftLast.clear();
         return;
     }
     state.jointDrift.resize(mModel.joints.size(), Vec6::Zero());
+    state.jointDriftLast.resize(mModel.joints.size(), Vec6::Zero());
     geometricInertias(mModel, state.jointLoads, dt, mTension);
     for (std::size_t i = 0; i < mTension.size(); ++i)
     {
@@ -94,15 +116,18 @@ void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& st
         const double predictedHere = state.jointDrift[k].cwiseAbs().maxCoeff();
         missed = std::max(missed, missedHere);
         predicted = std::max(predicted, predictedHere);
-        state.jointDrift[k] += miss;
+        Vec6 drift = state.jointDrift[k] + miss; // D_n
         if (predictedHere > 0.0 && missedHere > cJointMiss * predictedHere && underTension(mModel.joints[k]))
         {
-            state.jointDrift[k].setZero(); // this joint's drift is not smooth in time
+            drift.setZero(); // this joint's drift is not smooth in time
         }
+        state.jointDrift[k] = extrapolatedDrift(drift, state.jointDriftLast[k]);
+        state.jointDriftLast[k] = drift;
     }
     if (predicted > 0.0 && missed > predicted)
     {
         state.jointDrift.clear();
+        state.jointDriftLast.clear();
     }
 }
 
@@ -116,7 +141,10 @@ void DriftCorrection::applyPredictedDrift(State& state, BlockVector& solution, d
     }
     if (state.jointDrift.size() != mModel.joints.size() || largest <= mOptions.stabilizationTolerance)
     {
-        return; // nothing to predict beyond what the correction leaves
+        // Nothing to predict beyond what the correction leaves; with no prediction asked, the
+        // update measures the whole drift (a kept D_n would add this step's miss to it).
+        state.jointDrift.clear();
+        return;
     }
     mRhs.setZero();
     addPredictedDrift(state, mRhs, dt); // the joint rows ask -D / h, the bodies nothing

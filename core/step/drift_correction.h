@@ -78,6 +78,7 @@ class DriftCorrection
     void addCorrection(State& state, BlockVector& solution) const; // mCorrection
     void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
     void updatePredictedDrift(const RowSystem& rowsAfter, State& state, double dt);
+    static Vec6 extrapolatedDrift(const Vec6& drift, const Vec6& lastDrift); // eq. (11a)
     bool underTension(const Joint& joint) const; // mTension, for updatePredictedDrift
     void addLoopCompliance(const std::vector<ExtraBlock>& loopBlocks);
 
