@@ -7,8 +7,8 @@
 // with one rigid velocity; contacts between box, sphere, capsule and cylinder shapes (several per
 // body, posed in the body) and static bodies' shapes (a plane floor), on the pairs Frontier's
 // filter allows (contacts.h), with the scene's friction and restitution (MuJoCo: friction only).
-// A model outside that scope (meshes, other joints, limits, actuators, loads, joints to static
-// bodies) is refused with a message that says what is missing.
+// A model outside that scope (meshes, other joints, limits, joint damping or friction, actuators,
+// loads, joints to static bodies) is refused with a message that says what is missing.
 #pragma once
 
 #include "core/model.h"

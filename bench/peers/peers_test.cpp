@@ -94,10 +94,8 @@ TEST(Peers, FreeChainAgreesInEveryEngine)
     expectAgreement({"free chain", freeChain()});
 }
 
-TEST(Peers, OutOfScopeModelsAreRefusedWithAReason)
+void expectRefusedByEveryPeer(const core::Model& model, const std::string& what, const std::string& reason)
 {
-    core::Model model = chainOfBoxes(3);
-    model.joints[1].type = core::JointType::Prismatic;
     for (const std::string& name : engineNames())
     {
         if (name.rfind("frontier", 0) == 0)
@@ -105,13 +103,25 @@ TEST(Peers, OutOfScopeModelsAreRefusedWithAReason)
         try
         {
             makeEngine(name, model);
-            ADD_FAILURE() << name << " accepted a prismatic joint";
+            ADD_FAILURE() << name << " accepted " << what;
         }
         catch (const Unsupported& e)
         {
             EXPECT_NE(std::string(e.what()).find("joint1"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
         }
     }
+}
+
+TEST(Peers, OutOfScopeModelsAreRefusedWithAReason)
+{
+    core::Model prismatic = chainOfBoxes(3);
+    prismatic.joints[1].type = core::JointType::Prismatic;
+    expectRefusedByEveryPeer(prismatic, "a prismatic joint", "ball, revolute, angle and fixed");
+    // Joint damping would otherwise be dropped without a word by the engines that run the rest.
+    core::Model damped = chainOfBoxes(3);
+    damped.joints[1].damping = 0.1;
+    expectRefusedByEveryPeer(damped, "joint damping", "damping or friction");
 }
 
 // A floor (static plane z = 0) and one moving body with the given shape, its centre at height z.

@@ -58,6 +58,9 @@ std::vector<TreeLink> jointTree(const core::Model& model)
                               "': the harness translates ball, revolute, angle and fixed joints");
         if (joint.limits)
             throw Unsupported("joint '" + joint.name + "' has limits: the harness does not translate them");
+        if (joint.damping != 0.0 || joint.friction != 0.0)
+            throw Unsupported("joint '" + joint.name +
+                              "' has damping or friction: the harness does not translate them");
         if (joint.parent != core::cWorld && model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
             throw Unsupported("joint '" + joint.name +
                               "' has a static parent: the harness joins bodies to the world only");

@@ -25,7 +25,7 @@ inline bool isRoot(const TreeLink& link)
 // bodies are left out: they are collision geometry). Throws Unsupported when the model has a
 // loop, a joint to a static body, a tree that does not start with one rigid velocity (or is
 // joined to the world and starts moving), actuators or loads, or a joint other than ball,
-// revolute, angle or fixed (or one with limits).
+// revolute, angle or fixed (or one with limits, damping or friction).
 std::vector<TreeLink> jointTree(const core::Model& model);
 
 // Rotation and position of body b's frame relative to body a's frame at the model's initial pose
