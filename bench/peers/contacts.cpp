@@ -13,11 +13,6 @@ bool hasContacts(const core::Model& model)
     int withShapes = 0;
     for (const core::Body& body : model.bodies)
     {
-        for (const core::Shape& shape : body.shapes)
-            if (shape.type == core::ShapeType::Mesh)
-                throw Unsupported("body '" + body.name +
-                                  "' has a mesh: the harness translates boxes, spheres, capsules, "
-                                  "cylinders and planes");
         if (body.shapes.empty())
             continue;
         ++withShapes;
@@ -26,6 +21,16 @@ bool hasContacts(const core::Model& model)
         group = &body.group;
     }
     return withShapes >= 2 && !oneGroup;
+}
+
+collision::ConvexHull meshHull(const core::Body& body, const core::Shape& shape)
+{
+    collision::ConvexHull hull;
+    std::string reason;
+    if (!collision::computeConvexHull(shape.vertices, hull, reason))
+        throw Unsupported("body '" + body.name + "': mesh '" + shape.meshFile + "' has no convex hull (" +
+                          reason + ")");
+    return hull;
 }
 
 std::vector<std::pair<int, int>> excludedPairs(const core::Model& model, const collision::PairFilter& filter)

@@ -8,6 +8,7 @@
 
 #include "bench/peers/engine.h"
 #include "collision/contacts.h"
+#include "collision/convex_hull.h"
 #include "collision/filter.h"
 #include "core/state.h"
 
@@ -20,8 +21,12 @@ namespace frontier::peers
 
 // False when no two bodies of the model can ever collide (no shapes, or every body with shapes
 // moving and in one group, as the generated chains): the engines then get no collision geometry.
-// Throws Unsupported for shapes the harness does not translate (meshes).
 bool hasContacts(const core::Model& model);
+
+// A mesh shape as the peers collide it: its convex hull, in the shape's frame (Frontier collides a
+// moving mesh as its hull; the peers do so for static meshes too). Throws Unsupported when the
+// mesh has no 3-d hull.
+collision::ConvexHull meshHull(const core::Body& body, const core::Shape& shape);
 
 // Pairs (i < j) of bodies with shapes, not both static, that the filter keeps apart.
 std::vector<std::pair<int, int>> excludedPairs(const core::Model& model, const collision::PairFilter& filter);

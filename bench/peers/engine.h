@@ -2,13 +2,16 @@
 // ODE, MuJoCo), each translated from the same Model through that engine's own API, so that every
 // engine runs the same bodies, joints, gravity and time step.
 //
-// Scope: moving bodies joined in trees by ball, revolute, angle (universal) and fixed joints
-// without limits, each tree's root joined to the world or free, each tree starting at rest or
-// with one rigid velocity; contacts between box, sphere, capsule and cylinder shapes (several per
-// body, posed in the body) and static bodies' shapes (a plane floor), on the pairs Frontier's
-// filter allows (contacts.h), with the scene's friction and restitution (MuJoCo: friction only).
-// A model outside that scope (meshes, other joints, limits, joint damping or friction, actuators,
-// loads, joints to static bodies) is refused with a message that says what is missing.
+// Scope: moving bodies joined in trees by ball, revolute (with or without limits), angle
+// (universal) and fixed joints, each tree's root joined to the world (or to a static body) or
+// free, each tree starting at rest or with one rigid velocity; any inertia tensor; contacts
+// between box, sphere, capsule, cylinder and mesh shapes (a mesh as its convex hull; several
+// shapes per body, posed in the body) and static bodies' shapes (a plane floor, a robot's base),
+// on the pairs Frontier's filter allows (contacts.h), with the scene's friction and restitution
+// (MuJoCo: friction only). A robot from a URDF fits when its joints have no damping or friction
+// (Debian dart-doc's Barrett WAM does; its Atlas has joint damping). A model outside that scope
+// (other joints, limits on other joints, joint damping or friction, actuators, loads) is refused
+// with a message that says what is missing.
 #pragma once
 
 #include "core/model.h"

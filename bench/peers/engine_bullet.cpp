@@ -9,14 +9,21 @@
 // btRigidBody or a btMultiBodyLinkCollider; static bodies as collision objects. Which pairs
 // collide is decided by Frontier's filter in an overlap filter callback. Bullet combines two
 // objects' friction and restitution as products, so each object gets the square roots of the
-// scene's: every pair then has the scene's values.
+// scene's: every pair then has the scene's values. A mesh is its convex hull (btConvexHullShape).
+//
+// Bullet takes a body's frame to be its principal axes: a body whose inertia is not diagonal is
+// built in the frame of its principal axes (principal.h) and its pose turned back. Revolute limits:
+// btMultiBodyJointLimitConstraint on a multibody, btHingeConstraint::setLimit on rigid bodies
+// (the hinge frames built so that the initial pose is angle 0, where the model's limits count from).
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
+#include "bench/peers/principal.h"
 #include "bench/peers/tree.h"
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointLimitConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLink.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
 #include <algorithm>
@@ -27,6 +34,8 @@ namespace frontier::peers
 {
 namespace
 {
+
+constexpr double cHullMargin = 0.001; // m
 
 btVector3 toBt(const core::Vec3& v)
 {
@@ -119,8 +128,16 @@ struct BulletParts
                 pose.setIdentity();
                 break;
             }
-            default:
-                throw Unsupported("body '" + body.name + "': Bullet is not given meshes by the harness");
+            case core::ShapeType::Mesh: // its convex hull, 1 mm margin (Bullet's default 4 cm pads hulls)
+            {
+                auto hull = std::make_unique<btConvexHullShape>();
+                for (const core::Vec3& v : meshHull(body, shape).vertices)
+                    hull->addPoint(toBt(v), false);
+                hull->recalcLocalAabb();
+                hull->setMargin(cHullMargin);
+                made = std::move(hull);
+                break;
+            }
             }
             parts.emplace_back(made.get(), pose);
             shapes.push_back(std::move(made));
@@ -184,14 +201,15 @@ struct BulletParts
 class BulletMultibody final : public Engine
 {
   public:
-    explicit BulletMultibody(const core::Model& model) : mModel(model), mTree(jointTree(model)), mParts(model)
+    explicit BulletMultibody(const core::Model& model)
+        : mModel(inPrincipalFrames(model, mRotation_BP)), mTree(jointTree(mModel)), mParts(mModel)
     {
         mWorld = std::make_unique<btMultiBodyDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                             &mParts.configuration);
-        mWorld->setGravity(toBt(model.simulation.gravity));
+        mWorld->setGravity(toBt(mModel.simulation.gravity));
         mParts.installFilter(*mWorld);
         mParts.addStatics(*mWorld);
-        mLinkOf.assign(model.bodies.size(), {-1, -1});
+        mLinkOf.assign(mModel.bodies.size(), {-1, -1});
         std::size_t k = 0;
         while (k < mTree.size())
         {
@@ -205,6 +223,8 @@ class BulletMultibody final : public Engine
 
     ~BulletMultibody() override
     {
+        for (auto& c : mLimits)
+            mWorld->removeMultiBodyConstraint(c.get());
         for (auto& c : mColliders)
             mWorld->removeCollisionObject(c.get());
         mParts.removeStatics(*mWorld);
@@ -230,7 +250,7 @@ class BulletMultibody final : public Engine
             const btMultiBody& body = *mBodies[static_cast<std::size_t>(tree)];
             const btTransform t =
                 link < 0 ? body.getBaseWorldTransform() : body.getLink(link).m_cachedWorldTransform;
-            out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation())};
+            out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation()) * mRotation_BP[b].conjugate()};
         }
     }
 
@@ -276,6 +296,32 @@ class BulletMultibody final : public Engine
         mb.setCanSleep(false);
         mWorld->addMultiBody(&mb);
         addColliders(tree, first, end);
+        addLimits(tree, first, end);
+    }
+
+    bool hasLimits() const
+    {
+        return std::any_of(mModel.joints.begin(), mModel.joints.end(),
+                           [](const core::Joint& joint) { return joint.limits.has_value(); });
+    }
+
+    // The revolute joints' limits (the link's coordinate is 0 at the initial pose, as the model's).
+    void addLimits(int tree, std::size_t first, std::size_t end)
+    {
+        btMultiBody& mb = *mBodies[static_cast<std::size_t>(tree)];
+        for (std::size_t k = first; k < end; ++k)
+        {
+            if (mTree[k].joint < 0)
+                continue;
+            const core::Joint& joint = mModel.joints[static_cast<std::size_t>(mTree[k].joint)];
+            if (!joint.limits)
+                continue;
+            const int link = mLinkOf[static_cast<std::size_t>(mTree[k].body)].second;
+            auto limit = std::make_unique<btMultiBodyJointLimitConstraint>(&mb, link, (*joint.limits)[0],
+                                                                           (*joint.limits)[1]);
+            mWorld->addMultiBodyConstraint(limit.get());
+            mLimits.push_back(std::move(limit));
+        }
     }
 
     // Sets up the link(s) of one tree link from link index i; returns the next free index.
@@ -288,7 +334,7 @@ class BulletMultibody final : public Engine
             link.parent == core::cWorld ? -1 : mLinkOf[static_cast<std::size_t>(link.parent)].second;
         // rotParentToThis rotates a parent-frame vector into this frame: q_child^-1 q_parent.
         const btQuaternion parentToThis = toBt(relativeRotation(mModel, link.parent, link.body).conjugate());
-        const btVector3 parentComToPivot = toBt(joint.anchorParent);
+        const btVector3 parentComToPivot = toBt(parentAnchor(mModel, joint));
         const btVector3 pivotToCom = toBt(-joint.anchorChild);
         // Parent-child collisions are left to the overlap filter (Frontier's rule).
         switch (joint.type)
@@ -307,9 +353,12 @@ class BulletMultibody final : public Engine
             const double scale = 1e-3;
             const btVector3 inertia = principalInertia(body);
             const double least = std::min({inertia.x(), inertia.y(), inertia.z()});
+            const core::Vec3 a1 = link.parent == core::cWorld
+                                      ? parentRotation(mModel, joint) * joint.perpParent1
+                                      : joint.perpParent1;
             mb.setupRevolute(i, scale * body.mass, btVector3(1, 1, 1) * (scale * least), parentLink,
-                             btQuaternion::getIdentity(), toBt(joint.perpParent1), parentComToPivot,
-                             btVector3(0, 0, 0), false);
+                             btQuaternion::getIdentity(), toBt(a1), parentComToPivot, btVector3(0, 0, 0),
+                             false);
             ++i;
             mb.setupRevolute(i, body.mass, inertia, i - 1, parentToThis, toBt(joint.angleChildAxis),
                              btVector3(0, 0, 0), pivotToCom, false);
@@ -333,15 +382,20 @@ class BulletMultibody final : public Engine
             const int b = mTree[k].body;
             const core::Body& body = mModel.bodies[static_cast<std::size_t>(b)];
             btCollisionShape* shape = mParts.shapeOf(body);
-            if (!shape)
+            // Bullet solves a joint limit in the island of its link's collider, and skips it when
+            // the link has none: links without shapes get an empty one that collides with nothing.
+            if (!shape && !hasLimits())
                 continue;
             const int link = mLinkOf[static_cast<std::size_t>(b)].second;
             auto collider = std::make_unique<btMultiBodyLinkCollider>(&mb, link);
-            collider->setCollisionShape(shape);
+            collider->setCollisionShape(shape ? shape : &mNoShape);
             collider->setWorldTransform(btTransform(toBt(body.orientation_WB), toBt(body.position_W)));
             mParts.setSurface(*collider, b);
-            mWorld->addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
-                                       btBroadphaseProxy::AllFilter);
+            if (shape)
+                mWorld->addCollisionObject(collider.get(), btBroadphaseProxy::DefaultFilter,
+                                           btBroadphaseProxy::AllFilter);
+            else
+                mWorld->addCollisionObject(collider.get(), 0, 0);
             if (link < 0)
                 mb.setBaseCollider(collider.get());
             else
@@ -350,13 +404,16 @@ class BulletMultibody final : public Engine
         }
     }
 
-    const core::Model& mModel;
+    std::vector<core::Quat> mRotation_BP; // per body: principal frame to the model's (principal.h)
+    core::Model mModel;                   // in principal frames
     std::vector<TreeLink> mTree;
     BulletParts mParts;
     btMultiBodyConstraintSolver mSolver;
     std::unique_ptr<btMultiBodyDynamicsWorld> mWorld;
     std::vector<std::unique_ptr<btMultiBody>> mBodies; // one per tree
+    btEmptyShape mNoShape;                             // the collider of a link without shapes (addColliders)
     std::vector<std::unique_ptr<btMultiBodyLinkCollider>> mColliders;
+    std::vector<std::unique_ptr<btMultiBodyJointLimitConstraint>> mLimits;
     std::vector<std::pair<int, int>> mLinkOf; // body -> (tree, link; -1: the base); tree -1: static
     btAlignedObjectArray<btQuaternion> mScratchRotations;
     btAlignedObjectArray<btVector3> mScratchOrigins;
@@ -365,17 +422,18 @@ class BulletMultibody final : public Engine
 class BulletSequentialImpulses final : public Engine
 {
   public:
-    explicit BulletSequentialImpulses(const core::Model& model) : mModel(model), mParts(model)
+    explicit BulletSequentialImpulses(const core::Model& model)
+        : mModel(inPrincipalFrames(model, mRotation_BP)), mParts(mModel)
     {
-        jointTree(model); // the scope check
+        jointTree(mModel); // the scope check
         mWorld = std::make_unique<btDiscreteDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                            &mParts.configuration);
-        mWorld->setGravity(toBt(model.simulation.gravity));
+        mWorld->setGravity(toBt(mModel.simulation.gravity));
         mParts.installFilter(*mWorld);
         mParts.addStatics(*mWorld);
-        for (std::size_t b = 0; b < model.bodies.size(); ++b)
+        for (std::size_t b = 0; b < mModel.bodies.size(); ++b)
         {
-            const core::Body& body = model.bodies[b];
+            const core::Body& body = mModel.bodies[b];
             if (body.isStatic)
             {
                 mBodies.push_back(nullptr);
@@ -396,7 +454,7 @@ class BulletSequentialImpulses final : public Engine
                 mWorld->addRigidBody(rigid.get(), 0, 0); // no collision group or mask: no contacts
             mBodies.push_back(std::move(rigid));
         }
-        for (const core::Joint& joint : model.joints)
+        for (const core::Joint& joint : mModel.joints)
             addJoint(joint);
     }
 
@@ -423,17 +481,18 @@ class BulletSequentialImpulses final : public Engine
                 continue;
             }
             const btTransform& t = mBodies[b]->getCenterOfMassTransform();
-            out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation())};
+            out[b] = {fromBt(t.getOrigin()), fromBt(t.getRotation()) * mRotation_BP[b].conjugate()};
         }
     }
 
   private:
     void addJoint(const core::Joint& joint)
     {
-        btRigidBody& a = joint.parent == core::cWorld ? btTypedConstraint::getFixedBody()
-                                                      : *mBodies[static_cast<std::size_t>(joint.parent)];
+        const int parent = treeParent(mModel, joint);
+        btRigidBody& a = parent == core::cWorld ? btTypedConstraint::getFixedBody()
+                                                : *mBodies[static_cast<std::size_t>(parent)];
         btRigidBody& b = *mBodies[static_cast<std::size_t>(joint.child)];
-        const btVector3 pivotA = toBt(joint.anchorParent);
+        const btVector3 pivotA = toBt(parentAnchor(mModel, joint));
         const btVector3 pivotB = toBt(joint.anchorChild);
         std::unique_ptr<btTypedConstraint> c;
         switch (joint.type)
@@ -442,28 +501,37 @@ class BulletSequentialImpulses final : public Engine
             c = std::make_unique<btPoint2PointConstraint>(a, b, pivotA, pivotB);
             break;
         case core::JointType::Revolute:
-            c = std::make_unique<btHingeConstraint>(a, b, pivotA, pivotB, toBt(joint.axisParent),
-                                                    toBt(joint.axisChild));
+        {
+            // Frames with z along the axis that coincide at the initial pose: the hinge angle is 0
+            // there, where the model's limits count from.
+            const core::Body& child = mModel.bodies[static_cast<std::size_t>(joint.child)];
+            const core::Quat toAxis_W =
+                core::Quat::FromTwoVectors(core::Vec3::UnitZ(), child.orientation_WB * joint.axisChild);
+            const core::Quat parentWorld =
+                parent == core::cWorld ? core::Quat::Identity() : parentRotation(mModel, joint);
+            auto hinge = std::make_unique<btHingeConstraint>(
+                a, b, btTransform(toBt(parentWorld.conjugate() * toAxis_W), pivotA),
+                btTransform(toBt(child.orientation_WB.conjugate() * toAxis_W), pivotB));
+            if (joint.limits) // btHingeConstraint's angle turns the other way: A's about the axis from B
+                hinge->setLimit(-(*joint.limits)[1], -(*joint.limits)[0]);
+            c = std::move(hinge);
             break;
+        }
         case core::JointType::Angle:
         {
             // btUniversalConstraint takes world anchor and axes at the initial pose (a1 on the
             // parent, b2 on the child). It is a 6-dof constraint with Euler-angle limits: the
             // second angle stays within +-90 degrees.
             const core::Body& child = mModel.bodies[static_cast<std::size_t>(joint.child)];
-            const core::Quat parentRotation =
-                joint.parent == core::cWorld
-                    ? core::Quat::Identity()
-                    : mModel.bodies[static_cast<std::size_t>(joint.parent)].orientation_WB;
             const core::Vec3 anchor = child.position_W + child.orientation_WB * joint.anchorChild;
-            c = std::make_unique<btUniversalConstraint>(a, b, toBt(anchor),
-                                                        toBt(parentRotation * joint.perpParent1),
-                                                        toBt(child.orientation_WB * joint.angleChildAxis));
+            c = std::make_unique<btUniversalConstraint>(
+                a, b, toBt(anchor), toBt(parentRotation(mModel, joint) * joint.perpParent1),
+                toBt(child.orientation_WB * joint.angleChildAxis));
             break;
         }
         default: // Fixed: the frames at the initial pose
         {
-            const core::Quat rotation = relativeRotation(mModel, joint.parent, joint.child);
+            const core::Quat rotation = relativeRotation(mModel, parent, joint.child);
             c = std::make_unique<btFixedConstraint>(a, b, btTransform(toBt(rotation), pivotA),
                                                     btTransform(btQuaternion::getIdentity(), pivotB));
             break;
@@ -473,7 +541,8 @@ class BulletSequentialImpulses final : public Engine
         mConstraints.push_back(std::move(c));
     }
 
-    const core::Model& mModel;
+    std::vector<core::Quat> mRotation_BP; // per body: principal frame to the model's (principal.h)
+    core::Model mModel;                   // in principal frames
     BulletParts mParts;
     btSequentialImpulseConstraintSolver mSolver;
     btEmptyShape mEmpty;

@@ -7,7 +7,9 @@
 // contacts with its default solref/solimp, the scene's friction (pyramidal cone, condim 3); MuJoCo
 // has no restitution coefficient, so the scene's is not given. MuJoCo's own parent-child filter is
 // turned off and every pair Frontier's filter refuses is listed as an <exclude>. A tree that starts
-// moving gets its root's velocity on its free joint (world linear, body-frame angular).
+// moving gets its root's velocity on its free joint (world linear, body-frame angular). A mesh is
+// given as its convex hull's vertices (an inline <mesh vertex>: MuJoCo collides meshes as their
+// hulls); revolute limits as the hinge's range (radians, 0 at the initial pose as the model's).
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/tree.h"
@@ -48,14 +50,41 @@ std::string quaternion(const core::Quat& q)
     return numbers({q.w(), q.x(), q.y(), q.z()});
 }
 
+std::string meshName(const core::Model& model, const core::Body& body, std::size_t shape)
+{
+    return "m" + std::to_string(&body - model.bodies.data()) + "_" + std::to_string(shape);
+}
+
+// The meshes' hulls as <mesh> assets, named by meshName.
+void writeMeshAssets(std::ostream& out, const core::Model& model)
+{
+    out << "<asset>\n";
+    for (const core::Body& body : model.bodies)
+        for (std::size_t k = 0; k < body.shapes.size(); ++k)
+        {
+            if (body.shapes[k].type != core::ShapeType::Mesh)
+                continue;
+            out << "<mesh name=\"" << meshName(model, body, k) << "\" vertex=\"";
+            const char* separator = "";
+            for (const core::Vec3& v : meshHull(body, body.shapes[k]).vertices)
+            {
+                out << separator << vector3(v);
+                separator = " ";
+            }
+            out << "\"/>\n";
+        }
+    out << "</asset>\n";
+}
+
 // A body's shapes as geoms in its frame (contacts: false gives none).
 void writeGeoms(std::ostream& out, const core::Model& model, const core::Body& body, bool contacts)
 {
     if (!contacts)
         return;
     const std::string friction = numbers({model.contact.friction, 0.005, 0.0001});
-    for (const core::Shape& shape : body.shapes)
+    for (std::size_t k = 0; k < body.shapes.size(); ++k)
     {
+        const core::Shape& shape = body.shapes[k];
         core::Vec3 position = shape.position_BS;
         core::Quat rotation = shape.rotation_BS;
         out << "<geom friction=\"" << friction << "\" ";
@@ -81,8 +110,9 @@ void writeGeoms(std::ostream& out, const core::Model& model, const core::Body& b
             out << "type=\"plane\" size=\"0 0 1\"";
             break;
         }
-        default:
-            throw Unsupported("body '" + body.name + "': MuJoCo is not given meshes by the harness");
+        case core::ShapeType::Mesh:
+            out << "type=\"mesh\" mesh=\"" << meshName(model, body, k) << "\"";
+            break;
         }
         out << " pos=\"" << vector3(position) << "\" quat=\"" << quaternion(rotation) << "\"/>\n";
     }
@@ -102,7 +132,10 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
         << "\" gravity=\"" << numbers({g.x(), g.y(), g.z()}) << "\""
         << (integrator == MujocoIntegrator::Rk4 ? " integrator=\"RK4\"" : "")
         << ">\n<flag filterparent=\"disable\"/>\n"
-        << "</option>\n<worldbody>\n";
+        << "</option>\n<compiler angle=\"radian\"/>\n";
+    if (contacts)
+        writeMeshAssets(out, model);
+    out << "<worldbody>\n";
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
     {
         const core::Body& body = model.bodies[b];
@@ -141,8 +174,13 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
         if (joint.type == core::JointType::Ball)
             out << "<joint type=\"ball\" pos=\"" << a << "\"/>\n";
         else if (joint.type == core::JointType::Revolute)
-            out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.axisChild)
-                << "\"/>\n";
+        {
+            out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.axisChild) << "\"";
+            if (joint.limits)
+                out << " limited=\"true\" range=\"" << numbers({(*joint.limits)[0], (*joint.limits)[1]})
+                    << "\"";
+            out << "/>\n";
+        }
         else if (joint.type == core::JointType::Angle)
         {
             // a1 (fixed in the parent) in the child's frame at the initial pose, then b2: MuJoCo

@@ -3,12 +3,16 @@
 // settings otherwise (ERP 0.2, its default CFM, gyroscopic term on). Contacts: the shapes as ODE
 // geoms in one hash space (a static plane as dCreatePlane), dCollide on the pairs Frontier's filter
 // allows (up to 8 points a pair), contact joints with Coulomb friction (dContactApprox1, the
-// friction pyramid) of the scene's mu and its restitution as bounce.
+// friction pyramid) of the scene's mu and its restitution as bounce. A mesh is its convex hull
+// (dCreateConvex). Revolute limits are the hinge's stops (dParamLoStop, dParamHiStop), its angle 0
+// at the initial pose as the model's.
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/tree.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <ode/ode.h>
 
 namespace frontier::peers
@@ -112,6 +116,7 @@ class OdeEngine final : public Engine
         for (const core::Shape& shape : body.shapes)
         {
             dGeomID geom = nullptr;
+            core::Vec3 centre_S = core::Vec3::Zero(); // the geom's origin in the shape frame (m)
             switch (shape.type)
             {
             case core::ShapeType::Box:
@@ -130,30 +135,57 @@ class OdeEngine final : public Engine
                 geom =
                     dCreatePlane(mSpace, shape.normal.x(), shape.normal.y(), shape.normal.z(), shape.offset);
                 break;
-            default:
-                throw Unsupported("body '" + body.name + "': ODE is not given meshes by the harness");
+            case core::ShapeType::Mesh:
+            {
+                const collision::ConvexHull hull = meshHull(body, shape);
+                for (const core::Vec3& v : hull.vertices)
+                    centre_S += v / static_cast<double>(hull.vertices.size());
+                geom = convexGeom(hull, centre_S);
+                break;
+            }
             }
             dGeomSetData(geom, reinterpret_cast<void*>(index));
             if (shape.type == core::ShapeType::Plane)
                 continue;
             const core::Quat& r = shape.rotation_BS;
             const dQuaternion dr = {r.w(), r.x(), r.y(), r.z()};
+            const core::Vec3 position_B = shape.position_BS + r * centre_S;
             if (b)
             {
                 dGeomSetBody(geom, b);
-                dGeomSetOffsetPosition(geom, shape.position_BS.x(), shape.position_BS.y(),
-                                       shape.position_BS.z());
+                dGeomSetOffsetPosition(geom, position_B.x(), position_B.y(), position_B.z());
                 dGeomSetOffsetQuaternion(geom, dr);
             }
             else
             {
-                const core::Vec3 x = body.position_W + body.orientation_WB * shape.position_BS;
+                const core::Vec3 x = body.position_W + body.orientation_WB * position_B;
                 const core::Quat q = body.orientation_WB * shape.rotation_BS;
                 const dQuaternion dq = {q.w(), q.x(), q.y(), q.z()};
                 dGeomSetPosition(geom, x.x(), x.y(), x.z());
                 dGeomSetQuaternion(geom, dq);
             }
         }
+    }
+
+    // The hull as a convex geom whose origin is `centre` (ODE needs its origin inside the hull: a
+    // mesh's own origin is often at a joint, outside it). ODE keeps pointers to the arrays: they
+    // live in mHulls.
+    dGeomID convexGeom(const collision::ConvexHull& hull, const core::Vec3& centre)
+    {
+        HullArrays& h = mHulls.emplace_back();
+        for (std::size_t f = 0; f < hull.normals.size(); ++f)
+        {
+            const core::Vec3& n = hull.normals[f];
+            h.planes.insert(h.planes.end(), {n.x(), n.y(), n.z(), hull.offsets[f] - n.dot(centre)});
+        }
+        for (const core::Vec3& v : hull.vertices)
+        {
+            const core::Vec3 p = v - centre;
+            h.points.insert(h.points.end(), {p.x(), p.y(), p.z()});
+        }
+        h.polygons.assign(hull.faces.begin(), hull.faces.end()); // [n, i0, ..., in-1] per face
+        return dCreateConvex(mSpace, h.planes.data(), static_cast<unsigned>(hull.normals.size()),
+                             h.points.data(), static_cast<unsigned>(hull.vertices.size()), h.polygons.data());
     }
 
     static void nearCallback(void* data, dGeomID o1, dGeomID o2)
@@ -199,6 +231,17 @@ class OdeEngine final : public Engine
             dJointSetHingeAnchor(j, anchor.x(), anchor.y(), anchor.z());
             const core::Vec3 axis = c.orientation_WB * joint.axisChild;
             dJointSetHingeAxis(j, axis.x(), axis.y(), axis.z());
+            if (joint.limits)
+            {
+                // ODE's hinge angle is the first body's about the axis from the second, the
+                // model's the child's from the parent: the same when the parent is the world
+                // (ODE then makes the child its first body), opposite otherwise.
+                const double sign = parent ? -1.0 : 1.0;
+                dJointSetHingeParam(j, dParamLoStop,
+                                    std::min(sign * (*joint.limits)[0], sign * (*joint.limits)[1]));
+                dJointSetHingeParam(j, dParamHiStop,
+                                    std::max(sign * (*joint.limits)[0], sign * (*joint.limits)[1]));
+            }
             break;
         }
         case core::JointType::Angle: // universal: a1 fixed in the parent, b2 in the child
@@ -230,6 +273,13 @@ class OdeEngine final : public Engine
     dJointGroupID mContactJoints = nullptr; // this step's contact joints
     std::unique_ptr<collision::PairFilter> mPairs;
     std::vector<dBodyID> mBodies; // per model body; null for static ones
+    struct HullArrays
+    {
+        std::vector<dReal> planes;      // n.x n.y n.z offset per face
+        std::vector<dReal> points;      // x y z per vertex
+        std::vector<unsigned> polygons; // [n, i0, ..., in-1] per face
+    };
+    std::deque<HullArrays> mHulls;
 };
 
 } // namespace

@@ -14,6 +14,7 @@
 // engine that exceeds --max-seconds stops early and says so. With several time steps every engine
 // runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
 // (app/sweep_chart.h), one line per engine.
+#include "app/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
@@ -275,7 +276,15 @@ int runHarness(int argc, char** argv)
     core::Model model;
     try
     {
-        model = chain > 0 ? chainOfBoxes(chain, tipRatio) : io::loadScene(scene);
+        if (chain > 0)
+            model = chainOfBoxes(chain, tipRatio);
+        else
+        {
+            // As `frontier run` loads it: a robot's links that overlap at the start never collide.
+            app::LoadedScene loaded = app::loadSceneWithRobots(scene, {});
+            app::printLoadWarnings(loaded.report);
+            model = std::move(loaded.model);
+        }
     }
     catch (const std::exception& e)
     {

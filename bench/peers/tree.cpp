@@ -56,19 +56,17 @@ std::vector<TreeLink> jointTree(const core::Model& model)
             joint.type != core::JointType::Fixed && joint.type != core::JointType::Angle)
             throw Unsupported("joint '" + joint.name +
                               "': the harness translates ball, revolute, angle and fixed joints");
-        if (joint.limits)
-            throw Unsupported("joint '" + joint.name + "' has limits: the harness does not translate them");
+        if (joint.limits && joint.type != core::JointType::Revolute)
+            throw Unsupported("joint '" + joint.name +
+                              "' has limits: the harness translates those of revolute joints only");
         if (joint.damping != 0.0 || joint.friction != 0.0)
             throw Unsupported("joint '" + joint.name +
                               "' has damping or friction: the harness does not translate them");
-        if (joint.parent != core::cWorld && model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
-            throw Unsupported("joint '" + joint.name +
-                              "' has a static parent: the harness joins bodies to the world only");
         if (parentJoint[static_cast<std::size_t>(joint.child)] >= 0)
             throw Unsupported("body '" + model.bodies[static_cast<std::size_t>(joint.child)].name +
                               "' is the child of two joints (a loop)");
         parentJoint[static_cast<std::size_t>(joint.child)] = j;
-        if (joint.parent != core::cWorld)
+        if (treeParent(model, joint) != core::cWorld)
             children[static_cast<std::size_t>(joint.parent)].push_back(joint.child);
     }
 
@@ -81,7 +79,7 @@ std::vector<TreeLink> jointTree(const core::Model& model)
             continue;
         ++moving;
         const int j = parentJoint[static_cast<std::size_t>(b)];
-        if (j >= 0 && model.joints[static_cast<std::size_t>(j)].parent != core::cWorld)
+        if (j >= 0 && treeParent(model, model.joints[static_cast<std::size_t>(j)]) != core::cWorld)
             continue; // not a root
         const std::size_t first = order.size();
         order.push_back({b, j, core::cWorld});
@@ -93,6 +91,28 @@ std::vector<TreeLink> jointTree(const core::Model& model)
         throw Unsupported("some bodies are not in a tree with a root (a loop among them)");
     checkInitialVelocities(model, order);
     return order;
+}
+
+int treeParent(const core::Model& model, const core::Joint& joint)
+{
+    if (joint.parent == core::cWorld || model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
+        return core::cWorld;
+    return joint.parent;
+}
+
+core::Vec3 parentAnchor(const core::Model& model, const core::Joint& joint)
+{
+    if (joint.parent == core::cWorld || treeParent(model, joint) != core::cWorld)
+        return joint.anchorParent;
+    const core::Body& parent = model.bodies[static_cast<std::size_t>(joint.parent)];
+    return parent.position_W + parent.orientation_WB * joint.anchorParent;
+}
+
+core::Quat parentRotation(const core::Model& model, const core::Joint& joint)
+{
+    if (joint.parent == core::cWorld)
+        return core::Quat::Identity();
+    return model.bodies[static_cast<std::size_t>(joint.parent)].orientation_WB;
 }
 
 core::Quat relativeRotation(const core::Model& model, int a, int b)
