@@ -233,8 +233,8 @@ struct ContactDetector::Impl
     std::vector<std::unique_ptr<fcl::CollisionObjectd>> inflatedBoxes;
     std::vector<int> inflatedBox;
     std::vector<PlaneInstance> planes;
-    std::vector<int> movingShapes;                        // shapes of moving bodies
-    std::vector<int> staticShapes;                        // shapes of static bodies
+    std::vector<int> movingShapes; // shapes of moving bodies that can touch something: posed per call
+    std::vector<int> staticShapes; // shapes of static bodies
     std::vector<fcl::CollisionObjectd*> movingRegistered; // moving objects in the manager
     std::vector<char> registeredMoving;                   // per shape: in movingRegistered
     std::vector<fcl::CollisionObjectd*> changed;          // scratch: their AABBs changed this step
@@ -376,6 +376,18 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
     useBroadphase = !movingRegistered.empty();
     if (useBroadphase)
         manager.setup();
+
+    // A moving shape that no plane and no other shape may touch (a chain whose links share a
+    // group, say) is never posed: nothing would read its pose.
+    std::erase_if(movingShapes,
+                  [&](int index)
+                  {
+                      const int body = shapes[static_cast<std::size_t>(index)].body;
+                      return !registeredMoving[static_cast<std::size_t>(index)] &&
+                             std::none_of(planes.begin(), planes.end(),
+                                          [&](const PlaneInstance& plane)
+                                          { return filter.allowed(body, plane.body); });
+                  });
 
     bodyReach.assign(model.bodies.size(), 0.0);
     motions.assign(model.bodies.size(), BodyMotion{});
