@@ -110,7 +110,9 @@ void assembleJointConditions(const Model& model, const State& state, RowSystem& 
         const Joint& joint = model.joints[k];
         const JointPose pose = jointPose(state, joint);
         JointRows& rows = system.joints[k];
-        evaluateJoint(joint, pose, jointGeometryAt(joint, pose, system), !jointToWorld(model, joint), rows);
+        detail::JointGeometry g = jointGeometryAt(joint, pose, system);
+        g.conditionsOnly = true;
+        evaluateJoint(joint, pose, g, !jointToWorld(model, joint), rows);
         rows.error.tail(6 - rows.count).setZero(); // drive rows (and unused ones) have none
     }
 }

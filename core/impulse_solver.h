@@ -50,9 +50,10 @@ struct RowSystem
 void assembleRows(const Model& model, const FrontierLayout& layout, const State& state, double driveStep,
                   RowSystem& system, std::span<const JointDriveGains> gains = {});
 
-// Only the joints' condition rows (J and C(q)) at a state, with the errors of their drive rows
-// zero: what measuring the joints' drift needs. Leaves `system` incomplete (masses, inertias and
-// drive rows as they were, JointRows::count = constraintRows) until assembleRows completes it.
+// Only the joints' conditions C(q) at a state, with the errors of their drive rows zero: what
+// measuring the joints' drift needs. Leaves `system` incomplete (masses, inertias, drive rows and
+// the Jacobians of some joint types as they were, JointRows::count = constraintRows) until
+// assembleRows completes it.
 void assembleJointConditions(const Model& model, const State& state, RowSystem& system);
 
 // The rows of one joint's block at a state (its conditions, then its drive rows for a solve of

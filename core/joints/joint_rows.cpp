@@ -47,10 +47,13 @@ JointGeometry jointGeometry(const Joint& joint, const JointPose& pose, const Mat
 //   C = p_b - p_a,  J_a = [-1, [r_a]x],  J_b = [1, -[r_b]x]   (w x r = -[r]x w)
 int writeBallRows(const JointGeometry& g, JointRows& out, int row)
 {
-    out.J_a.block<3, 3>(row, 0) = -Mat3::Identity();
-    out.J_a.block<3, 3>(row, 3) = skew(g.r_a);
-    out.J_b.block<3, 3>(row, 0) = Mat3::Identity();
-    out.J_b.block<3, 3>(row, 3) = -skew(g.r_b);
+    if (!g.conditionsOnly)
+    {
+        out.J_a.block<3, 3>(row, 0) = -Mat3::Identity();
+        out.J_a.block<3, 3>(row, 3) = skew(g.r_a);
+        out.J_b.block<3, 3>(row, 0) = Mat3::Identity();
+        out.J_b.block<3, 3>(row, 3) = -skew(g.r_b);
+    }
     out.error.segment<3>(row) = g.p_b - g.p_a;
     return row + 3;
 }
@@ -153,7 +156,7 @@ void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::Join
         break;
     }
     out.constraintRows = out.count;
-    if (!parentMoves)
+    if (!parentMoves && !g.conditionsOnly)
     {
         out.J_a.setZero();
     }

@@ -60,6 +60,8 @@ struct JointGeometry
     Vec3 p_a, p_b; // anchors in world (m)
     Vec3 r_a, r_b; // p - x: lever arms from the centres of mass (m)
     Vec3 x_a;      // centre of mass of a (m)
+    // Only C(q) is wanted (assembleJointConditions): writers may leave J_a and J_b as they were.
+    bool conditionsOnly = false;
 };
 JointGeometry jointGeometry(const Joint& joint, const JointPose& pose);
 // The same with the bodies' rotation matrices given (R_a: identity for a world parent), as

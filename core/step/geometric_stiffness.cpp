@@ -16,7 +16,11 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
         const Joint& joint = model.joints[k];
         const JointRows& r = rows.joints[k];
         const int n = r.constraintRows;
-        const Vec3 onChild = r.J_b.topLeftCorner(n, 3).transpose() * solution.joint[k].head(n); // N s
+        Vec3 onChild = Vec3::Zero(); // N s: J_b^T lambda, linear part, row by row (no dynamic-size product)
+        for (int row = 0; row < n; ++row)
+        {
+            onChild += r.J_b.row(row).head<3>().transpose() * solution.joint[k](row);
+        }
         const Vec3 leverChild = rows.rotation_WB[static_cast<std::size_t>(joint.child)] * joint.anchorChild;
         double parentEnd = 0.0;
         if (joint.parent >= 0 && !model.bodies[static_cast<std::size_t>(joint.parent)].isStatic)
