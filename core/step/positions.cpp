@@ -76,12 +76,11 @@ void displacePositions(const Model& model, const BlockVector& displacement, Stat
             continue;
         }
         BodyState& s = state.bodies[i];
+        const Quat turn = rotationFromVector(displacement.body[i].tail<3>());
         s.position_W += displacement.body[i].head<3>();
-        s.orientation_WB =
-            (rotationFromVector(displacement.body[i].tail<3>()) * s.orientation_WB).normalized();
+        s.orientation_WB = (turn * s.orientation_WB).normalized();
         start[i].position_W += displacement.body[i].head<3>();
-        start[i].orientation_WB =
-            (rotationFromVector(displacement.body[i].tail<3>()) * start[i].orientation_WB).normalized();
+        start[i].orientation_WB = (turn * start[i].orientation_WB).normalized();
     }
 }
 
