@@ -45,6 +45,11 @@ int jointRowCount(JointType type)
     return 0;
 }
 
+bool holdsRotation(JointType type)
+{
+    return type != JointType::Ball && type != JointType::Nail;
+}
+
 namespace
 {
 struct JointName

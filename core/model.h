@@ -241,6 +241,11 @@ struct Model
 bool isMovingBody(const Model& model, int body);
 
 int jointRowCount(JointType type);
+
+// Whether the joint holds (some of) the relative rotation of its bodies: every type but ball and
+// nail, whose rows hold a point only.
+bool holdsRotation(JointType type);
+
 const char* jointTypeName(JointType type);
 std::optional<JointType> jointTypeFromName(const std::string& name);
 const char* solverName(SolverKind kind);

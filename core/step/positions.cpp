@@ -22,14 +22,28 @@ void chooseRotationUpdates(const Model& model, const RowSystem& rows, const Stat
                            bool rattle, std::vector<std::uint8_t>& freeRotation)
 {
     // docs/method.md §4, eq. (8a), compared squared (no roots): h |w x L| > cTurnRad |L|, and
-    // h |w| <= cStepTurnRad (beyond it the free rotations of two joined bodies differ by too much
-    // for the drift correction; exp(h w) turns them alike).
+    // h |w| <= cStepTurnRad for a body a joint holds in rotation (beyond it the free rotations of
+    // two bodies so joined differ by too much for the drift correction; exp(h w) turns them alike).
     constexpr double cTurnRad = 1e-6;
     constexpr double cStepTurnRad = 0.25;
+    constexpr std::uint8_t cHeld = 2; // marks, before the choice, a body a joint holds in rotation
     freeRotation.assign(model.bodies.size(), rattle ? 1 : 0);
     if (rattle)
     {
         return;
+    }
+    for (const Joint& joint : model.joints)
+    {
+        if (holdsRotation(joint.type))
+        {
+            for (const int body : {joint.parent, joint.child})
+            {
+                if (isMovingBody(model, body))
+                {
+                    freeRotation[static_cast<std::size_t>(body)] = cHeld;
+                }
+            }
+        }
     }
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
@@ -42,7 +56,8 @@ void chooseRotationUpdates(const Model& model, const RowSystem& rows, const Stat
         const double hh = dt * dt;
         const bool turns =
             hh * w.cross(momentum).squaredNorm() > cTurnRad * cTurnRad * momentum.squaredNorm();
-        freeRotation[i] = turns && hh * w.squaredNorm() <= cStepTurnRad * cStepTurnRad ? 1 : 0;
+        const bool held = freeRotation[i] == cHeld;
+        freeRotation[i] = turns && (!held || hh * w.squaredNorm() <= cStepTurnRad * cStepTurnRad) ? 1 : 0;
     }
 }
 

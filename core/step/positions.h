@@ -17,9 +17,10 @@ namespace frontier::core
 // velocities of `state` after the step's impulses: freeRotation[i] = 1 for the free rigid-body
 // rotation (core/free_rotation.h) at the world angular momentum L = I_W(R_n) w (I_W from `rows`,
 // the start-of-step rows), always for rattle, and for euler when L turns relative to the body by
-// more than a microradian in the step, h |w x L| > 1e-6 |L| (h = dt, s), and the body turns by at
-// most a quarter radian, h |w| <= 0.25; 0 for R_{n+1} = exp(h w) R_n, which holds w fixed in the
-// body and is exact when w x L = 0 (a spin about a principal axis).
+// more than a microradian in the step, h |w x L| > 1e-6 |L| (h = dt, s), unless a joint holds the
+// body's rotation (core::holdsRotation) and it turns by more than a quarter radian, h |w| > 0.25;
+// 0 for R_{n+1} = exp(h w) R_n, which holds w fixed in the body and is exact when w x L = 0 (a
+// spin about a principal axis).
 // Chosen once a step, so that the drift correction's iterations move every body by one map.
 void chooseRotationUpdates(const Model& model, const RowSystem& rows, const State& state, double dt,
                            bool rattle, std::vector<std::uint8_t>& freeRotation);
