@@ -6,6 +6,7 @@ Each link is a 0.08 x 0.02 x 0.02 m box of 0.1 kg whose centre sits 0.1 m after 
 one's; the joints sit halfway between centres (the first at the world, 0.05 m before link 0).
 Run: python3 scenes/tools/make_chain.py N [out.yaml]   (stdout when no file is given)
 """
+import argparse
 import sys
 
 PITCH = 0.1  # m between link centres
@@ -30,14 +31,17 @@ def write(n, out):
 
 
 def main():
-    if len(sys.argv) < 2:
-        sys.exit(__doc__)
-    n = int(sys.argv[1])
-    if len(sys.argv) > 2:
-        with open(sys.argv[2], "w") as out:
-            write(n, out)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("n", type=int, help="number of links (at least 1)")
+    parser.add_argument("out", nargs="?", help="scene file to write (stdout when omitted)")
+    args = parser.parse_args()
+    if args.n < 1:
+        parser.error("n must be at least 1, got %d" % args.n)
+    if args.out:
+        with open(args.out, "w") as out:
+            write(args.n, out)
     else:
-        write(n, sys.stdout)
+        write(args.n, sys.stdout)
 
 
 if __name__ == "__main__":
