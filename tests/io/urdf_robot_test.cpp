@@ -411,6 +411,30 @@ TEST(UrdfPlacement, PlacementFlagsAreForABareUrdf)
     EXPECT_NE(std::string(e.what()).find("a scene places its models itself"), std::string::npos) << e.what();
 }
 
+// --self-collision on a scene with no URDF robot changes nothing: a warning says so and names the
+// scene's own keys; a scene that places a robot takes it without one.
+TEST(UrdfPlacement, SelfCollisionFlagWarnsOnASceneWithoutRobots)
+{
+    TempDir dir;
+    const std::string scene =
+        dir.write("s.yaml", "bodies: [{name: a, mass: 1, shape: {type: sphere, radius: 1}}]\n");
+    UrdfOptions options;
+    options.selfCollision = false;
+    LoadReport report;
+    loadScene(scene, options, &report);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_EQ(report.warnings[0].rfind(scene + ": warning: --self-collision applies to URDF robots", 0), 0u)
+        << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("'group'"), std::string::npos) << report.warnings[0];
+
+    LoadReport withRobot;
+    loadScene(std::string(FRONTIER_SOURCE_DIR) + "/scenes/doll_urdf_scene.yaml", options, &withRobot);
+    for (const std::string& warning : withRobot.warnings)
+    {
+        EXPECT_EQ(warning.find("--self-collision"), std::string::npos) << warning;
+    }
+}
+
 TEST(UrdfJoints, LockedLimitAndMimicAreWarnings)
 {
     TempDir dir;
