@@ -45,6 +45,7 @@ Simulator::Simulator(const Model& model, const StepOptions& options, ContactSour
             mPrincipal[i] = principalAxes(model.bodies[i].inertia_B);
         }
     }
+    mHeldInRotation = bodiesHeldInRotation(model);
 }
 
 Simulator::~Simulator() = default;
@@ -483,7 +484,7 @@ void Simulator::removePenetration(State& state)
 // step (docs/method.md §4, eq. (8a); core/step/positions.h).
 void Simulator::integratePositions(State& state)
 {
-    chooseRotationUpdates(mModel, mRows, state, mH, mRattleStep, mFreeRotation);
+    chooseRotationUpdates(mModel, mHeldInRotation, mRows, state, mH, mRattleStep, mFreeRotation);
     core::integratePositions(mModel, mStart, mPrincipal, mRows, mFreeRotation, mH, state);
 }
 

@@ -206,6 +206,7 @@ class Simulator
     std::vector<BodyState> mStart;           // poses at the start of the step
     std::vector<PrincipalAxes> mPrincipal;   // principal axes per body (free rotation, momentum carry)
     std::vector<std::uint8_t> mFreeRotation; // per body: the step turns it by the free rotation (§4)
+    std::vector<std::uint8_t> mHeldInRotation; // per body: a joint holds its rotation (§4, eq. (8a))
     // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
     // next step's mRows when it starts there).
     std::vector<BodyState> mEndPose;

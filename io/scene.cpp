@@ -24,17 +24,7 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadR
                 "--fixed-base, --free-base and --drop-height place a bare .urdf; a scene places its "
                 "models itself (keys 'fixed', 'free_base' and 'position' of each entry of 'models')");
         }
-        core::Model model =
-            detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
-        if (options.selfCollision && model.robots.empty() && report != nullptr)
-        {
-            report->warnings.push_back(detail::diagnostic(
-                path, {}, "warning",
-                "--self-collision applies to URDF robots (a bare .urdf or the scene's 'models'); this scene "
-                "has none, so it changes nothing (its bodies' collisions are set by 'group', 'contact: "
-                "ignore' and the joints' 'collide')"));
-        }
-        return model;
+        return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }
     throw InputError(
         path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");

@@ -481,6 +481,14 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
         // Not expected (every access is checked), but keep the location if there is one.
         failAt(source, e.mark, "cannot read the scene: " + e.msg);
     }
+    if (urdf.selfCollision && model.robots.empty() && report != nullptr)
+    {
+        report->warnings.push_back(diagnostic(
+            sourceName, {}, "warning",
+            "--self-collision applies to URDF robots (a bare .urdf or the scene's 'models'); this scene "
+            "has none, so it changes nothing (its bodies' collisions are set by 'group', 'contact: "
+            "ignore' and the joints' 'collide')"));
+    }
     return std::move(builder.model);
 }
 

@@ -18,32 +18,39 @@ Quat rotationFromVector(const Vec3& theta)
 }
 } // namespace
 
-void chooseRotationUpdates(const Model& model, const RowSystem& rows, const State& state, double dt,
-                           bool rattle, std::vector<std::uint8_t>& freeRotation)
+std::vector<std::uint8_t> bodiesHeldInRotation(const Model& model)
+{
+    std::vector<std::uint8_t> held(model.bodies.size(), 0);
+    for (const Joint& joint : model.joints)
+    {
+        if (!holdsRotation(joint.type))
+        {
+            continue;
+        }
+        for (const int body : {joint.parent, joint.child})
+        {
+            if (isMovingBody(model, body))
+            {
+                held[static_cast<std::size_t>(body)] = 1;
+            }
+        }
+    }
+    return held;
+}
+
+void chooseRotationUpdates(const Model& model, const std::vector<std::uint8_t>& heldInRotation,
+                           const RowSystem& rows, const State& state, double dt, bool rattle,
+                           std::vector<std::uint8_t>& freeRotation)
 {
     // docs/method.md §4, eq. (8a), compared squared (no roots): h |w x L| > cTurnRad |L|, and
     // h |w| <= cStepTurnRad for a body a joint holds in rotation (beyond it the free rotations of
     // two bodies so joined differ by too much for the drift correction; exp(h w) turns them alike).
     constexpr double cTurnRad = 1e-6;
     constexpr double cStepTurnRad = 0.25;
-    constexpr std::uint8_t cHeld = 2; // marks, before the choice, a body a joint holds in rotation
     freeRotation.assign(model.bodies.size(), rattle ? 1 : 0);
     if (rattle)
     {
         return;
-    }
-    for (const Joint& joint : model.joints)
-    {
-        if (holdsRotation(joint.type))
-        {
-            for (const int body : {joint.parent, joint.child})
-            {
-                if (isMovingBody(model, body))
-                {
-                    freeRotation[static_cast<std::size_t>(body)] = cHeld;
-                }
-            }
-        }
     }
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
@@ -56,8 +63,8 @@ void chooseRotationUpdates(const Model& model, const RowSystem& rows, const Stat
         const double hh = dt * dt;
         const bool turns =
             hh * w.cross(momentum).squaredNorm() > cTurnRad * cTurnRad * momentum.squaredNorm();
-        const bool held = freeRotation[i] == cHeld;
-        freeRotation[i] = turns && (!held || hh * w.squaredNorm() <= cStepTurnRad * cStepTurnRad) ? 1 : 0;
+        const bool slow = hh * w.squaredNorm() <= cStepTurnRad * cStepTurnRad;
+        freeRotation[i] = turns && (heldInRotation[i] == 0 || slow) ? 1 : 0;
     }
 }
 

@@ -22,8 +22,14 @@ namespace frontier::core
 // 0 for R_{n+1} = exp(h w) R_n, which holds w fixed in the body and is exact when w x L = 0 (a
 // spin about a principal axis).
 // Chosen once a step, so that the drift correction's iterations move every body by one map.
-void chooseRotationUpdates(const Model& model, const RowSystem& rows, const State& state, double dt,
-                           bool rattle, std::vector<std::uint8_t>& freeRotation);
+// heldInRotation: bodiesHeldInRotation(model).
+void chooseRotationUpdates(const Model& model, const std::vector<std::uint8_t>& heldInRotation,
+                           const RowSystem& rows, const State& state, double dt, bool rattle,
+                           std::vector<std::uint8_t>& freeRotation);
+
+// Per body, 1 when one of its joints holds (some of) its rotation relative to another body or the
+// world (core::holdsRotation), else 0: fixed by the model, computed once.
+std::vector<std::uint8_t> bodiesHeldInRotation(const Model& model);
 
 // x_{n+1} = x_n + h v_{n+1} from the start-of-step pose `start`, h = dt (s); each rotation by the
 // update chooseRotationUpdates() chose, at L = I_W(R_n) w (I_W from `rows`).

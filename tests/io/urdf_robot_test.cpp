@@ -400,11 +400,16 @@ TEST(UrdfPlacement, FreeRobotRestsItsLowestCollisionPointOnTheFloor)
     EXPECT_NEAR(model.bodies[1].shapes.at(0).offset, lowest, 1e-14);
 }
 
+// A scene of one sphere and no robot, written into `dir`.
+std::string sceneWithoutRobots(const TempDir& dir)
+{
+    return dir.write("s.yaml", "bodies: [{name: a, mass: 1, shape: {type: sphere, radius: 1}}]\n");
+}
+
 TEST(UrdfPlacement, PlacementFlagsAreForABareUrdf)
 {
     TempDir dir;
-    const std::string scene =
-        dir.write("s.yaml", "bodies: [{name: a, mass: 1, shape: {type: sphere, radius: 1}}]\n");
+    const std::string scene = sceneWithoutRobots(dir);
     UrdfOptions options;
     options.fixedBase = true;
     const InputError e = captureInputError([&] { loadScene(scene, options); });
@@ -416,8 +421,7 @@ TEST(UrdfPlacement, PlacementFlagsAreForABareUrdf)
 TEST(UrdfPlacement, SelfCollisionFlagWarnsOnASceneWithoutRobots)
 {
     TempDir dir;
-    const std::string scene =
-        dir.write("s.yaml", "bodies: [{name: a, mass: 1, shape: {type: sphere, radius: 1}}]\n");
+    const std::string scene = sceneWithoutRobots(dir);
     UrdfOptions options;
     options.selfCollision = false;
     LoadReport report;
