@@ -8,7 +8,11 @@
 //   startup_bench --scene FILE   the scene loaded from FILE (load = io::loadScene)
 //
 // Columns (CPU seconds): bodies, load s, set-up s of the contact detector and of the simulator (with the
-// initial state), first 10 steps s, max RSS MB (getrusage), KB per body (max RSS / bodies).
+// initial state), first 10 steps s, max RSS MB (getrusage), KB per body (max RSS / bodies); then
+// the heap each part holds, KB per body (glibc's mallinfo2, mmapped blocks included, measured as
+// the increase over the part before): the model, the contact detector, the state, and the
+// simulator after the 10 steps (its solver's rows, factor blocks and vectors; the detector's
+// per-step buffers are small) and at its set-up.
 #include "collision/contacts.h"
 #include "core/model.h"
 #include "core/simulator.h"
@@ -18,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <malloc.h>
 #include <string>
 #include <sys/resource.h>
 
@@ -75,6 +80,13 @@ double cpuSeconds()
     return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
+// Bytes of heap in use now (small blocks and mmapped ones).
+double heapBytes()
+{
+    const struct mallinfo2 info = mallinfo2();
+    return static_cast<double>(info.uordblks + info.hblkhd);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -84,22 +96,28 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "usage: startup_bench N | startup_bench --scene FILE\n");
         return 2;
     }
+    const double heapAtStart = heapBytes();
     double start = cpuSeconds();
     const core::Model model = argc == 3 ? io::loadScene(argv[2]) : makeChain(std::atoi(argv[1]));
     const double loadS = cpuSeconds() - start;
+    const double heapModel = heapBytes();
 
     start = cpuSeconds();
     collision::ContactDetector detector(model, collision::contactMargin(model.simulation.dt));
     const double detectorS = cpuSeconds() - start;
+    const double heapDetector = heapBytes();
     start = cpuSeconds();
     core::Simulator simulator(model, {}, &detector);
+    const double heapSimulator = heapBytes();
     core::State state = core::initialState(model);
+    const double heapState = heapBytes();
     const double simulatorS = cpuSeconds() - start;
 
     start = cpuSeconds();
     for (int k = 0; k < cSteps; ++k)
         simulator.step(state);
     const double stepsS = cpuSeconds() - start;
+    const double heapSteps = heapBytes();
 
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -110,5 +128,11 @@ int main(int argc, char** argv)
         "%.2f KB/body\n",
         model.bodies.size(), loadS, detectorS, simulatorS, cSteps, stepsS, rssMB,
         bodies > 0 ? static_cast<double>(usage.ru_maxrss) / bodies : 0.0);
+    const double perBodyKB = bodies > 0 ? 1.0 / (1024.0 * bodies) : 0.0;
+    std::printf("heap KB/body  model %.2f  detector %.2f  state %.2f  simulator %.2f (%.2f at set-up)\n",
+                (heapModel - heapAtStart) * perBodyKB, (heapDetector - heapModel) * perBodyKB,
+                (heapState - heapSimulator) * perBodyKB,
+                (heapSteps - heapDetector - (heapState - heapSimulator)) * perBodyKB,
+                (heapSimulator - heapDetector) * perBodyKB);
     return 0;
 }

@@ -129,7 +129,7 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const core::Shape& shape, 
     {
         if (instance.convexHull)
         {
-            const detail::ConvexHull& hull = instance.hull;
+            const detail::ConvexHull& hull = instance.hull();
             return std::make_shared<fcl::Convexd>(std::make_shared<const std::vector<Vec3>>(hull.vertices),
                                                   static_cast<int>(hull.normals.size()),
                                                   std::make_shared<const std::vector<int>>(hull.faces));
@@ -252,7 +252,9 @@ struct ContactDetector::Impl
     std::vector<RawContact> raw;
     std::vector<std::intptr_t> rawTriangles; // per FCL point in raw: the triangle of the mesh in the pair
     std::vector<RawContact> clipped;
-    ShapeInstance triangle; // one triangle of a mesh as a flat polytope (polytope_manifold.cpp)
+    // One triangle of a mesh as a flat polytope (polytope_manifold.cpp), and its geometry.
+    std::shared_ptr<detail::ShapeGeometry> triangleGeometry = std::make_shared<detail::ShapeGeometry>();
+    ShapeInstance triangle;
 
     bool candidatesReady = false;
     std::vector<std::pair<int, int>> candidates;
@@ -276,11 +278,25 @@ struct ContactDetector::Impl
 ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMeshes movingMeshes)
     : margin(marginIn), filter(model)
 {
+    triangle.geometry = triangleGeometry;
     const int bodyCount = static_cast<int>(model.bodies.size());
     bodyCollides.assign(model.bodies.size(), 0);
-    // Shapes of one type and size share one FCL geometry (it holds no pose), so that a scene of many
-    // equal bodies costs one geometry, not one per body; the same for the inflated boxes.
-    std::map<std::array<double, 4>, std::shared_ptr<fcl::CollisionGeometryd>> geometries;
+    // Shapes of one type and size share one FCL geometry and one ShapeGeometry (neither holds a
+    // pose), so that a scene of many equal bodies costs one of each, not one per body; the same for
+    // the inflated boxes. Meshes keep their own.
+    struct Shared
+    {
+        std::shared_ptr<fcl::CollisionGeometryd> fcl;
+        std::shared_ptr<const detail::ShapeGeometry> own;
+    };
+    std::map<std::array<double, 4>, Shared> geometries;
+    std::size_t shapeCount = 0;
+    for (const core::Body& body : model.bodies)
+        for (const core::Shape& shape : body.shapes)
+            shapeCount += shape.type == core::ShapeType::Plane ? 0 : 1;
+    shapes.reserve(shapeCount);
+    objects.reserve(shapeCount);
+    inflatedBox.reserve(shapeCount);
     std::map<std::array<double, 3>, int> inflatedBySize;
     for (int b = 0; b < bodyCount; ++b)
     {
@@ -298,27 +314,32 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
                 continue;
             }
             const int index = static_cast<int>(shapes.size());
+            const bool mesh = shape.type == core::ShapeType::Mesh;
+            const bool box = shape.type == core::ShapeType::Box;
+            Shared* shared =
+                mesh ? nullptr
+                     : &geometries[{static_cast<double>(shape.type), box ? shape.size.x() : shape.radius,
+                                    box ? shape.size.y() : shape.length, box ? shape.size.z() : 0.0}];
             // Moving meshes collide as their convex hulls (built here, once); static ones keep
             // their triangles: terrain and fixtures may be concave, and nothing moves them into
             // each other (two static bodies never collide).
             shapes.push_back(detail::makeShapeInstance(
-                shape, b, !body.isStatic && movingMeshes == MovingMeshes::ConvexHulls));
+                shape, b, !body.isStatic && movingMeshes == MovingMeshes::ConvexHulls,
+                shared ? shared->own : nullptr));
+            if (shared && !shared->own)
+                shared->own = shapes.back().geometry;
             detail::setBodyPose(shapes.back(), R_WB, body.position_W);
             bodyCollides[static_cast<std::size_t>(b)] = 1;
             (body.isStatic ? staticShapes : movingShapes).push_back(index);
             std::unique_ptr<MarginObject> object;
             std::shared_ptr<fcl::CollisionGeometryd> geometry;
-            if (shape.type == core::ShapeType::Mesh)
+            if (mesh)
                 geometry = makeGeometry(shape, shapes.back());
             else
             {
-                const bool box = shape.type == core::ShapeType::Box;
-                std::shared_ptr<fcl::CollisionGeometryd>& shared =
-                    geometries[{static_cast<double>(shape.type), box ? shape.size.x() : shape.radius,
-                                box ? shape.size.y() : shape.length, box ? shape.size.z() : 0.0}];
-                if (!shared)
-                    shared = makeGeometry(shape, shapes.back());
-                geometry = shared;
+                if (!shared->fcl)
+                    shared->fcl = makeGeometry(shape, shapes.back());
+                geometry = shared->fcl;
             }
             if (geometry)
             {
@@ -661,7 +682,7 @@ void ContactDetector::Impl::clipAgainstTriangles(int i, int j)
             continue;
         const fcl::Triangle& corners = mesh.tri_indices[t];
         if (!detail::setTrianglePolytope(tf * mesh.vertices[corners[0]], tf * mesh.vertices[corners[1]],
-                                         tf * mesh.vertices[corners[2]], triangle))
+                                         tf * mesh.vertices[corners[2]], *triangleGeometry, triangle))
             continue;
         if (meshIsB)
             detail::polytopeContacts(a, triangle, raw[k], margin, clipped);

@@ -175,7 +175,7 @@ double localDistance(const ShapeInstance& s, const Vec3& p, double exactBelow, V
     }
     case core::ShapeType::Mesh:
         if (s.convexHull)
-            return hullDistance(s.hull, p, exactBelow, grad);
+            return hullDistance(s.hull(), p, exactBelow, grad);
         break;
     case core::ShapeType::Plane:
         break;
@@ -217,7 +217,7 @@ template <class F> void forEachPointFeature(const ShapeInstance& s, const Vec3& 
         break;
     }
     case core::ShapeType::Mesh:
-        for (const Vec3& vertex : s.meshVertices)
+        for (const Vec3& vertex : s.meshVertices())
             f(Vec3(p + R * vertex), 0.0);
         break;
     case core::ShapeType::Sphere:
@@ -245,8 +245,8 @@ double supportHeight(const ShapeInstance& s, const Vec3& d_W)
         return h + s.halfLength * std::abs(d.z()) + s.radius * std::hypot(d.x(), d.y());
     case core::ShapeType::Mesh:
     {
-        double best = s.meshVertices.empty() ? 0.0 : -1e300;
-        for (const Vec3& v : s.meshVertices)
+        double best = s.meshVertices().empty() ? 0.0 : -1e300;
+        for (const Vec3& v : s.meshVertices())
             best = std::max(best, d.dot(v));
         return h + best;
     }
@@ -344,7 +344,7 @@ bool clipToContactRegion(const ShapeInstance& other, const Vec3& normal_W, const
             break;
         // The hull's face turned most towards the segment (its outward normal closest to -n),
         // then the prism over that face polygon: inside each edge's side plane.
-        const ConvexHull& h = other.hull;
+        const ConvexHull& h = other.hull();
         std::size_t face = 0;
         for (std::size_t k = 1; k < h.normals.size(); ++k)
             if (-n.dot(h.normals[k]) > -n.dot(h.normals[face]))

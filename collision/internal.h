@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,16 +33,11 @@ struct RawContact
 
 using collision::ConvexHull;
 
-// One non-plane shape of one body, with its geometry in its own frame S and its current pose.
-struct ShapeInstance
+// The geometry of a shape in its own frame S that does not depend on where the shape is: a box's
+// polytope, a mesh's vertices and hull. Instances of equal shapes share one (a chain of a million
+// equal boxes holds one box polytope, not a million).
+struct ShapeGeometry
 {
-    int body = 0; // index in core::Model::bodies
-    core::ShapeType type = core::ShapeType::Box;
-    Vec3 halfExtents = Vec3::Zero();   // Box (m)
-    double radius = 0.0;               // Sphere, Capsule, Cylinder (m)
-    double halfLength = 0.0;           // Capsule: half segment; Cylinder: half height (m)
-    double boundingRadius = 0.0;       // of a sphere about the shape origin holding the shape (m)
-    double mergeDistance = 0.0;        // contacts of one pair closer than this are merged (m)
     std::vector<Vec3> meshVertices;    // Mesh: unique vertices in S (m); the hull's when convexHull
     Vec3 meshBoxCentre = Vec3::Zero(); // Mesh: centre of the box in S that holds meshVertices (m)
     Vec3 meshBoxHalf = Vec3::Zero();   // Mesh: its half extents along S's axes (m)
@@ -50,24 +46,41 @@ struct ShapeInstance
     std::vector<std::vector<int>> hullNeighbours;
     std::vector<int> hullSeeds; // the corners furthest along the 26 directions of a cube's faces,
                                 // edges and corners: the climb starts at the best of them
+    // The shape as a convex polytope, in S: the hull of a convexHull mesh, or a box's 8 corners
+    // and 6 faces (for the face clipping of polytope_manifold.cpp); empty for other shapes.
+    ConvexHull hull;
+};
+
+// One non-plane shape of one body, with its geometry in its own frame S and its current pose.
+struct ShapeInstance
+{
+    int body = 0; // index in core::Model::bodies
+    core::ShapeType type = core::ShapeType::Box;
     // Mesh of a moving body: it collides as its convex hull (FCL's Convex, GJK/EPA), not as
     // triangles (FCL's BVH). False for static meshes (terrain may be concave) and for meshes
     // without a 3-d hull (flat or collinear vertices: they keep the triangles).
     bool convexHull = false;
-    // The shape as a convex polytope, in S: the hull of a convexHull mesh, or a box's 8 corners
-    // and 6 faces (for the face clipping of polytope_manifold.cpp); empty for other shapes.
-    ConvexHull hull;
+    Vec3 halfExtents = Vec3::Zero();               // Box (m)
+    double radius = 0.0;                           // Sphere, Capsule, Cylinder (m)
+    double halfLength = 0.0;                       // Capsule: half segment; Cylinder: half height (m)
+    double boundingRadius = 0.0;                   // of a sphere about the shape origin holding the shape (m)
+    double mergeDistance = 0.0;                    // contacts of one pair closer than this are merged (m)
+    std::shared_ptr<const ShapeGeometry> geometry; // never null once made
     // Fixed pose in the body frame.
     Mat3 R_BS = Mat3::Identity();
     Vec3 p_BS = Vec3::Zero(); // m
     // Current pose in the world.
     Mat3 R_WS = Mat3::Identity();
     Vec3 p_WS = Vec3::Zero(); // m
+
+    const ConvexHull& hull() const { return geometry->hull; }
+    const std::vector<Vec3>& meshVertices() const { return geometry->meshVertices; }
 };
 
 // Index of the hull corner of `s` (a convexHull mesh) furthest along u_S (shape frame): the hill
 // climb over its edges ends at the maximum, as a convex polytope's edge graph has no other peak.
 int hullExtremeCorner(const ShapeInstance& s, const Vec3& u_S);
+int hullExtremeCorner(const ShapeGeometry& s, const Vec3& u_S);
 
 // Corner k (0..7, bit i set = +x_i side) of a box with the given half extents, shape frame (m).
 inline Vec3 boxCorner(const Vec3& half, int k)
@@ -81,8 +94,11 @@ inline constexpr int cRimSamples = 8;
 const std::array<std::array<double, 2>, cRimSamples>& rimDirections();
 
 // Builds the instance (everything but the world pose) from a model shape of a given body. A
-// mesh becomes its convex hull when meshAsHull and it has one.
-ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull);
+// mesh becomes its convex hull when meshAsHull and it has one. `shared`, when given, is the
+// geometry of an instance of an equal shape (same type and sizes): the instance shares it
+// instead of building its own. A mesh ignores it (its geometry is its own).
+ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
+                                std::shared_ptr<const ShapeGeometry> shared = nullptr);
 
 // World pose from the body pose: R_WS = R_WB R_BS, p_WS = p_WB + R_WB p_BS.
 void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB);
@@ -136,9 +152,10 @@ void polytopeContacts(const ShapeInstance& a, const ShapeInstance& b, const RawC
                       double margin, std::vector<RawContact>& out);
 
 // Makes `out` the triangle t0 t1 t2 (world, counter-clockwise seen from the side it faces) as
-// a flat polytope in the world frame: two faces, front and back. Reuses out's storage. False
-// for a degenerate triangle.
-bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, ShapeInstance& out);
+// a flat polytope in the world frame: two faces, front and back, written into `geometry`, the
+// geometry out points to (its storage is reused). False for a degenerate triangle.
+bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, ShapeGeometry& geometry,
+                         ShapeInstance& out);
 
 // --- separation.cpp -------------------------------------------------------------------------
 // True when a and b are proven farther apart than margin (m) along some axis: the centre line,

@@ -80,7 +80,7 @@ void planeContacts(const ShapeInstance& s, const Vec3& n, double offset, double 
         break;
     }
     case core::ShapeType::Mesh:
-        for (const Vec3& vertex : s.meshVertices)
+        for (const Vec3& vertex : s.meshVertices())
             sink.add(p + R * vertex);
         break;
     case core::ShapeType::Plane:

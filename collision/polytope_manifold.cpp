@@ -38,8 +38,8 @@ std::size_t faceAlong(const ShapeInstance& p, const Vec3& d_W)
 {
     const Vec3 d = p.R_WS.transpose() * d_W;
     std::size_t best = 0;
-    for (std::size_t k = 1; k < p.hull.normals.size(); ++k)
-        if (d.dot(p.hull.normals[k]) > d.dot(p.hull.normals[best]))
+    for (std::size_t k = 1; k < p.hull().normals.size(); ++k)
+        if (d.dot(p.hull().normals[k]) > d.dot(p.hull().normals[best]))
             best = k;
     return best;
 }
@@ -49,7 +49,7 @@ double supportAlong(const ShapeInstance& p, const Vec3& u_W)
 {
     const Vec3 u = p.R_WS.transpose() * u_W;
     double best = -std::numeric_limits<double>::infinity();
-    for (const Vec3& v : p.hull.vertices)
+    for (const Vec3& v : p.hull().vertices)
         best = std::max(best, u.dot(v));
     return best + u_W.dot(p.p_WS);
 }
@@ -63,17 +63,17 @@ double overlapAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& 
 
 Vec3 worldCorner(const ShapeInstance& p, int index)
 {
-    return p.p_WS + p.R_WS * p.hull.vertices[static_cast<std::size_t>(index)];
+    return p.p_WS + p.R_WS * p.hull().vertices[static_cast<std::size_t>(index)];
 }
 
 // Corners of face k of p in the world, in their counter-clockwise order.
 void faceCorners(const ShapeInstance& p, std::size_t k, std::vector<Vec3>& out)
 {
     out.clear();
-    const auto start = static_cast<std::size_t>(p.hull.faceStart[k]);
-    const int n = p.hull.faces[start];
+    const auto start = static_cast<std::size_t>(p.hull().faceStart[k]);
+    const int n = p.hull().faces[start];
     for (int i = 1; i <= n; ++i)
-        out.push_back(worldCorner(p, p.hull.faces[start + static_cast<std::size_t>(i)]));
+        out.push_back(worldCorner(p, p.hull().faces[start + static_cast<std::size_t>(i)]));
 }
 
 // Keeps the part of the polygon where s . (x - q) >= 0 (Sutherland-Hodgman, one plane).
@@ -101,7 +101,7 @@ void clipFaces(const ShapeInstance& reference, std::size_t k, const ShapeInstanc
                double margin, std::vector<RawContact>& out)
 {
     thread_local std::vector<Vec3> polygon, clipped, referenceCorners; // reused: no allocation per step
-    const Vec3 n = reference.R_WS * reference.hull.normals[k];
+    const Vec3 n = reference.R_WS * reference.hull().normals[k];
     faceCorners(incident, faceAlong(incident, -n), polygon);
     faceCorners(reference, k, referenceCorners);
     const std::size_t count = referenceCorners.size();
@@ -123,7 +123,8 @@ void clipFaces(const ShapeInstance& reference, std::size_t k, const ShapeInstanc
 
 } // namespace
 
-bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, ShapeInstance& out)
+bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, ShapeGeometry& geometry,
+                         ShapeInstance& out)
 {
     const Vec3 normal = (t1_W - t0_W).cross(t2_W - t0_W);
     if (!(normal.norm() > 0.0))
@@ -131,7 +132,7 @@ bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, S
     const Vec3 n = normal.normalized();
     out.R_WS.setIdentity();
     out.p_WS.setZero();
-    ConvexHull& h = out.hull; // assign() keeps the capacity: no allocation after the first call
+    ConvexHull& h = geometry.hull; // assign() keeps the capacity: no allocation after the first call
     h.vertices.assign({t0_W, t1_W, t2_W});
     h.faces.assign({3, 0, 1, 2, 3, 0, 2, 1});
     h.faceStart.assign({0, 4});
@@ -156,8 +157,8 @@ void polytopeContacts(const ShapeInstance& a, const ShapeInstance& b, const RawC
     const Vec3& m = reference.normal_W;
     const std::size_t faceA = faceAlong(a, m);
     const std::size_t faceB = faceAlong(b, -m);
-    const Vec3 nA = a.R_WS * a.hull.normals[faceA];
-    const Vec3 nB = b.R_WS * b.hull.normals[faceB];
+    const Vec3 nA = a.R_WS * a.hull().normals[faceA];
+    const Vec3 nB = b.R_WS * b.hull().normals[faceB];
     const double overlapA = overlapAlong(a, b, nA);
     const double overlapB = overlapAlong(a, b, -nB);
     const double overlapM = overlapAlong(a, b, m);

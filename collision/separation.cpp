@@ -45,8 +45,8 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi, 
         if (s.convexHull && !exact)
         {
             const Vec3 u_S = s.R_WS.transpose() * u;
-            const double centre = u_S.dot(s.meshBoxCentre);
-            const double reach = s.meshBoxHalf.dot(u_S.cwiseAbs());
+            const double centre = u_S.dot(s.geometry->meshBoxCentre);
+            const double reach = s.geometry->meshBoxHalf.dot(u_S.cwiseAbs());
             lo = centre - reach;
             hi = centre + reach;
             return;
@@ -56,8 +56,8 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi, 
             // Exact: the hull's corners furthest either way, which need not be centred on the
             // shape origin.
             const Vec3 u_S = s.R_WS.transpose() * u;
-            lo = u_S.dot(s.meshVertices[static_cast<std::size_t>(hullExtremeCorner(s, -u_S))]);
-            hi = u_S.dot(s.meshVertices[static_cast<std::size_t>(hullExtremeCorner(s, u_S))]);
+            lo = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, -u_S))]);
+            hi = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, u_S))]);
             return;
         }
         break;

@@ -50,9 +50,15 @@ ConvexHull boxPolytope(const Vec3& half)
 
 } // namespace
 
-ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull)
+ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
+                                std::shared_ptr<const ShapeGeometry> shared)
 {
     ShapeInstance s;
+    if (shape.type == core::ShapeType::Mesh)
+        shared = nullptr; // a mesh's geometry is its own
+    std::shared_ptr<ShapeGeometry> own = shared ? nullptr : std::make_shared<ShapeGeometry>();
+    ShapeGeometry unused;
+    ShapeGeometry& g = own ? *own : unused; // what the switch below builds
     s.body = body;
     s.type = shape.type;
     s.R_BS = shape.rotation_BS.normalized().toRotationMatrix();
@@ -61,7 +67,8 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
     {
     case core::ShapeType::Box:
         s.halfExtents = 0.5 * shape.size;
-        s.hull = boxPolytope(s.halfExtents);
+        if (own)
+            g.hull = boxPolytope(s.halfExtents);
         s.boundingRadius = s.halfExtents.norm();
         s.mergeDistance = 0.25 * shape.size.minCoeff();
         break;
@@ -87,44 +94,44 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         // A mesh without a 3-d hull (flat, collinear, under 4 points) keeps its triangles: it
         // still collides as before, and a flat plate has no volume for GJK/EPA to work in.
         std::string reason;
-        s.convexHull = meshAsHull && computeConvexHull(shape.vertices, s.hull, reason);
+        s.convexHull = meshAsHull && computeConvexHull(shape.vertices, g.hull, reason);
         // Only the hull's corners can be a deepest point (against a plane, a face, along an
         // axis), so the plane and feature contacts, bounds and support functions use them.
-        s.meshVertices = s.convexHull ? s.hull.vertices : uniqueVertices(shape.vertices);
-        for (const Vec3& v : s.meshVertices)
+        g.meshVertices = s.convexHull ? g.hull.vertices : uniqueVertices(shape.vertices);
+        for (const Vec3& v : g.meshVertices)
             s.boundingRadius = std::max(s.boundingRadius, v.norm());
         if (s.convexHull)
         {
-            s.hullNeighbours.assign(s.hull.vertices.size(), {});
-            for (const int start : s.hull.faceStart)
+            g.hullNeighbours.assign(g.hull.vertices.size(), {});
+            for (const int start : g.hull.faceStart)
             {
-                const int n = s.hull.faces[static_cast<std::size_t>(start)];
+                const int n = g.hull.faces[static_cast<std::size_t>(start)];
                 for (int k = 0; k < n; ++k)
                 {
-                    const int i = s.hull.faces[static_cast<std::size_t>(start + 1 + k)];
-                    const int j = s.hull.faces[static_cast<std::size_t>(start + 1 + (k + 1) % n)];
-                    s.hullNeighbours[static_cast<std::size_t>(i)].push_back(j); // each edge is in two faces,
+                    const int i = g.hull.faces[static_cast<std::size_t>(start + 1 + k)];
+                    const int j = g.hull.faces[static_cast<std::size_t>(start + 1 + (k + 1) % n)];
+                    g.hullNeighbours[static_cast<std::size_t>(i)].push_back(j); // each edge is in two faces,
                 }                                                               // once either way round
             }
-            s.hullSeeds = {0};
+            g.hullSeeds = {0};
             for (int x = -1; x <= 1; ++x)
                 for (int y = -1; y <= 1; ++y)
                     for (int z = -1; z <= 1; ++z)
                         if (x != 0 || y != 0 || z != 0)
-                            s.hullSeeds.push_back(hullExtremeCorner(s, Vec3(x, y, z)));
-            std::sort(s.hullSeeds.begin(), s.hullSeeds.end());
-            s.hullSeeds.erase(std::unique(s.hullSeeds.begin(), s.hullSeeds.end()), s.hullSeeds.end());
+                            g.hullSeeds.push_back(hullExtremeCorner(g, Vec3(x, y, z)));
+            std::sort(g.hullSeeds.begin(), g.hullSeeds.end());
+            g.hullSeeds.erase(std::unique(g.hullSeeds.begin(), g.hullSeeds.end()), g.hullSeeds.end());
         }
-        if (!s.meshVertices.empty())
+        if (!g.meshVertices.empty())
         {
-            Vec3 lo = s.meshVertices.front(), hi = lo;
-            for (const Vec3& v : s.meshVertices)
+            Vec3 lo = g.meshVertices.front(), hi = lo;
+            for (const Vec3& v : g.meshVertices)
             {
                 lo = lo.cwiseMin(v);
                 hi = hi.cwiseMax(v);
             }
-            s.meshBoxCentre = 0.5 * (lo + hi);
-            s.meshBoxHalf = 0.5 * (hi - lo);
+            g.meshBoxCentre = 0.5 * (lo + hi);
+            g.meshBoxHalf = 0.5 * (hi - lo);
         }
         s.mergeDistance = 0.05 * s.boundingRadius;
         break;
@@ -133,6 +140,7 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         break; // planes are not instances (contacts.cpp keeps them apart)
     }
     s.mergeDistance = std::max(s.mergeDistance, 1e-9);
+    s.geometry = shared ? std::move(shared) : std::move(own);
     return s;
 }
 
@@ -158,6 +166,11 @@ void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB)
 }
 
 int hullExtremeCorner(const ShapeInstance& s, const Vec3& u_S)
+{
+    return hullExtremeCorner(*s.geometry, u_S);
+}
+
+int hullExtremeCorner(const ShapeGeometry& s, const Vec3& u_S)
 {
     int best = 0;
     double bestValue = u_S.dot(s.meshVertices.front());

@@ -121,11 +121,33 @@ TEST(ConvexHull, HillClimbFindsTheFurthestCornerInEveryDirection)
         const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
         const Vec3 u(r * std::cos(2.39996 * k), r * std::sin(2.39996 * k), z);
         double best = -std::numeric_limits<double>::infinity();
-        for (const Vec3& v : s.meshVertices)
+        for (const Vec3& v : s.meshVertices())
             best = std::max(best, u.dot(v));
-        EXPECT_EQ(u.dot(s.meshVertices[static_cast<std::size_t>(detail::hullExtremeCorner(s, u))]), best)
+        EXPECT_EQ(u.dot(s.meshVertices()[static_cast<std::size_t>(detail::hullExtremeCorner(s, u))]), best)
             << k;
     }
+}
+
+TEST(ShapeInstance, EqualShapesShareOneGeometryAndAMeshKeepsItsOwn)
+{
+    core::Shape box;
+    box.type = core::ShapeType::Box;
+    box.size = Vec3(0.08, 0.02, 0.03);
+    const detail::ShapeInstance first = detail::makeShapeInstance(box, 0, true);
+    const detail::ShapeInstance second = detail::makeShapeInstance(box, 1, true, first.geometry);
+    EXPECT_EQ(second.geometry, first.geometry);
+    // What the second would have built alone: the same polytope, corner for corner.
+    const detail::ShapeInstance alone = detail::makeShapeInstance(box, 1, true);
+    ASSERT_EQ(alone.hull().vertices.size(), 8u);
+    EXPECT_EQ(alone.hull().vertices, second.hull().vertices);
+    EXPECT_EQ(alone.hull().faces, second.hull().faces);
+    EXPECT_EQ(alone.hull().normals, second.hull().normals);
+    // A mesh offered a box's geometry builds its own hull.
+    const core::Shape rock = rockMesh(0.1, 16, 24, 0.25, 3);
+    const detail::ShapeInstance mesh = detail::makeShapeInstance(rock, 2, true, first.geometry);
+    ASSERT_TRUE(mesh.convexHull);
+    EXPECT_NE(mesh.geometry, first.geometry);
+    EXPECT_GT(mesh.hull().vertices.size(), 8u);
 }
 
 TEST(ConvexHull, DegenerateInputIsRefusedQuietly)
