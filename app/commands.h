@@ -2,6 +2,7 @@
 #pragma once
 
 #include "io/scene.h"
+#include "study/sweep.h"
 
 #include <optional>
 #include <string>
@@ -100,6 +101,7 @@ struct SweepOptions
     std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
     std::string referenceCsv;             // rows t,x,y,z of one body's centre of mass, not a run's
     std::string referenceBody;            // that body's name
+    study::Accuracy chartAccuracy = study::Accuracy::TrajectoryError; // the chart's y axis
     io::UrdfOptions urdf;
 };
 

@@ -1,5 +1,6 @@
 // app/main.cpp: command-line parsing (CLI11) and exit codes of `frontier`.
 #include "app/commands.h"
+#include "app/sweep_chart.h"
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -188,6 +189,11 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
                          "overrides the scene's `reference: {csv: FILE, body: NAME}`");
     sweep.add_option("--reference-body", o.referenceBody, "the body whose positions --reference-csv holds")
         ->needs(referenceCsv);
+    sweep
+        .add_option("--chart-accuracy", o.chartAccuracy,
+                    "the chart's y axis: error (trajectory error, the default), joint-gap or penetration "
+                    "(largest over the run: for chaotic scenes, where the error ranks nothing)")
+        ->transform(CLI::CheckedTransformer(accuracyNames()));
     referenceCsv->needs("--reference-body");
     addRobotOptions(sweep, o.urdf);
     sweep.footer(

@@ -53,18 +53,34 @@ std::string gnuplotQuote(const std::string& text)
 namespace
 {
 
-bool plottable(const SweepCell& c)
+bool plottable(const SweepCell& c, Accuracy accuracy)
 {
+    const double y = accuracyOf(c, accuracy);
     return c.survived && std::isfinite(c.secondsPerSimSecond) && c.secondsPerSimSecond > 0.0 &&
-           std::isfinite(c.trajectoryErrorM) && c.trajectoryErrorM > 0.0;
+           std::isfinite(y) && y > 0.0;
 }
 
-std::string point(const SweepCell& c)
+std::string point(const SweepCell& c, Accuracy accuracy)
 {
     char text[128];
-    std::snprintf(text, sizeof text, "%.9g %.9g \"%g ms\"\n", c.secondsPerSimSecond, c.trajectoryErrorM,
+    std::snprintf(text, sizeof text, "%.9g %.9g \"%g ms\"\n", c.secondsPerSimSecond, accuracyOf(c, accuracy),
                   c.dt * 1e3);
     return text;
+}
+
+// The y axis's label and the data file's name for the column.
+std::string accuracyAxis(Accuracy accuracy)
+{
+    switch (accuracy)
+    {
+    case Accuracy::JointGap:
+        return "joint gap (m): largest positional joint error over the run";
+    case Accuracy::Penetration:
+        return "penetration (m): deepest contact overlap over the run";
+    case Accuracy::TrajectoryError:
+        break;
+    }
+    return "trajectory error (m): largest centre-of-mass distance to the reference";
 }
 
 void writeFile(const fs::path& path, const std::string& text)
@@ -261,12 +277,13 @@ struct Chart
     std::string script;
 };
 
-Chart buildChart(const std::string& sceneName, const SweepResult& result)
+Chart buildChart(const std::string& sceneName, const SweepResult& result, Accuracy accuracy)
 {
     // The data: the Pareto front, then one block per method (cost, error, dt label); blocks are
     // separated by two blank lines (gnuplot's `index`).
     Chart chart;
-    chart.data = "# frontier sweep chart data: wall seconds per simulated second, trajectory error (m), dt\n";
+    chart.data = "# frontier sweep chart data: wall seconds per simulated second, " + accuracyAxis(accuracy) +
+                 ", dt\n";
     int block = 0;
     std::vector<std::string> labels;
     for (const SweepCell& c : result.cells)
@@ -277,14 +294,14 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         }
     }
     // The Pareto front first, under the methods' lines.
-    const std::vector<std::size_t> front = paretoFront(result.cells);
+    const std::vector<std::size_t> front = paretoFront(result.cells, accuracy);
     std::vector<std::size_t> frontShown;
     std::string frontPoints;
     for (std::size_t i : front)
     {
-        if (plottable(result.cells[i]))
+        if (plottable(result.cells[i], accuracy))
         {
-            frontPoints += point(result.cells[i]);
+            frontPoints += point(result.cells[i], accuracy);
             frontShown.push_back(i);
         }
     }
@@ -312,9 +329,9 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         for (std::size_t i = 0; i < result.cells.size(); ++i)
         {
             const SweepCell& c = result.cells[i];
-            if (cellLabel(c) == label && plottable(c))
+            if (cellLabel(c) == label && plottable(c, accuracy))
             {
-                points += point(c);
+                points += point(c, accuracy);
                 one.cells.push_back(i);
             }
         }
@@ -339,12 +356,12 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
     double xLo = 1e300, xHi = -1e300, yLo = 1e300, yHi = -1e300;
     for (const SweepCell& c : result.cells)
     {
-        if (plottable(c))
+        if (plottable(c, accuracy))
         {
             xLo = std::min(xLo, c.secondsPerSimSecond);
             xHi = std::max(xHi, c.secondsPerSimSecond);
-            yLo = std::min(yLo, c.trajectoryErrorM);
-            yHi = std::max(yHi, c.trajectoryErrorM);
+            yLo = std::min(yLo, accuracyOf(c, accuracy));
+            yHi = std::max(yHi, accuracyOf(c, accuracy));
         }
     }
     if (!plots.empty())
@@ -359,17 +376,17 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
     {
         const SweepCell& c = result.cells[i];
         const double x = axes.px(c.secondsPerSimSecond);
-        const double y = axes.py(c.trajectoryErrorM);
+        const double y = axes.py(accuracyOf(c, accuracy));
         obstacles.push_back({x - cRingPx, y - cRingPx, x + cRingPx, y + cRingPx});
     }
     for (std::size_t k = 1; k < frontShown.size(); ++k) // steps: across, then down
     {
         const SweepCell& a = result.cells[frontShown[k - 1]];
         const SweepCell& b = result.cells[frontShown[k]];
-        addSegment(obstacles, axes.px(a.secondsPerSimSecond), axes.py(a.trajectoryErrorM),
-                   axes.px(b.secondsPerSimSecond), axes.py(a.trajectoryErrorM), 4.0);
-        addSegment(obstacles, axes.px(b.secondsPerSimSecond), axes.py(a.trajectoryErrorM),
-                   axes.px(b.secondsPerSimSecond), axes.py(b.trajectoryErrorM), 4.0);
+        addSegment(obstacles, axes.px(a.secondsPerSimSecond), axes.py(accuracyOf(a, accuracy)),
+                   axes.px(b.secondsPerSimSecond), axes.py(accuracyOf(a, accuracy)), 4.0);
+        addSegment(obstacles, axes.px(b.secondsPerSimSecond), axes.py(accuracyOf(a, accuracy)),
+                   axes.px(b.secondsPerSimSecond), axes.py(accuracyOf(b, accuracy)), 4.0);
     }
     for (const Series& one : series)
     {
@@ -377,12 +394,13 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         {
             const SweepCell& c = result.cells[one.cells[k]];
             const double x = axes.px(c.secondsPerSimSecond);
-            const double y = axes.py(c.trajectoryErrorM);
+            const double y = axes.py(accuracyOf(c, accuracy));
             obstacles.push_back({x - cMarkerPx, y - cMarkerPx, x + cMarkerPx, y + cMarkerPx});
             if (k > 0)
             {
                 const SweepCell& p = result.cells[one.cells[k - 1]];
-                addSegment(obstacles, axes.px(p.secondsPerSimSecond), axes.py(p.trajectoryErrorM), x, y, 1.5);
+                addSegment(obstacles, axes.px(p.secondsPerSimSecond), axes.py(accuracyOf(p, accuracy)), x, y,
+                           1.5);
             }
         }
     }
@@ -396,7 +414,7 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
             const SweepCell& c = result.cells[i];
             const std::string text = dtLabel(c);
             const double x = axes.px(c.secondsPerSimSecond);
-            const double y = axes.py(c.trajectoryErrorM);
+            const double y = axes.py(accuracyOf(c, accuracy));
             const bool onFront = std::find(frontShown.begin(), frontShown.end(), i) != frontShown.end();
             const double gap = (onFront ? cRingPx : cMarkerPx) + 2.0;
             const double w = cLabelCharPx * static_cast<double>(text.size());
@@ -433,13 +451,19 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
     }
 
     char title[512];
-    std::snprintf(title, sizeof title,
-                  "%s: speed against accuracy (reference %s at dt %g s, %g s simulated, %zu sample time%s)",
-                  sceneName.c_str(), result.reference.method.label().c_str(), result.reference.dt,
-                  result.schedule.durationS(), result.schedule.sampleUnits.size(),
-                  result.schedule.sampleUnits.size() == 1 ? "" : "s");
+    if (accuracy == Accuracy::TrajectoryError)
+        std::snprintf(
+            title, sizeof title,
+            "%s: speed against accuracy (reference %s at dt %g s, %g s simulated, %zu sample time%s)",
+            sceneName.c_str(), result.reference.method.label().c_str(), result.reference.dt,
+            result.schedule.durationS(), result.schedule.sampleUnits.size(),
+            result.schedule.sampleUnits.size() == 1 ? "" : "s");
+    else
+        std::snprintf(title, sizeof title, "%s: %s against cost (%g s simulated)", sceneName.c_str(),
+                      accuracy == Accuracy::JointGap ? "joint gap" : "penetration",
+                      result.schedule.durationS());
     std::string titleExpression = gnuplotQuote(title);
-    if (errorRanksNothing(result.cells))
+    if (accuracy == Accuracy::TrajectoryError && errorRanksNothing(result.cells))
     {
         titleExpression +=
             " . \"\\n\" . " + gnuplotQuote("(chaotic: error does not rank the methods; no method's "
@@ -461,6 +485,9 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         "    set terminal png size 1100,720 enhanced\n"
         "}\n"
         "set output out\n"
+        // gnuplot's line types repeat after 8: four more colours, so that up to 12 series differ.
+        "set linetype 9 lc rgb '#8c564b'\nset linetype 10 lc rgb '#7f7f7f'\n"
+        "set linetype 11 lc rgb '#bcbd22'\nset linetype 12 lc rgb '#17becf'\n"
         "set title " +
         titleExpression +
         " noenhanced\n"
@@ -476,7 +503,9 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result)
         "set xtics 10\nset ytics 10\nset mxtics 10\nset mytics 10\n"
         "set format x '1e%T'\nset format y '1e%T'\n" // one style per axis: 1e-3, 1e0, 1e2
         "set xlabel 'cost: wall seconds per simulated second' noenhanced\n"
-        "set ylabel 'trajectory error (m): largest centre-of-mass distance to the reference' noenhanced\n"
+        "set ylabel " +
+        gnuplotQuote(accuracyAxis(accuracy)) +
+        " noenhanced\n"
         "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
         // Under the axis label, two columns: never over a cell or a label.
         "set key at screen 0.5, screen " +
@@ -544,9 +573,17 @@ bool errorRanksNothing(const std::vector<SweepCell>& cells)
     return judged;
 }
 
-std::string sweepChartScript(const std::string& sceneName, const SweepResult& result)
+const std::map<std::string, Accuracy>& accuracyNames()
 {
-    return buildChart(sceneName, result).script;
+    static const std::map<std::string, Accuracy> names = {{"error", Accuracy::TrajectoryError},
+                                                          {"joint-gap", Accuracy::JointGap},
+                                                          {"penetration", Accuracy::Penetration}};
+    return names;
+}
+
+std::string sweepChartScript(const std::string& sceneName, const SweepResult& result, Accuracy accuracy)
+{
+    return buildChart(sceneName, result, accuracy).script;
 }
 
 bool drawGnuplotChart(const std::string& folder, const GnuplotChart& chart)
@@ -582,9 +619,10 @@ bool drawGnuplotChart(const std::string& folder, const GnuplotChart& chart)
     return true;
 }
 
-bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result)
+bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result,
+                    Accuracy accuracy)
 {
-    const Chart chart = buildChart(sceneName, result);
+    const Chart chart = buildChart(sceneName, result, accuracy);
     return drawGnuplotChart(folder, {cScript, chart.script, cData, chart.data, cChart});
 }
 

@@ -4,6 +4,8 @@
 // DIR as a child process (no shell) and draws DIR/sweep.png: trajectory error (m) against cost
 // (wall seconds per simulated second), log-log, one line per method with its points labelled by
 // dt, and the Pareto front as a highlighted step line. `cd DIR && gnuplot sweep.gp` redraws it.
+// The y axis may instead be the joint gap or the penetration (study::Accuracy), for scenes whose
+// trajectories are chaotic.
 //
 // Layout: fixed margins and axis ranges (whole decades around the data), ticks at every decade
 // written "1e-3" on both axes, the legend below the axis label in two columns (never over the
@@ -14,6 +16,7 @@
 
 #include "study/sweep.h"
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,6 +25,7 @@ namespace frontier::app
 {
 
 // The sweep's results (study/sweep.h).
+using study::Accuracy;
 using study::cellLabel;
 using study::paretoFront;
 using study::SweepCell;
@@ -45,8 +49,13 @@ inline constexpr double cConvergenceOrder = 0.25;
 // run is as far from the reference as any other), and the chart compares noise, not methods.
 bool errorRanksNothing(const std::vector<SweepCell>& cells);
 
+// The names of the chart's accuracies on the command line (`--chart-accuracy`): error,
+// joint-gap, penetration.
+const std::map<std::string, Accuracy>& accuracyNames();
+
 // The text of sweep.gp (for the data sweep.dat that drawSweepChart writes alongside it).
-std::string sweepChartScript(const std::string& sceneName, const SweepResult& result);
+std::string sweepChartScript(const std::string& sceneName, const SweepResult& result,
+                             Accuracy accuracy = Accuracy::TrajectoryError);
 
 // A gnuplot single-quoted string: no escapes inside but '' for a quote; control characters (a
 // line break would end the command) become spaces.
@@ -75,6 +84,7 @@ std::string findGnuplot();
 // folder/sweep.png. Returns false when gnuplot is not installed (no PNG; an older sweep.png is
 // removed so it cannot pass for this sweep's). Throws io::OutputError when a file cannot be
 // written, ChartError when gnuplot fails.
-bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result);
+bool drawSweepChart(const std::string& folder, const std::string& sceneName, const SweepResult& result,
+                    Accuracy accuracy = Accuracy::TrajectoryError);
 
 } // namespace frontier::app

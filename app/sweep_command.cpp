@@ -149,7 +149,7 @@ int sweepCommand(const SweepOptions& options)
                                          [](const study::SweepCell& c) { return c.survived; });
     try
     {
-        if (drawSweepChart(options.out, model.name, result))
+        if (drawSweepChart(options.out, model.name, result, options.chartAccuracy))
         {
             std::printf("Wrote %s and %s (gnuplot script %s).\n", csv.c_str(), (folder / "sweep.png").c_str(),
                         (folder / "sweep.gp").c_str());

@@ -616,13 +616,27 @@ ExternalReference readReferenceCsv(const std::string& path, const std::string& b
     return reference;
 }
 
-std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells)
+double accuracyOf(const SweepCell& cell, Accuracy accuracy)
+{
+    switch (accuracy)
+    {
+    case Accuracy::JointGap:
+        return cell.maxJointErrorM;
+    case Accuracy::Penetration:
+        return cell.maxPenetrationM;
+    case Accuracy::TrajectoryError:
+        break;
+    }
+    return cell.trajectoryErrorM;
+}
+
+std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells, Accuracy accuracy)
 {
     std::vector<std::size_t> candidates;
     for (std::size_t i = 0; i < cells.size(); ++i)
     {
         const SweepCell& c = cells[i];
-        if (c.survived && std::isfinite(c.secondsPerSimSecond) && std::isfinite(c.trajectoryErrorM))
+        if (c.survived && std::isfinite(c.secondsPerSimSecond) && std::isfinite(accuracyOf(c, accuracy)))
         {
             candidates.push_back(i);
         }
@@ -635,16 +649,16 @@ std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells)
                   {
                       return cells[a].secondsPerSimSecond < cells[b].secondsPerSimSecond;
                   }
-                  return cells[a].trajectoryErrorM < cells[b].trajectoryErrorM;
+                  return accuracyOf(cells[a], accuracy) < accuracyOf(cells[b], accuracy);
               });
     std::vector<std::size_t> front;
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i : candidates)
     {
-        if (cells[i].trajectoryErrorM < best)
+        if (accuracyOf(cells[i], accuracy) < best)
         {
             front.push_back(i);
-            best = cells[i].trajectoryErrorM;
+            best = accuracyOf(cells[i], accuracy);
         }
     }
     return front;

@@ -163,8 +163,20 @@ double sweepDuration(const core::Model& model, std::optional<double> duration);
 SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
                      const SweepProgress& progress, const ExternalReference* external = nullptr);
 
-// Indices of the Pareto-optimal cells: survived, with a finite positive cost and error, and no
+// What a Pareto front or a chart ranks the cells by (m, lower is better).
+enum class Accuracy
+{
+    TrajectoryError, // trajectoryErrorM: the largest centre-of-mass distance to the reference
+    JointGap,        // maxJointErrorM: the largest positional joint gap over the run
+    Penetration,     // maxPenetrationM: the deepest contact overlap over the run
+};
+
+// The cell's figure of that accuracy (m).
+double accuracyOf(const SweepCell& cell, Accuracy accuracy);
+
+// Indices of the Pareto-optimal cells: survived, with a finite cost and accuracy figure, and no
 // other such cell at most as costly and at most as wrong (better in one). Sorted by cost.
-std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells);
+std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells,
+                                     Accuracy accuracy = Accuracy::TrajectoryError);
 
 } // namespace frontier::study

@@ -13,7 +13,8 @@
 // the run (m), found by Frontier's contact detection on the engine's poses after every step. An
 // engine that exceeds --max-seconds stops early and says so. With several time steps every engine
 // runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
-// (app/sweep_chart.h), one line per engine.
+// (app/sweep_chart.h), one line per engine; --chart-accuracy joint-gap or penetration puts that
+// on the y axis instead (for scenes whose trajectories are chaotic, like the pileup).
 #include "app/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
@@ -181,7 +182,7 @@ std::string csvField(const std::string& s)
 // Error against cost, every engine a series: the cells of a sweep (study/sweep.h) whose reference
 // is Frontier rattle at referenceDt and whose one sample time is the end of the run.
 void drawChart(const std::string& folder, const core::Model& model, const std::vector<Row>& rows,
-               double referenceDt, const Settings& s)
+               double referenceDt, const Settings& s, app::Accuracy accuracy)
 {
     app::SweepResult result;
     result.bodies = static_cast<int>(model.bodies.size());
@@ -203,11 +204,13 @@ void drawChart(const std::string& folder, const core::Model& model, const std::v
         cell.secondsPerSimSecond = r.steps ? r.secondsStepping / (static_cast<double>(r.steps) * r.dt) : cNan;
         cell.trajectoryErrorM = r.errorM;
         cell.finalErrorM = r.errorM;
+        cell.maxJointErrorM = r.steps ? r.maxGapM : cNan;
+        cell.maxPenetrationM = r.steps ? r.maxPenetrationM : cNan;
         cell.failure = r.note;
         result.cells.push_back(cell);
     }
     std::filesystem::create_directories(folder);
-    if (!app::drawSweepChart(folder, model.name, result))
+    if (!app::drawSweepChart(folder, model.name, result, accuracy))
         std::cerr << "frontier_peers: gnuplot is not installed: " << folder << "/sweep.png not drawn\n";
 }
 
@@ -222,6 +225,7 @@ int runHarness(int argc, char** argv)
     std::vector<double> dts;
     double referenceDt = 0.0;
     std::string chartDir;
+    app::Accuracy chartAccuracy = app::Accuracy::TrajectoryError;
     std::string engines;
     std::string csvPath, markdownPath;
     Settings s;
@@ -244,6 +248,10 @@ int runHarness(int argc, char** argv)
     app.add_option("--chart", chartDir,
                    "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, "
                    "DIR/sweep.dat)");
+    app.add_option("--chart-accuracy", chartAccuracy,
+                   "the chart's y axis: error (against the reference, the default), joint-gap or penetration "
+                   "(largest over the run)")
+        ->transform(CLI::CheckedTransformer(app::accuracyNames()));
     app.add_option("--max-seconds", s.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
     app.add_option("--csv", csvPath, "write the rows as CSV");
@@ -293,7 +301,8 @@ int runHarness(int argc, char** argv)
     }
     if (dts.empty())
         dts.push_back(model.simulation.dt);
-    if (!chartDir.empty() && dts.size() > 1 && referenceDt <= 0.0)
+    if (!chartDir.empty() && chartAccuracy == app::Accuracy::TrajectoryError && dts.size() > 1 &&
+        referenceDt <= 0.0)
     {
         std::cerr
             << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
@@ -352,7 +361,7 @@ int runHarness(int argc, char** argv)
         std::ofstream(markdownPath) << md.str();
     if (!chartDir.empty())
         drawChart(chartDir, model, rows, referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions,
-                  s);
+                  s, chartAccuracy);
     return 0;
 }
 

@@ -127,6 +127,27 @@ TEST(SweepChart, TitleSaysWhenTheErrorRanksNothing)
     EXPECT_EQ(ranked.find("chaotic"), std::string::npos);
 }
 
+TEST(SweepChart, JointGapOnTheYAxisRanksByTheGap)
+{
+    // The pileup's errors wander, but its joint gaps rank the engines: three cells whose gaps and
+    // costs make the front by gap {cheap and open, dear and closed}, while the front by error is
+    // {cheapest, middle} (the middle one the most accurate).
+    std::vector<SweepCell> cells = {cell(cEulerPgs, 0.001, 0.02, 0.05), cell(cEulerLinear, 0.001, 0.05, 0.04),
+                                    cell(cRattleLinear, 0.001, 0.08, 0.06)};
+    cells[0].maxJointErrorM = 3e-4;
+    cells[1].maxJointErrorM = 5e-4; // dearer than cells[0] and more open: off the front
+    cells[2].maxJointErrorM = 1e-10;
+    EXPECT_EQ(paretoFront(cells, Accuracy::JointGap), (std::vector<std::size_t>{0, 2}));
+    EXPECT_EQ(paretoFront(cells), (std::vector<std::size_t>{0, 1}));
+
+    const std::string script = sweepChartScript("pileup", resultOf(cells), Accuracy::JointGap);
+    EXPECT_NE(script.find("set title 'pileup: joint gap against cost"), std::string::npos) << script;
+    EXPECT_NE(script.find("set ylabel 'joint gap (m)"), std::string::npos) << script;
+    EXPECT_EQ(script.find("chaotic"), std::string::npos);
+    // The y range holds the gaps in whole decades: 1e-10 to 1e-3, not the errors' 1e-2 to 1e-1.
+    EXPECT_NE(script.find("set yrange [1e-10:0.001]"), std::string::npos) << script;
+}
+
 TEST(SweepChart, OneTickFormatPerLogAxisAndWholeDecades)
 {
     std::vector<SweepCell> cells;

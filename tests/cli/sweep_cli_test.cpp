@@ -3,6 +3,7 @@
 #include "app_test_util.h"
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <gtest/gtest.h>
@@ -174,6 +175,50 @@ TEST(SweepCli, WithoutGnuplotWritesCsvAndScript)
     EXPECT_EQ(lines(readText(out + "/sweep.csv")).size(), 2u + 2u);
     EXPECT_TRUE(fs::exists(out + "/sweep.gp"));
     EXPECT_FALSE(fs::exists(out + "/sweep.png"));
+}
+
+// --chart-accuracy penetration: the chart's points are each cell's deepest overlap, as the CSV's
+// max_penetration_m gives it, and the axis says so; an unknown accuracy exits 2 naming the choices.
+TEST(SweepCli, ChartAccuracyPutsThePenetrationOnTheYAxis)
+{
+    TestDir dir;
+    const std::string out = dir.out("sweep");
+    const Result r = dir.run("sweep scenes/box_stack.yaml --duration 0.3 --dt 0.002,0.001 --integrator euler "
+                             "--chart-accuracy penetration --out " +
+                             shellQuote(out));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(readText(out + "/sweep.gp").find("set ylabel 'penetration (m)"), std::string::npos);
+    const std::vector<std::string> csv = lines(readText(out + "/sweep.csv"));
+    ASSERT_EQ(csv.size(), 2u + 2u);
+    const std::vector<std::string> header = fields(csv[1]);
+    const auto column = [&](const std::string& name)
+    { return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+    const std::string data = readText(out + "/sweep.dat");
+    for (std::size_t i = 2; i < csv.size(); ++i)
+    {
+        const std::vector<std::string> row = fields(csv[i]);
+        const double depth = std::stod(row[column("max_penetration_m")]);
+        ASSERT_GT(depth, 0.0) << csv[i]; // boxes resting on each other overlap a little
+        const double dtMs = 1e3 * std::stod(row[column("dt")]);
+        std::ostringstream label;
+        label << "\"" << dtMs << " ms\"";
+        bool found = false;
+        for (const std::string& line : lines(data))
+        {
+            std::istringstream in(line);
+            double cost = 0.0, y = 0.0;
+            std::string rest;
+            if (line.find(label.str()) != std::string::npos && (in >> cost >> y))
+            {
+                EXPECT_NEAR(y, depth, 1e-6 * depth) << line;
+                found = true;
+            }
+        }
+        EXPECT_TRUE(found) << label.str() << " not in sweep.dat:\n" << data;
+    }
+    const Result bad = dir.run("sweep scenes/box_stack.yaml --chart-accuracy depth --out " + shellQuote(out));
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("joint-gap"), std::string::npos) << bad.err;
 }
 
 } // namespace
