@@ -5,7 +5,8 @@
 //   theorem), collision and visual elements are combined at load, and the fixed joints make no rows.
 //   The body is named after its top link; its frame has its origin at the combined centre of mass
 //   and the axes of the top link's <inertial> frame (the link frame when it has none).
-// * Links welded to a root link named 'world', and the root itself under `fixedRoot`, are static.
+// * Links welded to a root link named 'world', and the root itself under `fixedRoot`, are static;
+//   so, under `fixedRoot`, is the child of a floating joint from 'world'.
 // * A moving body needs mass: a link group with none is an error when a joint moves it or when it
 //   floats. A link whose inertia no rigid body can have (inertiaDefect) but whose mass is positive
 //   gets the inertia of its collision shapes (else its visual shapes, else a ball of water) at that
@@ -295,7 +296,9 @@ class UrdfConverter
                     mGroups[static_cast<std::size_t>(place.group)].links.push_back(childName);
                     break;
                 case urdf::Joint::FLOATING:
-                    place.group = newGroup(childName, false, nullptr);
+                    // Under --fixed-base a floating joint from 'world' holds the robot's root link:
+                    // it is bolted where the joint places it.
+                    place.group = newGroup(childName, parentIsWorld && mPlacement.fixedRoot, nullptr);
                     break;
                 case urdf::Joint::REVOLUTE:
                 case urdf::Joint::CONTINUOUS:

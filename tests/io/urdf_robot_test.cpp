@@ -365,6 +365,30 @@ TEST(UrdfWelding, WorldLinkFixesTheRobotAndFreeBaseLetsItFloat)
     EXPECT_INPUT_ERROR_AT(e, urdf, 4, 3, "link 'base' has no mass");
 }
 
+// A robot held by a floating joint from 'world' (scenes/doll.urdf) floats; --fixed-base bolts the
+// joint's child, its root link, where the joint places it (1 m up), and leaves the rest moving.
+TEST(UrdfPlacement, FixedBaseBoltsTheChildOfAFloatingJointFromWorld)
+{
+    const std::string urdf = std::string(FRONTIER_SOURCE_DIR) + "/scenes/doll.urdf";
+    const core::Model free = loadScene(urdf, {});
+    UrdfOptions options;
+    options.fixedBase = true;
+    LoadReport report;
+    const core::Model fixed = loadScene(urdf, options, &report);
+    ASSERT_EQ(fixed.bodies.size(), free.bodies.size());
+    int statics = 0;
+    for (std::size_t i = 0; i < fixed.bodies.size(); ++i)
+    {
+        statics += fixed.bodies[i].isStatic && !free.bodies[i].isStatic ? 1 : 0;
+    }
+    EXPECT_EQ(statics, 1);
+    const int pelvis = fixed.findBody("pelvis");
+    ASSERT_GE(pelvis, 0);
+    EXPECT_TRUE(fixed.bodies[static_cast<std::size_t>(pelvis)].isStatic);
+    EXPECT_NEAR(fixed.bodies[static_cast<std::size_t>(pelvis)].position_W.z(), 1.0, 0.2);
+    EXPECT_NE(report.robots.at(0).placement.find("--fixed-base"), std::string::npos);
+}
+
 TEST(UrdfPlacement, FreeRobotRestsItsLowestCollisionPointOnTheFloor)
 {
     TempDir dir;
