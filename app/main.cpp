@@ -1,8 +1,10 @@
 // app/main.cpp: command-line parsing (CLI11) and exit codes of `frontier`.
 #include "app/commands.h"
 #include "app/sweep_chart.h"
+#include "io/suggest.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -190,10 +192,11 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
     sweep.add_option("--reference-body", o.referenceBody, "the body whose positions --reference-csv holds")
         ->needs(referenceCsv);
     sweep
-        .add_option("--chart-accuracy", o.chartAccuracy,
-                    "the chart's y axis: error (trajectory error, the default), joint-gap or penetration "
-                    "(largest over the run: for chaotic scenes, where the error ranks nothing)")
-        ->transform(CLI::CheckedTransformer(accuracyNames()));
+        .add_option_function<std::string>(
+            "--chart-accuracy", [&o](const std::string& name) { o.chartAccuracy = accuracyNames().at(name); },
+            "the chart's y axis: error (trajectory error, the default), joint-gap or penetration "
+            "(largest over the run: for chaotic scenes, where the error ranks nothing)")
+        ->check(CLI::IsMember(accuracyNames()));
     referenceCsv->needs("--reference-body");
     addRobotOptions(sweep, o.urdf);
     sweep.footer(
@@ -351,6 +354,22 @@ int main(int argc, char** argv)
         "many runs from a plan (scenes x variations): resumable, sharded (Slurm), merged into one CSV");
     addBatchOptions(*batch, batchOptions);
 
+    // A first word that names no command: say so, instead of CLI11's "A subcommand is required".
+    if (argc > 1 && argv[1][0] != '-')
+    {
+        std::vector<std::string> names;
+        for (const CLI::App* command : app.get_subcommands({}))
+        {
+            names.push_back(command->get_name());
+        }
+        if (std::find(names.begin(), names.end(), argv[1]) == names.end())
+        {
+            std::cerr << "frontier: unknown command '" << argv[1] << "'"
+                      << frontier::io::detail::suggestionSuffix(argv[1], names, true)
+                      << "\nRun with --help for more information.\n";
+            return cExitBadInput;
+        }
+    }
     try
     {
         app.parse(argc, argv);

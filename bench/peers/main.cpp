@@ -248,10 +248,12 @@ int runHarness(int argc, char** argv)
     app.add_option("--chart", chartDir,
                    "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, "
                    "DIR/sweep.dat)");
-    app.add_option("--chart-accuracy", chartAccuracy,
-                   "the chart's y axis: error (against the reference, the default), joint-gap or penetration "
-                   "(largest over the run)")
-        ->transform(CLI::CheckedTransformer(app::accuracyNames()));
+    app.add_option_function<std::string>(
+           "--chart-accuracy",
+           [&chartAccuracy](const std::string& name) { chartAccuracy = app::accuracyNames().at(name); },
+           "the chart's y axis: error (against the reference, the default), joint-gap or penetration "
+           "(largest over the run)")
+        ->check(CLI::IsMember(app::accuracyNames()));
     app.add_option("--max-seconds", s.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
     app.add_option("--csv", csvPath, "write the rows as CSV");

@@ -113,6 +113,26 @@ TEST(BadInput, UnknownSolverNameIsAUsageError)
     EXPECT_TRUE(dir.outputs().empty());
 }
 
+// A first word that is no command is named, with the nearest command or the list of them; a
+// choice flag's wrong value is named with its choices.
+TEST(BadInput, UnknownCommandAndChoiceAreNamed)
+{
+    const TestDir dir;
+    const Result typo = dir.run("runn scenes/pendulum.yaml");
+    EXPECT_EQ(typo.exitCode, 2) << typo.err;
+    EXPECT_NE(typo.err.find("unknown command 'runn'; did you mean 'run'?"), std::string::npos) << typo.err;
+    const Result unknown = dir.run("simulate scenes/pendulum.yaml");
+    EXPECT_EQ(unknown.exitCode, 2) << unknown.err;
+    EXPECT_NE(unknown.err.find("unknown command 'simulate'"), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("run, info, render, check, stability, sweep, batch"), std::string::npos)
+        << unknown.err;
+    const Result choice =
+        dir.run("sweep scenes/pendulum.yaml --out " + shellQuote(dir.out("s")) + " --chart-accuracy gap");
+    EXPECT_EQ(choice.exitCode, 2) << choice.err;
+    EXPECT_NE(choice.err.find("gap not in {error,joint-gap,penetration}"), std::string::npos) << choice.err;
+    EXPECT_TRUE(dir.outputs().empty());
+}
+
 TEST(BadInput, DurationTogetherWithStepsIsAUsageError)
 {
     const TestDir dir;
