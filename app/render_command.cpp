@@ -11,6 +11,7 @@
 #include "io/trajectory.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -95,6 +96,14 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
                 throw io::InputError(path, 1, 0, "the trajectory names no scene: give --scene");
             }
             scenePath = found->second;
+            std::error_code missing;
+            if (!std::filesystem::exists(scenePath, missing))
+            {
+                throw io::InputError(path, 1, 0,
+                                     "the trajectory was recorded from scene '" + scenePath +
+                                         "', which is not there from this folder (a relative path is "
+                                         "read from where frontier runs): give --scene PATH");
+            }
         }
         io::UrdfOptions urdf = io::urdfOptionsFrom(trajectory.metadata, path);
         urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
@@ -111,7 +120,7 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
             }
         }
         checkFrameCount(states.back().time, options.fps, static_cast<double>(frames.size()), path);
-        prepareFrameFolder(out.frames);
+        prepareFrameFolder(out.frames, out.video);
         if (const int code = writeFrames(model, frames, {out.frames, options.width, options.height, threads},
                                          options.fps, out.video, status, error);
             code != cExitOk)

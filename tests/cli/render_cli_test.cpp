@@ -110,6 +110,29 @@ TEST(RenderCli, TrajectoryOfAnotherSceneExitsTwoNamingTheBody)
     EXPECT_TRUE(listFolder(dir.out("frames")).empty());
 }
 
+// The scene a trajectory names is read from where frontier runs: recorded elsewhere, it is not
+// there, and the message says where the path came from and what to give instead.
+TEST(RenderCli, SceneNamedByTheTrajectoryButNotHereAsksForScene)
+{
+    TestDir dir;
+    ASSERT_EQ(dir.run("run scenes/pendulum.yaml --duration 0.1 --trajectory " + dir.out("p.csv")).exitCode,
+              0);
+    std::string text = readText(dir.out("p.csv"));
+    const std::string recorded = "scene=scenes/pendulum.yaml";
+    ASSERT_NE(text.find(recorded), std::string::npos);
+    text.replace(text.find(recorded), recorded.size(), "scene=elsewhere/pendulum.yaml");
+    dir.write("moved.csv", text);
+    const std::string moved = (dir.path() / "moved.csv").string();
+    const Result r = dir.run("render " + moved + " --frames " + dir.out("frames"));
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("recorded from scene 'elsewhere/pendulum.yaml'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--scene"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir.out("frames")));
+    EXPECT_EQ(
+        dir.run("render " + moved + " --scene scenes/pendulum.yaml --frames " + dir.out("frames")).exitCode,
+        0);
+}
+
 TEST(RenderCli, UnwritableFolderExitsTwoAndWritesNothing)
 {
     TestDir dir;
