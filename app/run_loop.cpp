@@ -201,9 +201,12 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
         summary.failure = error.what();
         summary.failureDetails = error.failure();
         // The failing step detected its contacts before it failed: a run that fails at step 0
-        // still reports the overlap it started with.
-        summary.maxPenetrationM = std::max(summary.maxPenetrationM, simulator.lastStep().maxPenetrationM);
-        summary.maxContacts = std::max(summary.maxContacts, simulator.lastStep().contacts);
+        // still reports the overlap it started with; a joint that came apart reports its gap.
+        const core::StepStats& failed = simulator.lastStep();
+        summary.maxPenetrationM = std::max(summary.maxPenetrationM, failed.maxPenetrationM);
+        summary.maxContacts = std::max(summary.maxContacts, failed.contacts);
+        summary.maxJointErrorM = std::max(summary.maxJointErrorM, failed.maxJointErrorM);
+        summary.maxJointErrorRad = std::max(summary.maxJointErrorRad, failed.maxJointErrorRad);
     }
     summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary.energyFinalJ = core::totalEnergy(model, state);

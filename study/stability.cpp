@@ -5,6 +5,7 @@
 #include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
+#include "core/step/drift_correction.h"
 #include "study/stability_criteria.h"
 
 #include <algorithm>
@@ -550,7 +551,9 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
     out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
            "A run fails when it blows up, a joint comes apart (gap above "
         << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
-        << " rad), a joint block becomes singular, or a centre of mass tunnels through a static box or "
+        << " rad over the run, or above " << format("%g", core::cJointBlowUp)
+        << " m or rad after a step's drift correction), a joint block becomes singular, or a centre of mass "
+           "tunnels through a static box or "
            "plane. "
            "Wall times on "
         << machine << ", one run at a time.\n\n";

@@ -189,7 +189,6 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
                                               double driveStep, bool rattle, const Actuation& actuation)
 {
     constexpr double cSlowContraction = 0.1;
-    constexpr double cJointBlowUp = 1e-3; // m or rad
     double previous = std::numeric_limits<double>::infinity();
     bool loopsFactored = false;
     bool refactored = false;

@@ -25,6 +25,10 @@ struct JointErrors
 // `worstJoint` is the joint of the largest violation, or `worstBefore` when no row is violated.
 JointErrors measureJointErrors(const RowSystem& rows, int worstBefore);
 
+// A joint the drift correction leaves apart by more than this after its last iteration has come
+// apart: the run stops there (m or rad).
+constexpr double cJointBlowUp = 1e-3;
+
 class DriftCorrection
 {
   public:
