@@ -53,26 +53,6 @@ void checkFrameCount(double duration, double fps, double states, const std::stri
     }
 }
 
-void prepareFrameFolder(const std::string& folder)
-{
-    std::error_code error;
-    std::filesystem::create_directories(folder, error);
-    if (error || !std::filesystem::is_directory(folder))
-    {
-        throw io::OutputError(folder + ": cannot create the frames folder" +
-                              (error ? " (" + error.message() + ")" : std::string(" (not a folder)")));
-    }
-    const std::string probe = folder + "/.frontier-write-test";
-    {
-        std::ofstream out(probe);
-        if (!out)
-        {
-            throw io::OutputError(folder + ": the frames folder is not writable");
-        }
-    }
-    std::filesystem::remove(probe, error);
-}
-
 namespace
 {
 std::string framePath(const std::string& folder, std::size_t index)
@@ -81,24 +61,75 @@ std::string framePath(const std::string& folder, std::size_t index)
     std::snprintf(name, sizeof name, "/frame_%05zu.png", index);
     return folder + name;
 }
+
+// frame_ followed by digits and .png: the names framePath writes.
+bool isFrameName(const std::string& name)
+{
+    constexpr std::size_t cPrefix = 6; // "frame_"
+    constexpr std::size_t cSuffix = 4; // ".png"
+    if (name.size() <= cPrefix + cSuffix || name.rfind("frame_", 0) != 0 ||
+        name.compare(name.size() - cSuffix, cSuffix, ".png") != 0)
+    {
+        return false;
+    }
+    return std::all_of(name.begin() + cPrefix, name.end() - cSuffix,
+                       [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool onPath(const std::string& program);
 } // namespace
+
+void prepareFrameFolder(const std::string& folder, const std::string& video)
+{
+    if (!video.empty() && !onPath("ffmpeg"))
+    {
+        throw io::OutputError(video + ": ffmpeg is not installed, so no video can be made; install it "
+                                      "(`apt-get install ffmpeg`, or scripts/install-deps.sh --with-extras) "
+                                      "or leave out --video");
+    }
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error || !std::filesystem::is_directory(folder))
+    {
+        throw io::OutputError(folder + ": cannot create the frames folder" +
+                              (error ? " (" + error.message() + ")" : std::string(" (not a folder)")));
+    }
+    const std::string marker = folder + "/" + cIncompleteMarker;
+    {
+        std::ofstream out(marker);
+        out << "frontier was writing the frames of this folder and stopped before the last one "
+               "(failed, interrupted or killed): they are incomplete\n";
+        if (!out)
+        {
+            throw io::OutputError(folder + ": the frames folder is not writable");
+        }
+    }
+    std::vector<std::filesystem::path> stale;
+    for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(folder, error))
+    {
+        if (isFrameName(entry.path().filename().string()))
+        {
+            stale.push_back(entry.path());
+        }
+    }
+    for (const std::filesystem::path& path : stale)
+    {
+        if (!std::filesystem::remove(path, error) || error)
+        {
+            throw io::OutputError(path.string() + ": cannot remove an earlier run's frame" +
+                                  (error ? " (" + error.message() + ")" : std::string()));
+        }
+    }
+}
 
 std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                          const FrameSettings& settings, const std::function<void(std::size_t)>& progress)
 {
+    const std::string marker = settings.folder + "/" + cIncompleteMarker; // prepareFrameFolder's
     if (frames.empty())
     {
+        std::filesystem::remove(marker);
         return 0;
-    }
-    const std::string marker = settings.folder + "/" + cIncompleteMarker;
-    {
-        std::ofstream out(marker);
-        out << "frontier was writing the frames of this folder and stopped before the last one "
-               "(interrupted, killed or failed): they are incomplete\n";
-        if (!out)
-        {
-            throw io::OutputError(marker + ": cannot write in the frames folder");
-        }
     }
     render::RenderOptions options;
     options.width = settings.width;
@@ -207,7 +238,7 @@ std::string shellQuote(const std::string& text)
 
 void assembleVideo(const std::string& folder, double fps, const std::string& video)
 {
-    if (!onPath("ffmpeg"))
+    if (!onPath("ffmpeg")) // prepareFrameFolder checked; removed since
     {
         throw io::OutputError(video +
                               ": ffmpeg is not installed, so no video was made (the PNG frames are in " +

@@ -43,19 +43,22 @@ struct FrameSettings
     int threads = 1;
 };
 
-// Creates the folder and checks it can be written (throws io::OutputError naming it).
-void prepareFrameFolder(const std::string& folder);
-
-// The file that marks a frames folder as incomplete: written before the first frame, removed after
-// the last, so a folder that holds it (a run interrupted or killed while rendering) does not look
-// complete.
+// The file that marks a frames folder as incomplete: written when the folder is prepared, before
+// the simulation, removed after the last frame, so a folder that holds it (a run that failed, or
+// was interrupted or killed before its last frame) does not look complete.
 inline constexpr const char* cIncompleteMarker = "INCOMPLETE";
+
+// Before a run or a render: creates the folder, checks it can be written, removes the frame_*.png
+// an earlier run left there (so it never mixes two runs' frames) and writes cIncompleteMarker.
+// With a `video` to make, first checks that ffmpeg is installed. Throws io::OutputError naming
+// the folder or the video.
+void prepareFrameFolder(const std::string& folder, const std::string& video);
 
 // Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers whose camera is
 // framed once over all the frames (Renderer::frameRun): the bodies stay in view for the whole run,
 // and the camera does not move. progress(done) is called from the calling thread. Stops early when
-// a signal arrives (interruptSignal, app/run_loop.h), leaving cIncompleteMarker. Returns the frames
-// written. Throws io::OutputError.
+// a signal arrives (interruptSignal, app/run_loop.h), leaving cIncompleteMarker; removes the marker
+// after the last frame. Returns the frames written. Throws io::OutputError.
 std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                          const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
 

@@ -5,6 +5,7 @@
 #include "app/run_loop.h"
 #include "io/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -58,6 +59,40 @@ long applyOverrides(const RunOptions& options, core::Model& model)
         sim.duration = *options.duration;
     }
     return checkedStepCount(sim.duration, sim.dt, model.sourceFile);
+}
+
+std::string roundedDurationNote(double duration, long steps, double dt)
+{
+    const double simulated = static_cast<double>(steps) * dt; // s
+    if (std::abs(simulated - duration) <= 1e-9 * std::max(duration, dt))
+    {
+        return {};
+    }
+    char text[200];
+    std::snprintf(text, sizeof text, "simulating %.9g s instead of %.9g s: %ld whole steps of %.9g s",
+                  simulated, duration, steps, dt);
+    return text;
+}
+
+std::vector<std::string> loadsAfterTheEnd(const core::Model& model, double end)
+{
+    std::vector<std::string> warnings;
+    for (const core::Load& load : model.loads)
+    {
+        const double start = load.instant.value_or(load.from); // s
+        if (start >= end)
+        {
+            char text[320];
+            std::snprintf(
+                text, sizeof text,
+                "the %s on body '%s' at t = %.9g s never acts: the run ends at %.9g s (give --duration, "
+                "or the scene's simulation: {duration: ...})",
+                load.instant ? "impulse" : "load",
+                model.bodies[static_cast<std::size_t>(load.body)].name.c_str(), start, end);
+            warnings.push_back(text);
+        }
+    }
+    return warnings;
 }
 
 } // namespace frontier::app

@@ -5,6 +5,7 @@
 #include "core/model.h"
 
 #include <string>
+#include <vector>
 
 namespace frontier::app
 {
@@ -20,5 +21,13 @@ long checkedStepCount(double duration, double dt, const std::string& source);
 // Applies --dt, --duration/--steps, --solver, --pgs-iterations, --integrator. Returns the step
 // count; throws io::InputError when it is not a sane one (checkedStepCount).
 long applyOverrides(const RunOptions& options, core::Model& model);
+
+// "" when `steps` of `dt` (s) simulate the duration asked (s); else a note that the run simulates
+// steps x dt instead, rounded to whole steps.
+std::string roundedDurationNote(double duration, long steps, double dt);
+
+// A warning for each load of the model that starts at or after `end` (s), the time the run stops:
+// it never acts.
+std::vector<std::string> loadsAfterTheEnd(const core::Model& model, double end);
 
 } // namespace frontier::app

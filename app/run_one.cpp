@@ -155,7 +155,13 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             printLoadWarnings(loaded.report);
         }
         model = std::move(loaded.model);
+        const double asked = options.steps ? 0.0 : options.duration.value_or(model.simulation.duration); // s
         steps = applyOverrides(options, model);
+        if (const std::string note = roundedDurationNote(asked, steps, model.simulation.dt);
+            !options.steps && !note.empty() && !options.quiet)
+        {
+            std::fprintf(stderr, "frontier: %s: note: %s\n", scene.c_str(), note.c_str());
+        }
         if (!out.frames.empty())
         {
             checkFrameCount(model.simulation.duration, options.fps, static_cast<double>(steps) + 1.0, scene);
@@ -184,7 +190,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         if (!out.frames.empty())
         {
-            prepareFrameFolder(out.frames);
+            prepareFrameFolder(out.frames, out.video);
         }
     }
     catch (const io::InputError& e)
@@ -261,7 +267,8 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
 
     // A passive scene cannot gain energy; when it does, the step was too large for it (or worse).
     const double rise = passiveEnergyRise(model, summary);
-    std::vector<std::string> warnings;
+    std::vector<std::string> warnings =
+        loadsAfterTheEnd(model, static_cast<double>(steps) * model.simulation.dt);
     if (rise > cEnergyGainTolerance)
     {
         char text[256];
