@@ -17,7 +17,7 @@ using namespace frontier::app;
 // The one rule of every numeric flag: a finite number (no nan, no inf) in its range; a count is a
 // whole number, rewritten in digits ("1e3" -> "1000") for the option's integer type. `positive`:
 // the range excludes its lower end `low`.
-CLI::Validator numberIn(double low, double high, bool positive, bool count)
+CLI::Validator numberIn(double low, double high, bool positive, bool count, const char* name = nullptr)
 {
     return CLI::Validator(
         [=](std::string& value)
@@ -30,7 +30,8 @@ CLI::Validator numberIn(double low, double high, bool positive, bool count)
                 return "expected a finite number, got '" + value + "'";
             }
             char range[96];
-            std::snprintf(range, sizeof range, "%s %s %.6g and at most %.6g",
+            std::snprintf(range, sizeof range,
+                          count ? "%s %s %.0f and at most %.0f" : "%s %s %.6g and at most %.6g",
                           count ? "a whole number" : "a number", positive ? "above" : "from", low, high);
             if (x < low || (positive && x == low) || x > high || (count && x != std::floor(x)))
             {
@@ -42,7 +43,7 @@ CLI::Validator numberIn(double low, double high, bool positive, bool count)
             }
             return std::string();
         },
-        count ? "INTEGER" : "NUMBER");
+        name != nullptr ? name : (count ? "INTEGER" : "NUMBER"));
 }
 
 // Ranges (README "Commands"): times in seconds, counts bounded where a larger one could only be a
@@ -53,7 +54,7 @@ const CLI::Validator cStepCount = numberIn(1.0, 1e12, false, true);     // steps
 const CLI::Validator cIterations = numberIn(1.0, 1e6, false, true);     // solver sweeps
 const CLI::Validator cEvery = numberIn(1.0, 2147483647.0, false, true); // steps between rows
 const CLI::Validator cFps = numberIn(0.0, 1e6, true, false);            // frames per simulated second
-const CLI::Validator cPixels = numberIn(16.0, 16384.0, false, true);    // frame width
+const CLI::Validator cPixels = numberIn(16.0, 16384.0, false, true, "PIXELS"); // frame width
 const CLI::Validator cJobs = numberIn(1.0, 256.0, false, true);
 const CLI::Validator cTolerance = numberIn(0.0, 1e12, true, false);    // m, rad, m/s, rad/s
 const CLI::Validator cDropHeight = numberIn(0.0, 1e6, false, false);   // m

@@ -224,7 +224,9 @@ Trajectory readTrajectory(const std::string& path)
                 {
                     throw InputError(path, lineNumber, fields[i].column,
                                      std::string("expected column '") + cColumns[i] +
-                                         "' in the header, got '" + std::string(fields[i].text) + "'");
+                                         "' in the header, got '" + std::string(fields[i].text) +
+                                         "' (a trajectory CSV, as `frontier run " +
+                                         "--trajectory` writes, has the header '" + cTrajectoryHeader + "')");
                 }
             }
             if (fields.size() > cColumns.size())

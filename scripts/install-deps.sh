@@ -24,7 +24,8 @@ for option in "$@"; do
     --with-extras) packages+=(ffmpeg) ;;
     --for-tests) packages+=(dart-doc clang libclang-rt-14-dev slurm-wlm munge) ;;
     --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
-    *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests or --with-peers)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests, --with-peers or --help)" >&2; exit 2 ;;
   esac
 done
 
