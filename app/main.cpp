@@ -151,7 +151,7 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
     run.add_flag("--strict", o.strict,
                  "a warning of the run fails it (exit 1): a passive scene (no actuators, no loads) whose "
-                 "energy rose by more than 1% of its scale");
+                 "energy rose by more than 1% of its scale, or a load that starts after the run's end");
     addRobotOptions(run, o.urdf);
 }
 void addSweepOptions(CLI::App& sweep, SweepOptions& o)
@@ -266,6 +266,7 @@ int main(int argc, char** argv)
 {
     CLI::App app{"Frontier: articulated rigid bodies, joint and contact impulses solved exactly in O(n)"};
     app.require_subcommand(1);
+    app.option_defaults()->always_capture_default(); // --help shows each option's default
     app.set_version_flag("--version", "frontier 0.1.0");
 
     RunOptions runOptions;
