@@ -86,6 +86,11 @@ std::string applySceneSetting(YAML::Node root, const std::string& path, const YA
                 return {};
             }
             YAML::Node child = node[part];
+            if ((!child.IsDefined() || child.IsNull()) && k == 0 && io::isSettingsMapKey(part))
+            {
+                node[part] = YAML::Node(YAML::NodeType::Map); // its defaults, given as an empty map
+                child = node[part];
+            }
             if (!child.IsDefined() || child.IsNull())
             {
                 return "no key '" + part + "' in " + at;

@@ -15,7 +15,8 @@ namespace frontier::app
 
 // Sets `path` (keys joined by '.'; in a list, an entry is named by its `name:` or its 0-based
 // index) in the scene's YAML tree to `value`; the last key may be new (the scene loader then
-// checks it). Returns what did not fit, or "" when it was set.
+// checks it), and so may a first key that is a settings map (io::isSettingsMapKey: a scene without
+// `contact:` takes `contact.friction`). Returns what did not fit, or "" when it was set.
 std::string applySceneSetting(YAML::Node root, const std::string& path, const YAML::Node& value);
 
 // Moves each free group of bodies (moving bodies joined to each other, none to the world or a

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -104,5 +105,9 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options = {}, 
 // Parses scene YAML text; sourceName is used in messages and to resolve relative files.
 core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName,
                                 const UrdfOptions& options = {}, LoadReport* report = nullptr);
+
+// True for a scene's top-level key whose value is a map of settings with defaults (`simulation`,
+// `contact`, `camera`): a scene without it behaves as one with it empty.
+bool isSettingsMapKey(std::string_view key);
 
 } // namespace frontier::io

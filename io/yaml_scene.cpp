@@ -493,3 +493,11 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
 }
 
 } // namespace frontier::io::detail
+
+namespace frontier::io
+{
+bool isSettingsMapKey(std::string_view key)
+{
+    return key == "simulation" || key == "contact" || key == "camera";
+}
+} // namespace frontier::io

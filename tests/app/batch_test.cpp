@@ -190,6 +190,48 @@ TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
     }
 }
 
+// A scene without `contact:` takes `contact.friction` (the settings map is made, with its
+// defaults): the incline's box, its contact line removed, still sticks at 0.5 and slides at 0.1.
+// A first key that is no settings map stays an error of the plan.
+TEST(Batch, ASettingsMapTheSceneLacksIsMade)
+{
+    TestDir dir;
+    std::string scene = readText(scenesDir() + "/box_incline.yaml");
+    const std::size_t line = scene.find("contact: {friction: 0.5, restitution: 0.0}\n");
+    ASSERT_NE(line, std::string::npos);
+    scene.erase(line, scene.find('\n', line) + 1 - line);
+    ASSERT_EQ(scene.find("contact:"), std::string::npos);
+    dir.write("incline.yaml", scene);
+    const std::string plan = dir.write("plan.yaml", "scenes: [incline.yaml]\n"
+                                                    "duration: 0.5\n"
+                                                    "outputs: [trajectory]\n"
+                                                    "vary:\n"
+                                                    "  contact.friction: [0.5, 0.1]\n");
+    const std::string out = dir.out("b");
+    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 2U);
+    auto travel = [&](const std::string& id)
+    {
+        const auto t = readCsvTable(out + "/jobs/" + id + "/trajectory.csv");
+        const std::size_t last = t.rows.size() - 1;
+        return std::hypot(t.number(last, "px") - t.number(0, "px"), t.number(last, "pz") - t.number(0, "pz"));
+    };
+    EXPECT_LT(travel(jobs[0]), 1e-3);
+    EXPECT_NEAR(travel(jobs[1]), 0.30, 0.05);
+
+    const std::string typo =
+        dir.write("typo.yaml", "scenes: [incline.yaml]\nvary:\n  contcat.friction: [0.5]\n");
+    const Result bad =
+        dir.run("batch " + shellQuote(typo) + " --out " + shellQuote(dir.out("t")) + " --list");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.err.find("'contcat.friction' does not fit incline.yaml: no key 'contcat'"),
+              std::string::npos)
+        << bad.err;
+}
+
 // The scene paths reach the physics: a box on a 20 degree incline sticks at friction 0.5 and
 // slides at 0.1 (a = g (sin 20 - 0.1 cos 20) = 2.43 m/s^2: 0.30 m in 0.5 s); the ball starts where
 // its position says; a seed moves the free ball by at most `perturb.position` per axis, the same
