@@ -190,6 +190,32 @@ TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
     }
 }
 
+// A plan of `scene` (a box on a 20 degree incline) at contact.friction 0.5 and 0.1 for 0.5 s: the
+// box sticks at 0.5 and slides at 0.1 (a = g (sin 20 - 0.1 cos 20) = 2.43 m/s^2: 0.30 m in 0.5 s).
+void expectStickThenSlide(const TestDir& dir, const std::string& scene)
+{
+    const std::string plan = dir.write("incline_plan.yaml", "scenes: [" + scene +
+                                                                "]\n"
+                                                                "duration: 0.5\n"
+                                                                "outputs: [trajectory]\n"
+                                                                "vary:\n"
+                                                                "  contact.friction: [0.5, 0.1]\n");
+    const std::string out = dir.out("incline");
+    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 2U);
+    auto travel = [&](const std::string& id)
+    {
+        const auto t = readCsvTable(out + "/jobs/" + id + "/trajectory.csv");
+        const std::size_t last = t.rows.size() - 1;
+        return std::hypot(t.number(last, "px") - t.number(0, "px"), t.number(last, "pz") - t.number(0, "pz"));
+    };
+    EXPECT_LT(travel(jobs[0]), 1e-3);
+    EXPECT_NEAR(travel(jobs[1]), 0.30, 0.05);
+}
+
 // A scene without `contact:` takes `contact.friction` (the settings map is made, with its
 // defaults): the incline's box, its contact line removed, still sticks at 0.5 and slides at 0.1.
 // A first key that is no settings map stays an error of the plan.
@@ -202,25 +228,7 @@ TEST(Batch, ASettingsMapTheSceneLacksIsMade)
     scene.erase(line, scene.find('\n', line) + 1 - line);
     ASSERT_EQ(scene.find("contact:"), std::string::npos);
     dir.write("incline.yaml", scene);
-    const std::string plan = dir.write("plan.yaml", "scenes: [incline.yaml]\n"
-                                                    "duration: 0.5\n"
-                                                    "outputs: [trajectory]\n"
-                                                    "vary:\n"
-                                                    "  contact.friction: [0.5, 0.1]\n");
-    const std::string out = dir.out("b");
-    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    const std::vector<std::string> jobs =
-        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
-    ASSERT_EQ(jobs.size(), 2U);
-    auto travel = [&](const std::string& id)
-    {
-        const auto t = readCsvTable(out + "/jobs/" + id + "/trajectory.csv");
-        const std::size_t last = t.rows.size() - 1;
-        return std::hypot(t.number(last, "px") - t.number(0, "px"), t.number(last, "pz") - t.number(0, "pz"));
-    };
-    EXPECT_LT(travel(jobs[0]), 1e-3);
-    EXPECT_NEAR(travel(jobs[1]), 0.30, 0.05);
+    expectStickThenSlide(dir, "incline.yaml");
 
     const std::string typo =
         dir.write("typo.yaml", "scenes: [incline.yaml]\nvary:\n  contcat.friction: [0.5]\n");
@@ -233,32 +241,13 @@ TEST(Batch, ASettingsMapTheSceneLacksIsMade)
 }
 
 // The scene paths reach the physics: a box on a 20 degree incline sticks at friction 0.5 and
-// slides at 0.1 (a = g (sin 20 - 0.1 cos 20) = 2.43 m/s^2: 0.30 m in 0.5 s); the ball starts where
+// slides at 0.1 (expectStickThenSlide); the ball starts where
 // its position says; a seed moves the free ball by at most `perturb.position` per axis, the same
 // seed the same way.
 TEST(Batch, ScenePathsAndSeedsChangeTheInitialStateAsAsked)
 {
     TestDir dir;
-    const std::string plan = dir.write("plan.yaml", "scenes: [" + scenesDir() +
-                                                        "/box_incline.yaml]\n"
-                                                        "duration: 0.5\n"
-                                                        "outputs: [trajectory]\n"
-                                                        "vary:\n"
-                                                        "  contact.friction: [0.5, 0.1]\n");
-    const std::string out = dir.out("b");
-    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    const std::vector<std::string> jobs =
-        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
-    ASSERT_EQ(jobs.size(), 2U);
-    auto travel = [&](const std::string& id)
-    {
-        const auto t = readCsvTable(out + "/jobs/" + id + "/trajectory.csv");
-        const std::size_t last = t.rows.size() - 1;
-        return std::hypot(t.number(last, "px") - t.number(0, "px"), t.number(last, "pz") - t.number(0, "pz"));
-    };
-    EXPECT_LT(travel(jobs[0]), 1e-3);
-    EXPECT_NEAR(travel(jobs[1]), 0.30, 0.05);
+    expectStickThenSlide(dir, scenesDir() + "/box_incline.yaml");
 
     const std::string seeds = dir.write("seeds.yaml", "scenes: [" + scenesDir() +
                                                           "/bouncing_ball.yaml]\n"
