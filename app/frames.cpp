@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <string_view>
 #include <thread>
 
 namespace frontier::app
@@ -63,17 +64,18 @@ std::string framePath(const std::string& folder, std::size_t index)
 }
 
 // frame_ followed by digits and .png: the names framePath writes.
-bool isFrameName(const std::string& name)
+bool isFrameName(std::string_view name)
 {
-    constexpr std::size_t cPrefix = 6; // "frame_"
-    constexpr std::size_t cSuffix = 4; // ".png"
-    if (name.size() <= cPrefix + cSuffix || name.rfind("frame_", 0) != 0 ||
-        name.compare(name.size() - cSuffix, cSuffix, ".png") != 0)
+    constexpr std::string_view cPrefix = "frame_";
+    constexpr std::string_view cSuffix = ".png";
+    if (name.size() <= cPrefix.size() + cSuffix.size() || !name.starts_with(cPrefix) ||
+        !name.ends_with(cSuffix))
     {
         return false;
     }
-    return std::all_of(name.begin() + cPrefix, name.end() - cSuffix,
-                       [](char c) { return c >= '0' && c <= '9'; });
+    const std::string_view digits =
+        name.substr(cPrefix.size(), name.size() - cPrefix.size() - cSuffix.size());
+    return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 bool onPath(const std::string& program);
@@ -238,7 +240,7 @@ std::string shellQuote(const std::string& text)
 
 void assembleVideo(const std::string& folder, double fps, const std::string& video)
 {
-    if (!onPath("ffmpeg")) // prepareFrameFolder checked; removed since
+    if (!onPath("ffmpeg")) // prepareFrameFolder checked before the run; this catches a removal since
     {
         throw io::OutputError(video +
                               ": ffmpeg is not installed, so no video was made (the PNG frames are in " +

@@ -155,10 +155,11 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             printLoadWarnings(loaded.report);
         }
         model = std::move(loaded.model);
-        const double asked = options.steps ? 0.0 : options.duration.value_or(model.simulation.duration); // s
+        const double asked = options.duration.value_or(model.simulation.duration); // s
         steps = applyOverrides(options, model);
-        if (const std::string note = roundedDurationNote(asked, steps, model.simulation.dt);
-            !options.steps && !note.empty() && !options.quiet)
+        const std::string note =
+            options.steps || options.quiet ? "" : roundedDurationNote(asked, steps, model.simulation.dt);
+        if (!note.empty())
         {
             std::fprintf(stderr, "frontier: %s: note: %s\n", scene.c_str(), note.c_str());
         }

@@ -107,7 +107,7 @@ core::Model loadSceneFromString(const std::string& yamlText, const std::string& 
                                 const UrdfOptions& options = {}, LoadReport* report = nullptr);
 
 // True for a scene's top-level key whose value is a map of settings with defaults (`simulation`,
-// `contact`, `camera`): a scene without it behaves as one with it empty.
+// `contact`): a scene without it behaves as one with it empty.
 bool isSettingsMapKey(std::string_view key);
 
 } // namespace frontier::io

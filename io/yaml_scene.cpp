@@ -498,6 +498,6 @@ namespace frontier::io
 {
 bool isSettingsMapKey(std::string_view key)
 {
-    return key == "simulation" || key == "contact" || key == "camera";
+    return key == "simulation" || key == "contact"; // not `camera`: given, it turns off the automatic one
 }
 } // namespace frontier::io

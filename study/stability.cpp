@@ -553,9 +553,7 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
         << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
         << " rad over the run, or above " << format("%g", core::cJointBlowUp)
         << " m or rad after a step's drift correction), a joint block becomes singular, or a centre of mass "
-           "tunnels through a static box or "
-           "plane. "
-           "Wall times on "
+           "tunnels through a static box or plane. Wall times on "
         << machine << ", one run at a time.\n\n";
     writeMethodTable(out, sceneNames, methods, byKey, overviewText);
 
