@@ -14,11 +14,14 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
 namespace frontier::core
 {
+
+class DelassusMatrix; // core/delassus.h
 
 struct ExtraBlock
 {
@@ -73,34 +76,27 @@ void appendFrictionBlocks(const Model& model, const State& state, int jointIndex
 int layoutExtraRows(std::vector<ExtraBlock>& blocks);
 
 // When the block Gauss-Seidel stops: after a sweep that leaves every row's condition met to
-// velocityTolerance (conditionResidual below), or that changed no impulse by more than
-// `tolerance` of the largest, or after maxSweeps.
+// velocityTolerance (conditionResidual below); or that changed no impulse by more than
+// `tolerance` of the largest; or when it has stalled: the largest residual of the last stallSweeps
+// sweeps is not below stallRatio of the smallest before them (a fixed point or cycle of the friction
+// updates, where two sliding contacts of one body trade their load, that more sweeps do not leave);
+// or after maxSweeps.
 struct ExtraSolveSettings
 {
     double velocityTolerance = 3e-5; // m/s (rad/s for angular rows): 30 nm of motion in a 1 ms step
     double tolerance = 1e-6;         // relative impulse change (or 1e-14 N s absolute)
     int maxSweeps = 100;
+    int stallSweeps = 10;    // 0: never stalls
+    double stallRatio = 0.9; // the residual must fall below this fraction within stallSweeps sweeps
 };
 
 struct ExtraSolveStats
 {
     int sweeps = 0;
     bool converged = false; // every condition met to velocityTolerance after the last sweep
+    bool stalled = false;   // stopped by the stall rule
+    double residual = 0.0;  // conditionResidual after the last sweep (m/s)
 };
-
-// Which rows an impulse on each block can move: G_rs = 0 unless rows r and s have moving bodies
-// in a common tree (the joints pass impulses along a tree, never across). Per block, half-open
-// runs of rows; the Gauss-Seidel updates velocities only there.
-struct RowCoupling
-{
-    std::vector<std::pair<int, int>> runs;
-    std::vector<int> firstRun; // per block, its first run; one more entry past the last block
-};
-
-// Builds the coupling of laid-out blocks from the tree of each body (FrontierLayout::treeOfBody).
-// `scratch` holds per-tree row runs between calls.
-void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<int>& treeOfBody,
-                      RowCoupling& coupling, std::vector<std::vector<std::pair<int, int>>>& scratch);
 
 // Working storage of solveExtraRows, kept by the caller so that stepping does not allocate once
 // sizes have settled.
@@ -121,10 +117,22 @@ struct ExtraSolveScratch
 {
     std::vector<Mat6> inverse;           // inverse pivots per block
     std::vector<ContactPivots> contacts; // per block, filled for contacts with friction
-    std::uint64_t pivotsVersion = 0;     // the matrixVersion the pivots were computed for (0 none)
-    Eigen::Index pivotsRows = 0;
-    Eigen::VectorXd velocity; // J u with the current impulses
-    RowCoupling dense;        // all rows for every block, when no coupling is given
+    std::vector<Mat6> diagonal;          // per block, its diagonal block of G (count x count)
+    std::vector<double> regularization;  // per block, added to its pivots (1e-9 of its free scale)
+    std::uint64_t pivotsVersion = 0;     // the DelassusMatrix::version the pivots were computed for (0 none)
+    Eigen::VectorXd velocity;            // J u with the current impulses (every row)
+    std::vector<Eigen::VectorXd> partVelocity; // per part of G: its rows' velocity change within a solve
+    // Per island of G, how its last solve ended (islands it did not solve: Skipped).
+    enum class IslandEnd : std::uint8_t
+    {
+        Skipped,
+        Converged, // conditions met to its tolerance
+        Stalled,   // the stall rule stopped it
+        Stopped,   // no impulse moved, or the sweep cap
+    };
+    std::vector<IslandEnd> islandEnd;
+    std::vector<double> islandResidual; // per island: its residual after its last sweep (m/s)
+    Eigen::VectorXd product;            // scratch of solveExtraRows
 };
 
 // How far velocities v = J u and impulses are from the conditions of their rows (m/s; rad/s for
@@ -133,6 +141,9 @@ struct ExtraSolveScratch
 // not opposite to the friction.
 double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
                          const Eigen::VectorXd& lambda);
+// The same over the listed blocks only.
+double conditionResidual(const std::vector<ExtraBlock>& blocks, std::span<const int> which,
+                         const Eigen::VectorXd& velocity, const Eigen::VectorXd& lambda);
 
 // conditionResidual(blocks, velocity, lambda) <= tolerance, stopping at the first block that is
 // not (NaN counts as not met): the Gauss-Seidel's test after each sweep. A drive row: its
@@ -140,25 +151,26 @@ double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::Vec
 bool conditionsMet(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& velocity,
                    const Eigen::VectorXd& lambda, double tolerance);
 
-// Block projected Gauss-Seidel on the Delassus system: bilateral (loop) blocks solved exactly
-// given the others; a contact's normal row clamped at zero, then its two tangential rows solved
-// together and projected radially onto the friction cone |lambda_t| <= mu lambda_n; limit rows
-// clamped at zero; drive rows clamped to their bound. Compliance adds to a row's pivot. `lambda` is the warm
-// start on entry (size = rows) and the result on exit. `coupling` (optional) restricts each block's velocity
-// updates to the rows it can move.
-ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+// Block projected Gauss-Seidel on the Delassus system, G stored by tree (core/delassus.h), each
+// island of G swept to its own stopping test: bilateral (loop) blocks solved exactly given the
+// others; a contact's block first as sticking (its three rows to their targets), else its normal
+// row clamped at zero, then its two tangential rows solved together and projected radially onto
+// the friction cone |lambda_t| <= mu lambda_n; limit rows clamped at zero; drive rows clamped to
+// their bound. Compliance adds to a row's pivot. `lambda` is the warm start on entry (size = rows)
+// and the result on exit. Stats: sweeps summed over the islands, converged when every island
+// converged, the largest final residual.
+ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
-                               const RowCoupling* coupling = nullptr);
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch);
 
 // The same sweeps from known row velocities: scratch.velocity holds J u at `lambda` on entry
-// (for instance computed exactly by an O(n) solve), so no product with G is formed first.
-// `matrixVersion` (optional) names G: when it is non-zero and the same as in the last call with
-// this scratch, for the same blocks, the inverse pivots of that call are used again (the reuse
-// route solves on one G for many steps).
-ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+// (for instance computed exactly by an O(n) solve), so no product with G is formed first; on exit
+// it holds J u at the result by G. `islandTolerance` (optional, one per island of G) gives each
+// island its own velocity tolerance (m/s) in place of settings.velocityTolerance; an island with a
+// negative one is not solved. The pivots are computed once per DelassusMatrix::version, so repeated
+// solves on one G (the reuse route of core/step/contact_problem.h) share them.
+ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G,
                                    const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
-                                   ExtraSolveScratch& scratch, const RowCoupling* coupling = nullptr,
-                                   std::uint64_t matrixVersion = 0);
+                                   ExtraSolveScratch& scratch, std::span<const double> islandTolerance = {});
 
 } // namespace frontier::core

@@ -1,18 +1,20 @@
 // core/extra_rows_solve.cpp: block projected Gauss-Seidel on the Delassus system of the extra
 // rows (docs/method.md §5): v = v_free + G lambda with the complementarity conditions of each block.
 //
-// G couples two rows only when their bodies share a tree (rows of different trees are exact
-// zeros, see TreeSolver::delassus), so each block keeps the runs of rows where its columns are
-// nonzero and a sweep updates velocities only there: a pile of separate articulated bodies costs
-// the sum of its trees' squares per sweep, not the square of the whole.
+// G is stored by tree (core/delassus.h): a block's impulse moves the rows of the parts it is in,
+// so each part keeps the velocity its blocks' impulse changes have made on its rows, and a sweep
+// updates only those: a pile of separate articulated bodies costs the sum of its trees' squares
+// per sweep, not the square of the whole. Islands (parts joined by shared rows) are solved one
+// after another, each swept until its own conditions are met or it stops progressing.
 #include "core/column_update.h"
+#include "core/delassus.h"
 #include "core/extra_rows.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
-#include <iterator>
 #include <limits>
 
 namespace frontier::core
@@ -21,42 +23,21 @@ namespace frontier::core
 namespace
 {
 
-// Appends [begin, end) to sorted runs, merged with the last run when they touch or nearly do
-// (a gap of a few rows costs less than starting a new run).
-constexpr int cRunGap = 8; // rows
-
-void appendRun(std::vector<std::pair<int, int>>& runs, int begin, int end)
-{
-    if (!runs.empty() && begin - runs.back().second <= cRunGap)
-    {
-        runs.back().second = std::max(runs.back().second, end);
-        return;
-    }
-    runs.emplace_back(begin, end);
-}
-
-// velocity(rows in runs) += G(rows, o .. o + n - 1) delta (core/column_update.h: vectorized
-// kernels, four wide where the processor has AVX2).
-void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, const std::pair<int, int>* first,
-                const std::pair<int, int>* last, Eigen::VectorXd& velocity)
+// part velocity += G_part(:, o .. o + n - 1) delta over the part's rows (core/column_update.h:
+// vectorized kernels, four wide where the processor has AVX2).
+void addColumns(const Eigen::MatrixXd& G, int o, int n, const double* delta, double* velocity)
 {
     static const ColumnKernels& kernels = columnKernels();
     const Eigen::Index ld = G.rows(); // column-major: column k starts at G.data() + k ld
-    for (const std::pair<int, int>* run = first; run != last; ++run)
+    const double* column = G.data() + o * ld;
+    if (n == 3)
     {
-        const Eigen::Index start = run->first;
-        const Eigen::Index length = run->second - run->first;
-        double* v = velocity.data() + start;
-        const double* column = G.data() + o * ld + start;
-        if (n == 3)
-        {
-            kernels.three(v, column, column + ld, column + 2 * ld, delta[0], delta[1], delta[2], length);
-            continue;
-        }
-        for (int q = 0; q < n; ++q)
-        {
-            kernels.one(v, column + q * ld, delta[q], length);
-        }
+        kernels.three(velocity, column, column + ld, column + 2 * ld, delta[0], delta[1], delta[2], ld);
+        return;
+    }
+    for (int q = 0; q < n; ++q)
+    {
+        kernels.one(velocity, column + q * ld, delta[q], ld);
     }
 }
 
@@ -102,19 +83,19 @@ Eigen::Vector3d updateContact(const ContactPivots& p, const double* v, const Eig
 }
 
 // How far one block's velocities and impulses are from its conditions (m/s or rad/s): see
-// conditionResidual. NaN when one of them is not finite.
-double blockResidual(const ExtraBlock& block, const Eigen::VectorXd& velocity, const Eigen::VectorXd& lambda)
+// conditionResidual. v and lambda point at the block's rows. NaN when one of them is not finite.
+double blockResidual(const ExtraBlock& block, const double* v, const double* lambda)
 {
-    const int o = block.offset;
-    if (!velocity.segment(o, block.count).allFinite() || !lambda.segment(o, block.count).allFinite())
+    const int n = block.count;
+    const Eigen::Map<const Eigen::VectorXd> velocity(v, n);
+    const Eigen::Map<const Eigen::VectorXd> impulse(lambda, n);
+    if (!velocity.allFinite() || !impulse.allFinite())
     {
         return std::numeric_limits<double>::quiet_NaN();
     }
     if (block.kind == ExtraBlock::Kind::Loop)
     {
-        return (velocity.segment(o, block.count) +
-                block.compliance.head(block.count).cwiseProduct(lambda.segment(o, block.count)) -
-                block.target.head(block.count))
+        return (velocity + block.compliance.head(n).cwiseProduct(impulse) - block.target.head(n))
             .cwiseAbs()
             .maxCoeff();
     }
@@ -122,20 +103,20 @@ double blockResidual(const ExtraBlock& block, const Eigen::VectorXd& velocity, c
     {
         // Inside its bound the row holds; on the bound it may only fall short of the side it
         // pushes from (on +bound the row would take more, w <= 0; on -bound less, w >= 0).
-        const double w = velocity(o) + block.compliance(0) * lambda(o) - block.target(0);
-        const bool upper = lambda(o) >= block.bound;
-        const bool lower = lambda(o) <= -block.bound;
+        const double w = v[0] + block.compliance(0) * lambda[0] - block.target(0);
+        const bool upper = lambda[0] >= block.bound;
+        const bool lower = lambda[0] <= -block.bound;
         return upper && lower ? 0.0 : upper ? std::max(0.0, w) : lower ? std::max(0.0, -w) : std::abs(w);
     }
     // One-sided row: at its target while it pushes, at or above it otherwise.
-    const double gap = velocity(o) - block.target(0);
-    double worst = lambda(o) > 0.0 ? std::abs(gap) : std::max(0.0, -gap);
-    if (block.count == 3)
+    const double gap = v[0] - block.target(0);
+    double worst = lambda[0] > 0.0 ? std::abs(gap) : std::max(0.0, -gap);
+    if (n == 3)
     {
         // Friction inside the cone: no slip. On its edge: slip opposite to the friction.
-        const Eigen::Vector2d slip = velocity.segment<2>(o + 1);
-        const Eigen::Vector2d friction = lambda.segment<2>(o + 1);
-        const double limit = block.friction * lambda(o);
+        const Eigen::Vector2d slip(v[1], v[2]);
+        const Eigen::Vector2d friction(lambda[1], lambda[2]);
+        const double limit = block.friction * lambda[0];
         const double magnitude = friction.norm();
         if (!(limit > 0.0))
         {
@@ -161,10 +142,29 @@ double conditionResidual(const std::vector<ExtraBlock>& blocks, const Eigen::Vec
     double worst = 0.0;
     for (const ExtraBlock& block : blocks)
     {
-        const double residual = blockResidual(block, velocity, lambda);
+        const double residual =
+            blockResidual(block, velocity.data() + block.offset, lambda.data() + block.offset);
         if (std::isnan(residual))
         {
             return residual; // std::max would pass over it
+        }
+        worst = std::max(worst, residual);
+    }
+    return worst;
+}
+
+double conditionResidual(const std::vector<ExtraBlock>& blocks, std::span<const int> which,
+                         const Eigen::VectorXd& velocity, const Eigen::VectorXd& lambda)
+{
+    double worst = 0.0;
+    for (int b : which)
+    {
+        const ExtraBlock& block = blocks[static_cast<std::size_t>(b)];
+        const double residual =
+            blockResidual(block, velocity.data() + block.offset, lambda.data() + block.offset);
+        if (std::isnan(residual))
+        {
+            return residual;
         }
         worst = std::max(worst, residual);
     }
@@ -176,7 +176,8 @@ bool conditionsMet(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd&
 {
     for (const ExtraBlock& block : blocks)
     {
-        if (!(blockResidual(block, velocity, lambda) <= tolerance))
+        if (!(blockResidual(block, velocity.data() + block.offset, lambda.data() + block.offset) <=
+              tolerance))
         {
             return false; // the first unmet block decides: a sweep far from converged stops here
         }
@@ -184,119 +185,46 @@ bool conditionsMet(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd&
     return true;
 }
 
-void coupleRowsByTree(const std::vector<ExtraBlock>& blocks, const std::vector<int>& treeOfBody,
-                      RowCoupling& coupling, std::vector<std::vector<std::pair<int, int>>>& scratch)
-{
-    auto treeOf = [&](int body) { return body >= 0 ? treeOfBody[static_cast<std::size_t>(body)] : -1; };
-    for (std::vector<std::pair<int, int>>& runs : scratch)
-    {
-        runs.clear();
-    }
-    for (const ExtraBlock& block : blocks) // blocks are in row order, so each tree's runs are sorted
-    {
-        const int a = treeOf(block.bodyA);
-        const int b = treeOf(block.bodyB);
-        for (int tree : {a, b})
-        {
-            if (tree >= 0 && (tree == a || b != a))
-            {
-                if (static_cast<std::size_t>(tree) >= scratch.size())
-                {
-                    scratch.resize(static_cast<std::size_t>(tree) + 1);
-                }
-                appendRun(scratch[static_cast<std::size_t>(tree)], block.offset, block.offset + block.count);
-            }
-            if (a == b)
-            {
-                break;
-            }
-        }
-    }
-    coupling.runs.clear();
-    coupling.firstRun.clear();
-    for (const ExtraBlock& block : blocks)
-    {
-        coupling.firstRun.push_back(static_cast<int>(coupling.runs.size()));
-        const int a = treeOf(block.bodyA);
-        const int b = treeOf(block.bodyB);
-        const std::vector<std::pair<int, int>>* first =
-            a >= 0 ? &scratch[static_cast<std::size_t>(a)] : nullptr;
-        const std::vector<std::pair<int, int>>* second =
-            b >= 0 && b != a ? &scratch[static_cast<std::size_t>(b)] : nullptr;
-        if (first == nullptr)
-        {
-            std::swap(first, second);
-        }
-        if (second == nullptr)
-        {
-            coupling.runs.insert(coupling.runs.end(), first->begin(), first->end());
-            continue;
-        }
-        // The union of two sorted run lists, overlapping runs joined in place (no allocation
-        // once the vector has grown).
-        const std::size_t start = coupling.runs.size();
-        std::merge(first->begin(), first->end(), second->begin(), second->end(),
-                   std::back_inserter(coupling.runs));
-        std::size_t kept = start;
-        for (std::size_t r = start; r < coupling.runs.size(); ++r)
-        {
-            const std::pair<int, int> run = coupling.runs[r];
-            if (kept > start && run.first - coupling.runs[kept - 1].second <= cRunGap)
-            {
-                coupling.runs[kept - 1].second = std::max(coupling.runs[kept - 1].second, run.second);
-            }
-            else
-            {
-                coupling.runs[kept++] = run;
-            }
-        }
-        coupling.runs.resize(kept);
-    }
-    coupling.firstRun.push_back(static_cast<int>(coupling.runs.size()));
-}
-
-ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+ExtraSolveStats solveExtraRows(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G,
                                const Eigen::VectorXd& freeVelocity, const ExtraSolveSettings& settings,
-                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch,
-                               const RowCoupling* coupling)
+                               Eigen::VectorXd& lambda, ExtraSolveScratch& scratch)
 {
-    scratch.velocity.noalias() = freeVelocity;
+    scratch.velocity = freeVelocity;
     if (lambda.size() > 0 && lambda.cwiseAbs().maxCoeff() > 0.0)
     {
-        scratch.velocity.noalias() += G * lambda; // J u with the current impulses
+        G.multiply(lambda, scratch.product);
+        scratch.velocity += scratch.product; // J u with the current impulses
     }
-    return solveExtraRowsFrom(blocks, G, settings, lambda, scratch, coupling);
+    return solveExtraRowsFrom(blocks, G, settings, lambda, scratch);
 }
 
 namespace
 {
 
-// The coupling that lets every block move every row, when the caller has none.
-const RowCoupling* denseCoupling(std::size_t blockCount, Eigen::Index m, RowCoupling& dense)
-{
-    dense.runs.assign(blockCount, {0, static_cast<int>(m)});
-    dense.firstRun.resize(blockCount + 1);
-    for (std::size_t b = 0; b <= blockCount; ++b)
-    {
-        dense.firstRun[b] = static_cast<int>(b);
-    }
-    return &dense;
-}
-
-// Inverse pivots, once per matrix: loops by their whole block, contacts normal row alone and the
-// 2x2 tangential block, limits and drives their one row (compliance on the diagonal). With
+// Inverse pivots, once per matrix version: loops by their whole block, contacts normal row alone
+// and the 2x2 tangential block, limits and drives their one row (compliance on the diagonal). With
 // pivotsKnown only the contacts' targets and friction, which change from step to step.
-void computePivots(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G, bool pivotsKnown,
+void computePivots(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G, bool pivotsKnown,
                    ExtraSolveScratch& scratch)
 {
-    // A row that can barely move (a point pinned by joints) has a tiny pivot: regularize it by a
-    // relative 1e-9 of the largest diagonal so the update stays bounded.
-    const double regularization = 1e-9 * G.diagonal().cwiseAbs().maxCoeff() + 1e-300;
     std::vector<Mat6>& inverse = scratch.inverse;
+    if (!pivotsKnown)
+    {
+        // A row that can barely move (a point pinned by joints) has a tiny pivot: regularize it by
+        // a relative 1e-9 of what it would be on free bodies (DelassusMatrix::freeScale), so the
+        // update stays bounded whatever the other rows are.
+        scratch.diagonal.resize(blocks.size());
+        scratch.regularization.resize(blocks.size());
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+        {
+            G.diagonalBlock(static_cast<int>(b), blocks[b].count, scratch.diagonal[b]);
+            scratch.regularization[b] = 1e-9 * G.freeScale(static_cast<int>(b), blocks[b].count) + 1e-300;
+        }
+    }
     for (std::size_t b = 0; b < blocks.size(); ++b)
     {
-        const int o = blocks[b].offset;
         const int n = blocks[b].count;
+        const double regularization = scratch.regularization[b];
         if (pivotsKnown)
         {
             if (n == 3 && blocks[b].kind == ExtraBlock::Kind::Contact)
@@ -306,9 +234,10 @@ void computePivots(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd&
             }
             continue;
         }
+        const Mat6& D = scratch.diagonal[b]; // the block's diagonal block of G
         if (blocks[b].kind == ExtraBlock::Kind::Loop)
         {
-            Eigen::MatrixXd block = G.block(o, o, n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
+            Eigen::MatrixXd block = D.topLeftCorner(n, n) + regularization * Eigen::MatrixXd::Identity(n, n);
             block.diagonal() += blocks[b].compliance.head(n);
             inverse[b].topLeftCorner(n, n) = block.inverse();
             continue;
@@ -318,22 +247,22 @@ void computePivots(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd&
             // A drive row's impulse is bounded, so a small pivot cannot make it run away; the
             // regularization would leave a relative 1e-9 slip in a sticking joint every step,
             // which the carried-over impulses of later steps would add up.
-            const double pivot = G(o, o) + blocks[b].compliance(0);
+            const double pivot = D(0, 0) + blocks[b].compliance(0);
             inverse[b](0, 0) = 1.0 / (pivot > regularization ? pivot : pivot + regularization);
             continue;
         }
-        inverse[b](0, 0) = 1.0 / (G(o, o) + regularization);
+        inverse[b](0, 0) = 1.0 / (D(0, 0) + regularization);
         if (n == 3)
         {
             ContactPivots& p = scratch.contacts[b];
             p.normal = inverse[b](0, 0);
-            const Eigen::Matrix2d tt =
-                G.block<2, 2>(o + 1, o + 1) + regularization * Eigen::Matrix2d::Identity();
+            const Eigen::Matrix2d tt = D.block<2, 2>(1, 1) + regularization * Eigen::Matrix2d::Identity();
             p.tangential = tt.inverse();
-            const Eigen::Matrix3d whole = G.block<3, 3>(o, o) + regularization * Eigen::Matrix3d::Identity();
+            const Eigen::Matrix3d whole =
+                D.topLeftCorner<3, 3>() + regularization * Eigen::Matrix3d::Identity();
             p.whole = whole.inverse(); // the sticking trial
-            p.tangentialOfNormal = G.block<2, 1>(o + 1, o);
-            p.isotropic = 2.0 / (G(o + 1, o + 1) + G(o + 2, o + 2) + 2.0 * regularization);
+            p.tangentialOfNormal = D.block<2, 1>(1, 0);
+            p.isotropic = 2.0 / (D(1, 1) + D(2, 2) + 2.0 * regularization);
             p.target = blocks[b].target(0);
             p.friction = blocks[b].friction;
         }
@@ -342,29 +271,27 @@ void computePivots(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd&
 
 using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
-// A loop, drive, limit or frictionless contact block's new impulses, the others held.
-SmallVec nextImpulses(const ExtraBlock& block, const Mat6& inverse, const Eigen::VectorXd& velocity,
-                      const SmallVec& old)
+// A loop, drive, limit or frictionless contact block's new impulses, the others held; v points at
+// its row velocities.
+SmallVec nextImpulses(const ExtraBlock& block, const Mat6& inverse, const double* v, const SmallVec& old)
 {
-    const int o = block.offset;
     const int n = block.count;
     SmallVec next = old;
     if (block.kind == ExtraBlock::Kind::Loop)
     {
         const SmallVec target = block.target.head(n);
         next += inverse.topLeftCorner(n, n) *
-                (target - velocity.segment(o, n) - block.compliance.head(n).cwiseProduct(old));
+                (target - Eigen::Map<const SmallVec>(v, n) - block.compliance.head(n).cwiseProduct(old));
     }
     else if (block.kind == ExtraBlock::Kind::Drive)
     {
-        const double free =
-            old(0) + inverse(0, 0) * (block.target(0) - velocity[o] - block.compliance(0) * old(0));
+        const double free = old(0) + inverse(0, 0) * (block.target(0) - v[0] - block.compliance(0) * old(0));
         next(0) = std::clamp(free, -block.bound, block.bound);
     }
     else
     {
         // Normal (frictionless contact) or limit row: one-sided.
-        next(0) = std::max(0.0, old(0) + inverse(0, 0) * (block.target(0) - velocity[o]));
+        next(0) = std::max(0.0, old(0) + inverse(0, 0) * (block.target(0) - v[0]));
     }
     return next;
 }
@@ -376,105 +303,263 @@ struct SweepChange
     double largest = 0.0;
 };
 
-// The commit step: the block's new impulses replace the old ones at rows o ..; the rows it moves
-// follow (velocity += G(:, o ..) (next - old) over the block's runs). Fixed-size vectors (a
-// contact's three rows) keep the running maxima in registers.
-template <typename Vec>
-[[gnu::always_inline]] inline void commitBlock(const Eigen::MatrixXd& G, int o, const Vec& old,
-                                               const Vec& next, const std::pair<int, int>* firstRun,
-                                               const std::pair<int, int>* lastRun, Eigen::VectorXd& lambda,
-                                               Eigen::VectorXd& velocity, SweepChange& sweep)
+// One island's working view: the base velocities (exact at the impulses on entry) plus what each
+// of its parts' impulse changes have done since.
+class IslandSweeper
 {
-    const int n = static_cast<int>(next.size());
-    double delta[6];
-    double step = 0.0; // largest impulse change of this block (N s)
-    for (int q = 0; q < n; ++q)
+  public:
+    IslandSweeper(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G, ExtraSolveScratch& scratch,
+                  Eigen::VectorXd& lambda)
+        : mBlocks(blocks), mG(G), mScratch(scratch), mLambda(lambda)
     {
-        delta[q] = next(q) - old(q);
-        step = std::max(step, std::abs(delta[q]));
     }
-    if (step > 0.0)
-    {
-        if constexpr (Vec::RowsAtCompileTime == Eigen::Dynamic)
-            lambda.segment(o, n) = next;
-        else
-            lambda.template segment<Vec::RowsAtCompileTime>(o) = next;
-        addColumns(G, o, n, delta, firstRun, lastRun, velocity);
-    }
-    sweep.largest = std::max(sweep.largest, next.cwiseAbs().maxCoeff());
-    sweep.change = std::max(sweep.change, step);
-}
 
-// One Gauss-Seidel sweep over the blocks, in order.
-SweepChange sweepBlocks(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
-                        const RowCoupling& coupling, ExtraSolveScratch& scratch, Eigen::VectorXd& lambda)
-{
-    SweepChange sweep;
-    Eigen::VectorXd& velocity = scratch.velocity;
-    const double* v = velocity.data();
-    for (std::size_t b = 0; b < blocks.size(); ++b)
+    // Zeroes the accumulators of the island's parts.
+    void start(int island)
     {
-        const ExtraBlock& block = blocks[b];
-        const int o = block.offset;
-        const std::pair<int, int>* firstRun = coupling.runs.data() + coupling.firstRun[b];
-        const std::pair<int, int>* lastRun = coupling.runs.data() + coupling.firstRun[b + 1];
-        if (block.kind == ExtraBlock::Kind::Contact && block.count == 3)
+        mIsland = island;
+        for (int p : mG.islandParts(island))
         {
-            const Eigen::Vector3d old = lambda.segment<3>(o);
-            if (old(0) == 0.0 && old(1) == 0.0 && old(2) == 0.0 && v[o] >= scratch.contacts[b].target)
+            mScratch.partVelocity[static_cast<std::size_t>(p)].setZero(mG.part(p).rows);
+        }
+    }
+
+    // The velocities of block b's rows now (count values into v).
+    void velocity(int b, double* v) const
+    {
+        const ExtraBlock& block = mBlocks[static_cast<std::size_t>(b)];
+        const DelassusMatrix::Place& place = mG.place(b);
+        const double* base = mScratch.velocity.data() + block.offset;
+        const double* first =
+            mScratch.partVelocity[static_cast<std::size_t>(place.part[0])].data() + place.offset[0];
+        if (place.part[1] < 0)
+        {
+            for (int q = 0; q < block.count; ++q)
             {
-                // Apart and not pushing: no impulse solves the block (a quarter of the updates
-                // in the pileup; the full update left them at zero every time).
+                v[q] = base[q] + first[q];
+            }
+            return;
+        }
+        const double* second =
+            mScratch.partVelocity[static_cast<std::size_t>(place.part[1])].data() + place.offset[1];
+        for (int q = 0; q < block.count; ++q)
+        {
+            v[q] = base[q] + first[q] + second[q];
+        }
+    }
+
+    // One Gauss-Seidel sweep over the island's blocks, in order.
+    SweepChange sweep()
+    {
+        SweepChange sweep;
+        double v[6];
+        for (int b : mG.islandBlocks(mIsland))
+        {
+            const ExtraBlock& block = mBlocks[static_cast<std::size_t>(b)];
+            const int o = block.offset;
+            velocity(b, v);
+            if (block.kind == ExtraBlock::Kind::Contact && block.count == 3)
+            {
+                const Eigen::Vector3d old = mLambda.segment<3>(o);
+                const ContactPivots& pivots = mScratch.contacts[static_cast<std::size_t>(b)];
+                if (old(0) == 0.0 && old(1) == 0.0 && old(2) == 0.0 && v[0] >= pivots.target)
+                {
+                    // Apart and not pushing: no impulse solves the block (a quarter of the updates
+                    // in the pileup; the full update left them at zero every time).
+                    continue;
+                }
+                commit(b, old, updateContact(pivots, v, old), sweep);
                 continue;
             }
-            const Eigen::Vector3d next = updateContact(scratch.contacts[b], v + o, old);
-            commitBlock(G, o, old, next, firstRun, lastRun, lambda, velocity, sweep);
-            continue;
+            const SmallVec old = mLambda.segment(o, block.count);
+            commit(b, old, nextImpulses(block, mScratch.inverse[static_cast<std::size_t>(b)], v, old), sweep);
         }
-        const SmallVec old = lambda.segment(o, block.count);
-        const SmallVec next = nextImpulses(block, scratch.inverse[b], velocity, old);
-        commitBlock(G, o, old, next, firstRun, lastRun, lambda, velocity, sweep);
+        return sweep;
     }
-    return sweep;
-}
+
+    // The largest residual of the island's blocks (conditionResidual), NaN when one is not finite.
+    double residual() const
+    {
+        double worst = 0.0;
+        double v[6];
+        for (int b : mG.islandBlocks(mIsland))
+        {
+            const ExtraBlock& block = mBlocks[static_cast<std::size_t>(b)];
+            velocity(b, v);
+            const double r = blockResidual(block, v, mLambda.data() + block.offset);
+            if (std::isnan(r))
+            {
+                return r;
+            }
+            worst = std::max(worst, r);
+        }
+        return worst;
+    }
+
+    // The accumulated changes into the base velocities (scratch.velocity: J u at the impulses now).
+    void finish()
+    {
+        for (int p : mG.islandParts(mIsland))
+        {
+            const DelassusMatrix::Part& part = mG.part(p);
+            const Eigen::VectorXd& accumulated = mScratch.partVelocity[static_cast<std::size_t>(p)];
+            for (int l = 0; l < part.rows; ++l)
+            {
+                mScratch.velocity(part.global[static_cast<std::size_t>(l)]) += accumulated(l);
+            }
+        }
+    }
+
+  private:
+    // The block's new impulses replace the old ones; the rows of its parts follow
+    // (velocity += G(:, block) (next - old) in each part). Fixed-size vectors (a contact's three
+    // rows) keep the running maxima in registers.
+    template <typename Vec>
+    [[gnu::always_inline]] inline void commit(int b, const Vec& old, const Vec& next, SweepChange& sweep)
+    {
+        const ExtraBlock& block = mBlocks[static_cast<std::size_t>(b)];
+        const int n = static_cast<int>(next.size());
+        double delta[6];
+        double step = 0.0; // largest impulse change of this block (N s)
+        for (int q = 0; q < n; ++q)
+        {
+            delta[q] = next(q) - old(q);
+            step = std::max(step, std::abs(delta[q]));
+        }
+        if (step > 0.0)
+        {
+            if constexpr (Vec::RowsAtCompileTime == Eigen::Dynamic)
+                mLambda.segment(block.offset, n) = next;
+            else
+                mLambda.template segment<Vec::RowsAtCompileTime>(block.offset) = next;
+            const DelassusMatrix::Place& place = mG.place(b);
+            for (int side = 0; side < 2 && place.part[side] >= 0; ++side)
+            {
+                const std::size_t p = static_cast<std::size_t>(place.part[side]);
+                addColumns(mG.part(place.part[side]).G, place.offset[side], n, delta,
+                           mScratch.partVelocity[p].data());
+            }
+        }
+        sweep.largest = std::max(sweep.largest, next.cwiseAbs().maxCoeff());
+        sweep.change = std::max(sweep.change, step);
+    }
+
+    const std::vector<ExtraBlock>& mBlocks;
+    const DelassusMatrix& mG;
+    ExtraSolveScratch& mScratch;
+    Eigen::VectorXd& mLambda;
+    int mIsland = 0;
+};
+
+// The stall rule of ExtraSolveSettings: the residuals of the last stallSweeps sweeps against the
+// smallest one before them.
+class StallWatch
+{
+  public:
+    explicit StallWatch(const ExtraSolveSettings& settings)
+        : mWindow(std::clamp(settings.stallSweeps, 0, cMaxWindow)), mRatio(settings.stallRatio)
+    {
+    }
+
+    // Takes the residual after a sweep; true when the sweeps have stalled.
+    bool stalled(double residual)
+    {
+        if (mWindow == 0)
+        {
+            return false;
+        }
+        if (mCount >= mWindow)
+        {
+            mBestBefore = std::min(mBestBefore, mRecent[static_cast<std::size_t>(mCount % mWindow)]);
+        }
+        mRecent[static_cast<std::size_t>(mCount % mWindow)] = residual;
+        ++mCount;
+        if (mCount <= mWindow)
+        {
+            return false;
+        }
+        const double bestRecent = *std::min_element(mRecent.begin(), mRecent.begin() + mWindow);
+        return bestRecent > mRatio * mBestBefore; // NaN: not stalled (the sweeps run to the cap)
+    }
+
+  private:
+    static constexpr int cMaxWindow = 64;
+    int mWindow;
+    double mRatio;
+    int mCount = 0;
+    double mBestBefore = std::numeric_limits<double>::infinity();
+    std::array<double, cMaxWindow> mRecent{};
+};
 
 } // namespace
 
-ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const Eigen::MatrixXd& G,
+ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G,
                                    const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
-                                   ExtraSolveScratch& scratch, const RowCoupling* coupling,
-                                   std::uint64_t matrixVersion)
+                                   ExtraSolveScratch& scratch, std::span<const double> islandTolerance)
 {
+    using IslandEnd = ExtraSolveScratch::IslandEnd;
     ExtraSolveStats stats;
-    const Eigen::Index m = G.rows();
-    if (m == 0)
+    stats.converged = true;
+    scratch.islandEnd.assign(static_cast<std::size_t>(G.islands()), IslandEnd::Skipped);
+    scratch.islandResidual.assign(static_cast<std::size_t>(G.islands()), 0.0);
+    if (G.rows() == 0)
     {
         return stats;
     }
-    const bool pivotsKnown = matrixVersion != 0 && matrixVersion == scratch.pivotsVersion &&
-                             scratch.inverse.size() == blocks.size() && scratch.pivotsRows == m;
-    scratch.pivotsVersion = matrixVersion;
-    scratch.pivotsRows = m;
+    const bool pivotsKnown = G.version() == scratch.pivotsVersion && scratch.inverse.size() == blocks.size();
+    scratch.pivotsVersion = G.version();
     if (!pivotsKnown)
     {
         scratch.inverse.assign(blocks.size(), Mat6::Zero());
     }
     scratch.contacts.resize(blocks.size());
-    if (coupling == nullptr)
-    {
-        coupling = denseCoupling(blocks.size(), m, scratch.dense);
-    }
     computePivots(blocks, G, pivotsKnown, scratch);
-
-    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+    if (scratch.partVelocity.size() < static_cast<std::size_t>(G.parts()))
     {
-        const SweepChange moved = sweepBlocks(blocks, G, *coupling, scratch, lambda);
-        stats.sweeps = sweep + 1;
-        stats.converged = conditionsMet(blocks, scratch.velocity, lambda, settings.velocityTolerance);
-        if (stats.converged || moved.change <= settings.tolerance * moved.largest || moved.change < 1e-14)
+        scratch.partVelocity.resize(static_cast<std::size_t>(G.parts()));
+    }
+
+    IslandSweeper sweeper(blocks, G, scratch, lambda);
+    for (int island = 0; island < G.islands(); ++island)
+    {
+        const double tolerance = islandTolerance.empty() ? settings.velocityTolerance
+                                                         : islandTolerance[static_cast<std::size_t>(island)];
+        if (tolerance < 0.0)
         {
-            break;
+            continue;
         }
+        sweeper.start(island);
+        StallWatch stall(settings);
+        IslandEnd end = IslandEnd::Stopped;
+        double residual = 0.0;
+        for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+        {
+            const SweepChange moved = sweeper.sweep();
+            ++stats.sweeps;
+            residual = sweeper.residual();
+            if (residual <= tolerance)
+            {
+                end = IslandEnd::Converged;
+                break;
+            }
+            if (moved.change <= settings.tolerance * moved.largest || moved.change < 1e-14)
+            {
+                break;
+            }
+            if (stall.stalled(residual))
+            {
+                end = IslandEnd::Stalled;
+                break;
+            }
+        }
+        sweeper.finish();
+        scratch.islandEnd[static_cast<std::size_t>(island)] = end;
+        scratch.islandResidual[static_cast<std::size_t>(island)] = residual;
+        stats.converged = stats.converged && end == IslandEnd::Converged;
+        stats.stalled = stats.stalled || end == IslandEnd::Stalled;
+        stats.residual = std::isnan(residual) || std::isnan(stats.residual)
+                             ? std::numeric_limits<double>::quiet_NaN()
+                             : std::max(stats.residual, residual);
     }
     return stats;
 }

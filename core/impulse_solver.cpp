@@ -7,6 +7,8 @@
 #include "core/pgs_solver.h"
 #include "core/tree_solver.h"
 
+#include <numeric>
+
 namespace frontier::core
 {
 
@@ -161,24 +163,106 @@ void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector
     }
 }
 
-void ImpulseSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+double freeDelassus(const RowSystem& system, std::size_t body, const Vec6& row)
 {
-    G.setZero(rows, rows);
-    Eigen::VectorXd column;
-    BlockVector response;
-    response.resize(mSystem->model->bodies.size(), mSystem->model->joints.size());
-    for (const ExtraBlock& block : blocks)
+    const Vec3 angular = row.tail<3>();
+    return row.head<3>().squaredNorm() / system.mass[body] +
+           angular.dot(system.inertia_W[body].ldlt().solve(angular));
+}
+
+void setFreeDelassus(const RowSystem& system, const std::vector<ExtraBlock>& blocks,
+                     DelassusMatrix::Part& part)
+{
+    const std::vector<int>& treeOfBody = system.layout->treeOfBody;
+    part.free.setZero(part.rows);
+    for (std::size_t k = 0; k < part.blocks.size(); ++k)
     {
-        for (int k = 0; k < block.count; ++k)
+        const ExtraBlock& block = blocks[static_cast<std::size_t>(part.blocks[k])];
+        for (int side = 0; side < 2; ++side)
         {
-            Eigen::VectorXd unit = Eigen::VectorXd::Zero(rows);
-            unit(block.offset + k) = 1.0;
-            response.setZero();
-            applyExtraImpulses(blocks, unit, response);
-            extraRowVelocities(blocks, response, column);
-            G.col(block.offset + k) = column;
+            const int body = side == 0 ? block.bodyA : block.bodyB;
+            if (body < 0 || (part.tree >= 0 && treeOfBody[static_cast<std::size_t>(body)] != part.tree))
+            {
+                continue;
+            }
+            const Mat6& J = side == 0 ? block.J_A : block.J_B;
+            for (int q = 0; q < block.count; ++q)
+            {
+                part.free(part.offsets[k] + q) +=
+                    freeDelassus(system, static_cast<std::size_t>(body), J.row(q).transpose());
+            }
         }
     }
+}
+
+// One solve per row of each part, with the row's impulse on the part's tree alone; the response
+// (on that tree only: H is block diagonal by tree) read by the part's rows on the tree.
+void ImpulseSolver::delassusParts(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G,
+                                  std::span<const int> parts)
+{
+    const std::vector<int>& treeOfBody = mSystem->layout->treeOfBody;
+    BlockVector impulse, response;
+    impulse.resize(mSystem->model->bodies.size(), mSystem->model->joints.size());
+    response.resize(mSystem->model->bodies.size(), mSystem->model->joints.size());
+    for (int p : parts)
+    {
+        DelassusMatrix::Part& part = G.part(p);
+        setFreeDelassus(*mSystem, blocks, part);
+        auto onTree = [&](int body)
+        { return body >= 0 && (part.tree < 0 || treeOfBody[static_cast<std::size_t>(body)] == part.tree); };
+        for (std::size_t k = 0; k < part.blocks.size(); ++k)
+        {
+            const ExtraBlock& block = blocks[static_cast<std::size_t>(part.blocks[k])];
+            for (int q = 0; q < block.count; ++q)
+            {
+                impulse.setZero();
+                for (int side = 0; side < 2; ++side)
+                {
+                    const int body = side == 0 ? block.bodyA : block.bodyB;
+                    if (onTree(body))
+                    {
+                        impulse.body[static_cast<std::size_t>(body)] +=
+                            (side == 0 ? block.J_A : block.J_B).row(q).transpose();
+                    }
+                }
+                solve(impulse, response);
+                for (std::size_t k2 = 0; k2 < part.blocks.size(); ++k2)
+                {
+                    const ExtraBlock& other = blocks[static_cast<std::size_t>(part.blocks[k2])];
+                    for (int q2 = 0; q2 < other.count; ++q2)
+                    {
+                        double v = 0.0;
+                        for (int side = 0; side < 2; ++side)
+                        {
+                            const int body = side == 0 ? other.bodyA : other.bodyB;
+                            if (onTree(body))
+                            {
+                                v += (side == 0 ? other.J_A : other.J_B)
+                                         .row(q2)
+                                         .dot(response.body[static_cast<std::size_t>(body)]);
+                            }
+                        }
+                        part.G(part.offsets[k2] + q2, part.offsets[k] + q) = v;
+                    }
+                }
+            }
+        }
+    }
+    G.touch();
+}
+
+void ImpulseSolver::delassus(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G)
+{
+    G.layOut(blocks, mSystem->layout->treeOfBody);
+    mAllParts.resize(static_cast<std::size_t>(G.parts()));
+    std::iota(mAllParts.begin(), mAllParts.end(), 0);
+    delassusParts(blocks, G, mAllParts);
+}
+
+void ImpulseSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+{
+    delassus(blocks, mDenseScratch);
+    mDenseScratch.toDense(G, rows);
 }
 
 void ImpulseSolver::addExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,

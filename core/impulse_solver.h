@@ -11,6 +11,7 @@
 // over the same rows with a fixed iteration count (what game engines do: O(n) per sweep, inexact).
 #pragma once
 
+#include "core/delassus.h"
 #include "core/extra_rows.h"
 #include "core/frontier_order.h"
 #include "core/joints/drive.h"
@@ -107,10 +108,16 @@ class ImpulseSolver
     }
     virtual const char* name() const = 0;
 
-    // Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; docs/method.md §5),
-    // rows x rows, after factor(). The default takes one solve per row; the tree solver overrides
-    // it with forward sweeps that touch only each body's path to its root.
-    virtual void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G);
+    // The Delassus matrix G = J_x H^-1 J_x^T of extra rows (contacts, loops, limits; docs/method.md
+    // §5), after factor(), stored by tree (core/delassus.h): the values of the listed parts of G,
+    // laid out for these blocks (DelassusMatrix::layOut). The default takes one solve per row; the
+    // tree solver overrides it with forward sweeps that touch only each body's path to its root.
+    virtual void delassusParts(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G,
+                               std::span<const int> parts);
+    // Every part: the layout and all the values.
+    void delassus(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G);
+    // G dense, rows x rows: for problems factored whole (the loop rows of the drift correction).
+    void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G);
 
     // Adds the momentum of extra-row impulses to a right-hand side: rhs.body += J_x^T lambda.
     static void addExtraImpulses(const std::vector<ExtraBlock>& blocks, const Eigen::VectorXd& lambda,
@@ -123,7 +130,19 @@ class ImpulseSolver
   protected:
     const RowSystem* mSystem = nullptr;    // set by factor()
     BlockVector mExtraRhs, mExtraResponse; // scratch
+    DelassusMatrix mDenseScratch;          // delassus(blocks, rows, G)
+    std::vector<int> mAllParts;            // scratch: 0 .. parts - 1
 };
+
+// One body's term of a row's Delassus value without the joints, J_i M_i^-1 J_i^T for its part J_i
+// (linear, angular) of the row ((m/s)/(N s), (rad/s)/(N m s)): the scale the row would have on a
+// free body.
+double freeDelassus(const RowSystem& system, std::size_t body, const Vec6& row);
+
+// The Part::free values of a part of G laid out for these blocks (core/delassus.h): each row's
+// freeDelassus over its bodies on the part's tree.
+void setFreeDelassus(const RowSystem& system, const std::vector<ExtraBlock>& blocks,
+                     DelassusMatrix::Part& part);
 
 // J_x u for every extra row, at velocities `solution.body`.
 void extraRowVelocities(const std::vector<ExtraBlock>& blocks, const BlockVector& solution,

@@ -179,8 +179,14 @@ struct Camera
 
 struct ContactSettings
 {
-    double friction = 0.5;                  // Coulomb mu
-    double restitution = 0.0;               // Newton e
+    double friction = 0.5;    // Coulomb mu
+    double restitution = 0.0; // Newton e
+    // When the contact solve stops (docs/method.md §5): each row's condition met to
+    // max(tolerance, relativeTolerance x the largest residual when the step's solve starts), in m/s
+    // (rad/s for angular rows). The absolute part holds resting contact; the relative part lets an
+    // impact stop at a fraction of its own speeds.
+    double tolerance = 3e-5;                // m/s: 30 nm of motion in a 1 ms step
+    double relativeTolerance = 0.0;         // of the starting residual, in [0, 1)
     std::vector<std::array<int, 2>> ignore; // body index pairs that never collide
 };
 

@@ -38,13 +38,8 @@ bool heldByJoints(const ExtraBlock& block, double delassus, const RowSystem& row
     {
         return false;
     }
-    const double free = sumOverBodies(block,
-                                      [&](std::size_t i, const Vec6& row)
-                                      {
-                                          const Vec3 angular = row.tail<3>();
-                                          return row.head<3>().squaredNorm() / rows.mass[i] +
-                                                 angular.dot(rows.inertia_W[i].ldlt().solve(angular));
-                                      });
+    const double free =
+        sumOverBodies(block, [&](std::size_t i, const Vec6& row) { return freeDelassus(rows, i, row); });
     return delassus < ratio * free;
 }
 

@@ -9,6 +9,7 @@
 // inversion): X_root = D_root^-1, X_c = D_c^-1 + L_c X_p(c) L_c^T. Carrying J_x^T instead of e_x,
 // G_xy = A_x,c^T X_c A_y,c with A_x = L^-1 J_x^T: one small product per pair of bodies instead of
 // a sum along their common path.
+#include "core/delassus.h"
 #include "core/fixed_rows.h"
 #include "core/packed_cholesky.h"
 #include "core/tree_solver.h"
@@ -53,7 +54,28 @@ template <int D, int P> void addCongruence(const double* l, const Mat6& parent, 
 
 } // namespace
 
-void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G)
+// Calls f(body, block, local offset) for each side of the part's blocks whose body is on the
+// part's tree, in the part's order (a block with both bodies on the tree: A, then B).
+template <typename F>
+void TreeSolver::forEachSide(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part,
+                             F&& f) const
+{
+    const std::vector<int>& treeOfBody = mSystem->layout->treeOfBody;
+    for (std::size_t k = 0; k < part.blocks.size(); ++k)
+    {
+        const ExtraBlock& block = blocks[static_cast<std::size_t>(part.blocks[k])];
+        for (int body : {block.bodyA, block.bodyB})
+        {
+            if (body >= 0 && (part.tree < 0 || treeOfBody[static_cast<std::size_t>(body)] == part.tree))
+            {
+                f(body, block, part.offsets[k]);
+            }
+        }
+    }
+}
+
+void TreeSolver::delassusParts(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G,
+                               std::span<const int> parts)
 {
     const std::size_t nblocks = mBlocks.size();
     if (mSlotOfBody.size() != mSystem->model->bodies.size())
@@ -64,31 +86,35 @@ void TreeSolver::delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen
     {
         mDiagonalOf.assign(nblocks, -1);
     }
-
-    gatherSlots(blocks);
-    layOutPaths();
-    placeJacobians(blocks);
-    sweepPathsForward();
-    invertOnPaths();
-    assembleDelassus(rows, G);
-    clearSlotMaps();
+    for (int p : parts)
+    {
+        DelassusMatrix::Part& part = G.part(p);
+        gatherSlots(blocks, part);
+        layOutPaths();
+        placeJacobians(blocks, part);
+        sweepPathsForward();
+        invertOnPaths();
+        assembleDelassus(part.G);
+        clearSlotMaps();
+        setFreeDelassus(*mSystem, blocks, part);
+    }
+    G.touch();
 }
 
-// Bodies with extra rows (slots) and the G rows each one carries, in stacking order.
-void TreeSolver::gatherSlots(const std::vector<ExtraBlock>& blocks)
+// The part's bodies on its tree with extra rows (slots), and the part's rows each one carries, in
+// stacking order.
+void TreeSolver::gatherSlots(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part)
 {
     mSlotBodies.clear();
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int body : {block.bodyA, block.bodyB})
-        {
-            if (body >= 0 && mSlotOfBody[static_cast<std::size_t>(body)] < 0)
-            {
-                mSlotOfBody[static_cast<std::size_t>(body)] = static_cast<int>(mSlotBodies.size());
-                mSlotBodies.push_back(body);
-            }
-        }
-    }
+    forEachSide(blocks, part,
+                [&](int body, const ExtraBlock&, int)
+                {
+                    if (mSlotOfBody[static_cast<std::size_t>(body)] < 0)
+                    {
+                        mSlotOfBody[static_cast<std::size_t>(body)] = static_cast<int>(mSlotBodies.size());
+                        mSlotBodies.push_back(body);
+                    }
+                });
     const std::size_t k = mSlotBodies.size();
     mSlotRows.resize(std::max(mSlotRows.size(), k));
     mPaths.resize(std::max(mPaths.size(), k));
@@ -97,22 +123,16 @@ void TreeSolver::gatherSlots(const std::vector<ExtraBlock>& blocks)
         mSlotRows[s].clear();
         mPaths[s].clear();
     }
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int side = 0; side < 2; ++side)
-        {
-            const int body = side == 0 ? block.bodyA : block.bodyB;
-            if (body >= 0)
-            {
-                std::vector<int>& slotRows =
-                    mSlotRows[static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)])];
-                for (int r = 0; r < block.count; ++r)
+    forEachSide(blocks, part,
+                [&](int body, const ExtraBlock& block, int localOffset)
                 {
-                    slotRows.push_back(block.offset + r);
-                }
-            }
-        }
-    }
+                    std::vector<int>& slotRows =
+                        mSlotRows[static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)])];
+                    for (int r = 0; r < block.count; ++r)
+                    {
+                        slotRows.push_back(localOffset + r);
+                    }
+                });
 }
 
 // Each slot's path from its node to its root, and room for its A blocks (at most 6 x m_x each).
@@ -134,29 +154,23 @@ void TreeSolver::layOutPaths()
     mPool.resize(poolSize);
 }
 
-// Each body's J_x^T at its node, its columns in the order of its rows (one pass over the blocks,
-// with a column cursor per slot).
-void TreeSolver::placeJacobians(const std::vector<ExtraBlock>& blocks)
+// Each body's J_x^T at its node, its columns in the order of its rows (one pass over the part's
+// blocks, with a column cursor per slot).
+void TreeSolver::placeJacobians(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part)
 {
     const std::size_t k = mSlotBodies.size();
     mSlotColumn.assign(k, 0);
-    for (const ExtraBlock& block : blocks)
-    {
-        for (int side = 0; side < 2; ++side)
-        {
-            const int body = side == 0 ? block.bodyA : block.bodyB;
-            if (body < 0)
-            {
-                continue;
-            }
-            const std::size_t s = static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)]);
-            const Mat6& J = side == 0 ? block.J_A : block.J_B;
-            Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> columns(
-                mPool.data() + mPaths[s][0].offset + 6 * mSlotColumn[s], 6, block.count);
-            columns = J.topRows(block.count).transpose();
-            mSlotColumn[s] += block.count;
-        }
-    }
+    forEachSide(blocks, part,
+                [&](int body, const ExtraBlock& block, int)
+                {
+                    const std::size_t s =
+                        static_cast<std::size_t>(mSlotOfBody[static_cast<std::size_t>(body)]);
+                    const Mat6& J = body == block.bodyA ? block.J_A : block.J_B;
+                    Eigen::Map<Eigen::Matrix<double, 6, Eigen::Dynamic>> columns(
+                        mPool.data() + mPaths[s][0].offset + 6 * mSlotColumn[s], 6, block.count);
+                    columns = J.topRows(block.count).transpose();
+                    mSlotColumn[s] += block.count;
+                });
 }
 
 // Forward sweeps, A_x = L^-1 J_x^T: from x's node, A_p = -L_b^T A_b up the path.
@@ -244,23 +258,18 @@ void TreeSolver::invertOnPaths()
     }
 }
 
-// G_xy = A_x,c^T X_c A_y,c for every pair of slots in the same tree, c where their paths meet.
-void TreeSolver::assembleDelassus(int rows, Eigen::MatrixXd& G)
+// G_xy = A_x,c^T X_c A_y,c for every pair of slots (all on the part's tree), c where their paths
+// meet.
+void TreeSolver::assembleDelassus(Eigen::MatrixXd& G)
 {
-    const FrontierLayout& layout = *mSystem->layout;
     const std::size_t k = mSlotBodies.size();
-    G.setZero(rows, rows);
+    G.setZero();
     for (std::size_t x = 0; x < k; ++x)
     {
         const std::vector<PathEntry>& px = mPaths[x];
-        const int treeX = layout.treeOfBody[static_cast<std::size_t>(mSlotBodies[x])];
         const int mx = static_cast<int>(mSlotRows[x].size());
         for (std::size_t y = x; y < k; ++y)
         {
-            if (layout.treeOfBody[static_cast<std::size_t>(mSlotBodies[y])] != treeX)
-            {
-                continue;
-            }
             const std::vector<PathEntry>& py = mPaths[y];
             std::size_t ix = 0, iy = 0;
             while (px[ix].block != py[iy].block) // block indices ascend along a path

@@ -37,14 +37,15 @@ class TreeSolver final : public ImpulseSolver
     void factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution) override;
     const char* name() const override { return "linear"; }
 
-    // G = J_x H^-1 J_x^T without one O(n) solve per row (core/tree_delassus.cpp): each body x
-    // with extra rows sends its stacked rows J_x^T up the forward sweep, which reaches only the
-    // blocks on x's path to its root (A_x = L^-1 J_x^T there). Two bodies' paths meet at a block
-    // c and share everything above it, so G_xy = A_x,c^T X_c A_y,c with X_c the diagonal block of
-    // H^-1 at c, computed top-down for the blocks on those paths (X_c = D_c^-1 + L_c X_p L_c^T,
-    // selected inversion). Cost: O(sum of path lengths) sweeps plus one small product per pair
-    // of bodies in the same tree.
-    void delassus(const std::vector<ExtraBlock>& blocks, int rows, Eigen::MatrixXd& G) override;
+    // A part of G = J_x H^-1 J_x^T without one O(n) solve per row (core/tree_delassus.cpp): each
+    // body x of the part's tree with extra rows sends its stacked rows J_x^T up the forward sweep,
+    // which reaches only the blocks on x's path to its root (A_x = L^-1 J_x^T there). Two bodies'
+    // paths meet at a block c and share everything above it, so G_xy = A_x,c^T X_c A_y,c with X_c
+    // the diagonal block of H^-1 at c, computed top-down for the blocks on those paths
+    // (X_c = D_c^-1 + L_c X_p L_c^T, selected inversion). Cost: O(sum of path lengths) sweeps plus
+    // one small product per pair of the tree's bodies.
+    void delassusParts(const std::vector<ExtraBlock>& blocks, DelassusMatrix& G,
+                       std::span<const int> parts) override;
 
   private:
     // One block in layout order (16 bytes, so the sweeps read little besides the factors).
@@ -63,13 +64,15 @@ class TreeSolver final : public ImpulseSolver
     void eliminate(std::size_t block);                           // §3 step 2 at one block
     void forwardStep(std::size_t block, const BlockVector& rhs); // §3 step 3, forward, one block
     void backwardSweep(BlockVector& solution);                   // §3 step 3, backward
-    // The steps of delassus(), in order (core/tree_delassus.cpp).
-    void gatherSlots(const std::vector<ExtraBlock>& blocks);
+    // The steps of delassusParts(), in order, for one part (core/tree_delassus.cpp).
+    template <typename F>
+    void forEachSide(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part, F&& f) const;
+    void gatherSlots(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part);
     void layOutPaths();
-    void placeJacobians(const std::vector<ExtraBlock>& blocks);
+    void placeJacobians(const std::vector<ExtraBlock>& blocks, const DelassusMatrix::Part& part);
     void sweepPathsForward();
     void invertOnPaths();
-    void assembleDelassus(int rows, Eigen::MatrixXd& G);
+    void assembleDelassus(Eigen::MatrixXd& G);
     void clearSlotMaps();
 
     static constexpr std::uint8_t cEdge = 1;              // a joint block; its pivot factor is of -D_b
@@ -90,7 +93,7 @@ class TreeSolver final : public ImpulseSolver
     std::vector<std::uint8_t> mSeen;  // scratch: per block, a child was met
     std::vector<int> mUnmappedBodies; // bodies without a block (static): zero in a solution
     std::vector<int> mUnmappedJoints; // joints without a block (loops): zero in a solution
-    // Scratch of delassus(), kept so that stepping does not allocate once sizes have settled.
+    // Scratch of delassusParts(), kept so that stepping does not allocate once sizes have settled.
     struct PathEntry
     {
         int block = 0;
@@ -98,7 +101,7 @@ class TreeSolver final : public ImpulseSolver
     };
     std::vector<int> mSlotBodies;               // bodies with extra rows
     std::vector<int> mSlotOfBody;               // body -> slot, -1
-    std::vector<std::vector<int>> mSlotRows;    // G rows of each slot's body, in stacking order
+    std::vector<std::vector<int>> mSlotRows;    // part rows of each slot's body, in stacking order
     std::vector<int> mSlotColumn;               // scratch: column cursor per slot
     std::vector<std::vector<PathEntry>> mPaths; // per slot: its node up to its root
     std::vector<double> mPool;                  // the A_x blocks of every path

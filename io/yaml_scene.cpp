@@ -23,7 +23,11 @@ const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact", 
 const std::vector<std::string> cReferenceKeys = {"csv", "body"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
-const std::vector<std::string> cContactKeys = {"friction", "restitution", "ignore"};
+// The largest contact velocity tolerance a scene may ask (m/s): more would let resting bodies slide.
+constexpr double cMaxContactTolerance = 1.0;
+
+const std::vector<std::string> cContactKeys = {"friction", "restitution", "tolerance", "relative_tolerance",
+                                               "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
     "urdf",   "position",       "orientation", "velocity",  "angular_velocity",
@@ -82,7 +86,7 @@ void readSimulation(const YamlSource& source, const YAML::Node& node, core::Simu
     }
 }
 
-// Friction and restitution now; the ignore pairs once every body exists.
+// Friction, restitution and the solve's tolerances now; the ignore pairs once every body exists.
 YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::ContactSettings& contact)
 {
     const MapNode map(source, node, "'contact'");
@@ -101,6 +105,25 @@ YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::C
         if (contact.restitution < 0.0 || contact.restitution > 1.0)
         {
             map.failAtValue("restitution", "expected a number in [0, 1] for " + map.what("restitution"));
+        }
+    }
+    if (map.has("tolerance"))
+    {
+        contact.tolerance = map.number("tolerance");
+        if (!(contact.tolerance >= 0.0 && contact.tolerance <= cMaxContactTolerance))
+        {
+            map.failAtValue("tolerance", "expected a velocity in [0, 1] m/s for " + map.what("tolerance") +
+                                             ", got " + describeNode(map.get("tolerance")));
+        }
+    }
+    if (map.has("relative_tolerance"))
+    {
+        contact.relativeTolerance = map.number("relative_tolerance");
+        if (!(contact.relativeTolerance >= 0.0 && contact.relativeTolerance < 1.0))
+        {
+            map.failAtValue("relative_tolerance", "expected a fraction in [0, 1) for " +
+                                                      map.what("relative_tolerance") + ", got " +
+                                                      describeNode(map.get("relative_tolerance")));
         }
     }
     return map.get("ignore");

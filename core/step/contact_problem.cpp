@@ -5,6 +5,7 @@
 #include "core/frontier_order.h"
 #include "core/joints/coordinates.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace frontier::core
@@ -36,7 +37,7 @@ void buildLoopBlocks(const Model& model, const FrontierLayout& layout, const Row
 
 ContactProblem::ContactProblem(const Model& model, const StepOptions& options, const FrontierLayout& layout,
                                ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver), mDelassus(layout, solver)
 {
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
@@ -146,144 +147,138 @@ void ContactProblem::applyImpulseChange(BlockVector& solution)
 ContactProblem::Outcome ContactProblem::solve(BlockVector& solution)
 {
     Outcome outcome;
-    mDelassusValid = false;
-    if (mDelassusAge >= 0 && mDelassusAge <= cMaxDelassusAge)
-    {
-        ++mDelassusAge; // stops one past the limit
-    }
     if (mRows > 0)
     {
-        if (mWarm && lastImpulsesStillHold(solution))
-        {
-            outcome.route = ContactRoute::Carried;
-        }
-        else if (mWarm && mOptions.reuseDelassus && solveWithLastDelassus(solution, outcome.sweeps))
-        {
-            outcome.route = ContactRoute::Reused;
-        }
-        else
-        {
-            outcome.route = ContactRoute::Built;
-            buildDelassus();
-            if (mWarm)
-            {
-                mExtraScratch.velocity = mExtraVelocity; // exact at the impulses reached so far
-            }
-            else
-            {
-                extraRowVelocities(mExtra, solution, mExtraScratch.velocity); // lambda = 0
-            }
-            outcome.sweeps += solveExtraRowsFrom(mExtra, mG, mOptions.contactSolve, mExtraLambda,
-                                                 mExtraScratch, &mCoupling, mDelassusVersion)
-                                  .sweeps;
-            applyImpulseChange(solution);
-        }
+        mDelassus.layOut(mExtra, mContacts);
+        // The row velocities at the carried impulses (zero when none), exactly: the step's first
+        // solve included them (carryImpulses).
+        extraRowVelocities(mExtra, solution, mExtraVelocity);
+        setIslandTolerances();
+        const bool open = std::any_of(mIslandTolerance.begin(), mIslandTolerance.end(),
+                                      [](double tolerance) { return tolerance >= 0.0; });
+        // Resting contact: the carried impulses often still meet every condition of this step (0
+        // sweeps, the criterion the Gauss-Seidel stops on); else the islands that do not are solved.
+        outcome.route = open ? solveOpenIslands(solution, outcome.sweeps) : ContactRoute::Carried;
     }
     mMemory.remember(mExtra, mContacts, mExtraLambda);
     return outcome;
 }
 
-// Resting contact: the impulses carried over from the last step often still meet every
-// condition of this step to the solve's tolerance (core::conditionResidual). The step's first
-// solve included them (carryImpulses), so the check is v = J_x u(lambda_carried), without G; when
-// they hold, the step keeps them (0 sweeps, the same criterion the Gauss-Seidel stops on).
-bool ContactProblem::lastImpulsesStillHold(const BlockVector& solution)
+// Each island's tolerance: max(tolerance, relativeTolerance x its largest residual at the carried
+// impulses) (ContactSettings); -1 for an island whose conditions hold there already.
+void ContactProblem::setIslandTolerances()
 {
-    extraRowVelocities(mExtra, solution, mExtraVelocity);
-    return conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance);
-}
-
-// The rows it was built for are remembered for solveWithLastDelassus.
-void ContactProblem::buildDelassus()
-{
-    if (!mDelassusValid)
+    const DelassusMatrix& G = mDelassus.matrix();
+    mIslandTolerance.resize(static_cast<std::size_t>(G.islands()));
+    for (int i = 0; i < G.islands(); ++i)
     {
-        mSolver.delassus(mExtra, mRows, mG);
-        ++mDelassusVersion; // the Gauss-Seidel's pivots of the last G no longer hold
-        coupleRowsByTree(mExtra, mLayout.treeOfBody, mCoupling, mTreeRuns);
-        mDelassusValid = true;
-        mDelassusRows.clear();
-        for (const ExtraBlock& block : mExtra)
-        {
-            mDelassusRows.push_back(rowKey(block, mContacts));
-        }
-        mDelassusAge = 0;
+        const double start = conditionResidual(mExtra, G.islandBlocks(i), mExtraVelocity, mExtraLambda);
+        const double tolerance = std::max(mModel.contact.tolerance, mModel.contact.relativeTolerance * start);
+        mIslandTolerance[static_cast<std::size_t>(i)] = start <= tolerance ? -1.0 : tolerance; // NaN: solved
     }
 }
 
-// The same rows as when mG was built, each contact within cReuseDistance of its point then.
-bool ContactProblem::sameRowsAsLastDelassus() const
+// The islands whose conditions do not hold: their parts of G kept from a recent step or built, then
+// solved; on kept parts (G~) by a defect correction checked against the exact velocities.
+ContactRoute ContactProblem::solveOpenIslands(BlockVector& solution, int& sweeps)
 {
-    constexpr double cReuseDistance = 1e-3; // m
-    if (mDelassusAge < 0 || mDelassusAge > cMaxDelassusAge || mDelassusRows.size() != mExtra.size())
+    const DelassusMatrix& G = mDelassus.matrix();
+    mOpen.resize(mIslandTolerance.size());
+    for (std::size_t i = 0; i < mIslandTolerance.size(); ++i)
     {
-        return false;
+        mOpen[i] = mIslandTolerance[i] >= 0.0;
     }
-    for (std::size_t b = 0; b < mExtra.size(); ++b)
+    mDelassus.prepare(mOpen, mWarm && mOptions.reuseDelassus);
+    bool kept = false;
+    for (int i = 0; i < G.islands(); ++i)
     {
-        const RowKey now = rowKey(mExtra[b], mContacts);
-        const RowKey& then = mDelassusRows[b];
-        if (now.kind != then.kind || now.count != then.count || now.bodyA != then.bodyA ||
-            now.bodyB != then.bodyB || now.source != then.source)
-        {
-            return false;
-        }
-        const bool contact = now.kind == ExtraBlock::Kind::Contact;
-        if (contact && ((now.point_W - then.point_W).squaredNorm() > cReuseDistance * cReuseDistance ||
-                        now.direction.dot(then.direction) < 0.999))
-        {
-            return false;
-        }
-        if (!contact && !sameJointRows(now, then))
-        {
-            return false;
-        }
+        kept = kept || (mOpen[static_cast<std::size_t>(i)] && !mDelassus.exact(i));
     }
-    return true;
+    if (!kept || !correctWithKeptParts(solution, sweeps))
+    {
+        // Every open island on its exact part of G (the kept parts of those not done built anew):
+        // the Gauss-Seidel's result is final.
+        mDelassus.rebuild(mOpen);
+        mExtraScratch.velocity = mExtraVelocity; // exact at the impulses reached so far
+        sweeps += solveExtraRowsFrom(mExtra, G, mOptions.contactSolve, mExtraLambda, mExtraScratch,
+                                     mIslandTolerance)
+                      .sweeps;
+        applyImpulseChange(solution);
+    }
+    return mDelassus.builtAny() ? ContactRoute::Built : ContactRoute::Reused;
 }
 
-// Resting contact whose carried-over impulses just miss the tolerance: the Delassus matrix G~ of
-// a recent step (same rows, contacts within a millimetre) stands in for this step's G in a defect
-// correction. With the exact row velocities v(lambda) = J_x (u_free + H^-1 J_x^T lambda) (one
-// O(n) solve), Gauss-Seidel solves v(lambda) + G~ (lambda' - lambda) against the contact
-// conditions; the result is accepted only when the exact velocities meet every condition to the
-// solve's tolerance (core::conditionResidual), the criterion of the full solve. Building G costs
-// a path sweep per body and a product per pair of bodies; a round here costs one O(n) solve and a
-// few sweeps. False (after cReuseRounds) leaves the full solve to the caller.
-//
-// Reads mExtraVelocity as lastImpulsesStillHold leaves it (the exact row velocities at the
-// carried-over impulses), so it runs only after that check has failed. When it gives up, the
-// full solve starts from the impulses reached here (one-sided and inside the cone), and the
-// step's sweep count includes both.
-bool ContactProblem::solveWithLastDelassus(BlockVector& solution, int& sweepCount)
+// Resting and slowly changing contact: the parts of G~ kept from a recent step (the same rows,
+// contacts within a millimetre) stand in for this step's in a defect correction. With the exact
+// row velocities v(lambda) = J_x (u_free + H^-1 J_x^T lambda) (one O(n) solve), Gauss-Seidel solves
+// v(lambda) + G~ (lambda' - lambda) against the contact conditions; an island's result is taken
+// when the exact velocities meet its conditions to its tolerance (or, when Gauss-Seidel stalled on
+// G~, to within cStalledAcceptance of where it stalled: G would stall there too), and at once when
+// all its parts were built this step. Building a part costs a path sweep per body and a product
+// per pair of its tree's bodies; a round here costs one O(n) solve and a few sweeps. False (after
+// cReuseRounds, or when an island neither converged nor stalled even on G~) leaves the islands
+// not done to the caller, with the impulses reached here as their start and mExtraVelocity exact
+// at them. Islands done are marked in mOpen and mIslandTolerance.
+bool ContactProblem::correctWithKeptParts(BlockVector& solution, int& sweeps)
 {
+    using IslandEnd = ExtraSolveScratch::IslandEnd;
     constexpr int cReuseRounds = 2;
-    if (!sameRowsAsLastDelassus())
-    {
-        return false;
-    }
-    ExtraSolveSettings settings = mOptions.contactSolve;
-    settings.velocityTolerance *= 0.9; // margin for the difference between G~ and G
+    constexpr double cStalledAcceptance = 2.0;
+    constexpr double cMargin = 0.9; // of the tolerance, for the difference between G~ and G
+    const DelassusMatrix& G = mDelassus.matrix();
+    mTolerances.resize(mIslandTolerance.size());
     for (int round = 0; round < cReuseRounds; ++round)
     {
+        for (std::size_t i = 0; i < mIslandTolerance.size(); ++i)
+        {
+            mTolerances[i] = mOpen[i] ? cMargin * mIslandTolerance[i] : -1.0;
+        }
         mExtraScratch.velocity = mExtraVelocity; // v(lambda), then v(lambda) + G~ (lambda' - lambda)
-        const ExtraSolveStats sweeps = solveExtraRowsFrom(mExtra, mG, settings, mExtraLambda, mExtraScratch,
-                                                          &mCoupling, mDelassusVersion);
-        sweepCount += sweeps.sweeps;
+        sweeps +=
+            solveExtraRowsFrom(mExtra, G, mOptions.contactSolve, mExtraLambda, mExtraScratch, mTolerances)
+                .sweeps;
         mTrial = solution;
         applyImpulseChange(mTrial);
         extraRowVelocities(mExtra, mTrial, mExtraVelocity);
-        if (conditionsMet(mExtra, mExtraVelocity, mExtraLambda, mOptions.contactSolve.velocityTolerance))
+        bool pending = false, hopeless = false;
+        for (int i = 0; i < G.islands(); ++i)
+        {
+            const std::size_t k = static_cast<std::size_t>(i);
+            if (!mOpen[k])
+            {
+                continue;
+            }
+            const IslandEnd end = mExtraScratch.islandEnd[k];
+            const double reached =
+                end == IslandEnd::Stalled
+                    ? std::max(mIslandTolerance[k], cStalledAcceptance * mExtraScratch.islandResidual[k])
+                    : mIslandTolerance[k];
+            if (mDelassus.exact(i) ||
+                conditionResidual(mExtra, G.islandBlocks(i), mExtraVelocity, mExtraLambda) <= reached)
+            {
+                mOpen[k] = 0;
+                mIslandTolerance[k] = -1.0;
+                continue;
+            }
+            pending = true;
+            hopeless = hopeless || (end != IslandEnd::Converged && end != IslandEnd::Stalled);
+        }
+        if (!pending)
         {
             std::swap(solution, mTrial);
             return true;
         }
-        if (!sweeps.converged)
+        if (hopeless)
         {
             return false; // Gauss-Seidel did not converge even on G~: a hard step, G is built
         }
     }
     return false;
+}
+
+void ContactProblem::prepareDelassus()
+{
+    mDelassus.prepare({}, mOptions.reuseDelassus);
 }
 
 } // namespace frontier::core

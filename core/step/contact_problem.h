@@ -8,6 +8,7 @@
 #include "core/contact.h"
 #include "core/extra_rows.h"
 #include "core/impulse_solver.h"
+#include "core/step/delassus_cache.h"
 #include "core/step/impulse_memory.h"
 #include "core/step/row_key.h"
 #include "core/step/step_options.h"
@@ -60,20 +61,20 @@ class ContactProblem
     };
     Outcome solve(BlockVector& solution);
 
-    // The Delassus matrix of this step's rows and their coupling by tree, once per step and only
-    // when needed (the solve, the penetration projection).
-    void buildDelassus();
+    // Values for every part of this step's Delassus matrix (kept from a recent step where its
+    // rows match, else built): what the penetration projection needs, only when it needs it.
+    void prepareDelassus();
 
     const std::vector<ExtraBlock>& blocks() const { return mExtra; }
-    int rows() const { return mRows; }                               // rows of the blocks
-    const Eigen::VectorXd& impulses() const { return mExtraLambda; } // N s or N m s, by row
-    const Eigen::MatrixXd& delassus() const { return mG; }           // valid after buildDelassus
+    int rows() const { return mRows; }                                    // rows of the blocks
+    const Eigen::VectorXd& impulses() const { return mExtraLambda; }      // N s or N m s, by row
+    const DelassusMatrix& delassus() const { return mDelassus.matrix(); } // after solve()
     ExtraSolveScratch& scratch() { return mExtraScratch; } // the Gauss-Seidel's, shared with other solves
 
   private:
-    bool lastImpulsesStillHold(const BlockVector& solution);
-    bool solveWithLastDelassus(BlockVector& solution, int& sweeps);
-    bool sameRowsAsLastDelassus() const;
+    void setIslandTolerances();
+    ContactRoute solveOpenIslands(BlockVector& solution, int& sweeps);
+    bool correctWithKeptParts(BlockVector& solution, int& sweeps);
     void applyImpulseChange(BlockVector& solution);
 
     const Model& mModel;
@@ -85,22 +86,20 @@ class ContactProblem
     std::vector<Contact> mContacts;
     std::vector<ExtraBlock> mExtra; // contacts, loops, limits, joint friction of this step
     int mRows = 0;                  // their rows
-    Eigen::MatrixXd mG;             // their Delassus matrix
+    DelassusCache mDelassus;        // their Delassus matrix, by tree, parts kept across steps
     Eigen::VectorXd mExtraVelocity, mExtraLambda;
     ExtraSolveScratch mExtraScratch;
-    RowCoupling mCoupling;                                   // rows each extra block can move
-    std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
-    BlockVector mTrial;                                      // velocities with trial impulses (reuse rounds)
+    BlockVector mTrial; // velocities with trial impulses (defect correction rounds)
     // The warm-start impulses that the step's first solve included (solution = u(mBaseLambda));
     // mWarm: some impulse was carried from the last step.
     Eigen::VectorXd mBaseLambda, mImpulseChange;
     bool mWarm = false;
+    // Per island of the step's G: the velocity tolerance of its solve (m/s; ContactSettings), or
+    // -1 when it needs none (its conditions held at the carried impulses) or is done.
+    std::vector<double> mIslandTolerance;
+    std::vector<std::uint8_t> mOpen; // per island: not done yet (scratch of the solve)
+    std::vector<double> mTolerances; // scratch: the tolerances of a defect correction round
     ImpulseMemory mMemory;
-    bool mDelassusValid = false;               // mG and mCoupling belong to this step's extra rows
-    static constexpr int cMaxDelassusAge = 50; // steps a G~ may stand in for the current G
-    std::vector<RowKey> mDelassusRows;         // the blocks mG was built for
-    int mDelassusAge = -1;                     // steps since mG was built, -1 none
-    std::uint64_t mDelassusVersion = 0;        // counts the builds of mG (names it for solveExtraRowsFrom)
 };
 
 } // namespace frontier::core

@@ -57,8 +57,8 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
     {
         return;
     }
-    problem.buildDelassus();
-    const Eigen::MatrixXd& G = problem.delassus();
+    problem.prepareDelassus();
+    const DelassusMatrix& G = problem.delassus();
     mBlocks.clear();
     mRows.clear();
     any = false;
@@ -73,7 +73,7 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
         if (block.kind != ExtraBlock::Kind::Loop)
         {
             // A row the joints hold: no displacement they allow moves it (its G_ii is round-off).
-            if (heldByJoints(block, G(block.offset, block.offset), rows, principal,
+            if (heldByJoints(block, G.entry(block.offset, block.offset), rows, principal,
                              mOptions.penetrationHeldRatio))
             {
                 continue;
@@ -93,13 +93,12 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
         return;
     }
     const int n = layoutExtraRows(mBlocks);
-    mG = G(mRows, mRows); // the normal, limit and loop rows of the step's G
+    mG.gather(mBlocks, mLayout.treeOfBody, G, mRows); // the normal, limit and loop rows of the step's G
     mFree.setZero(n);
     mImpulse.setZero(n);
     ExtraSolveSettings settings = mOptions.contactSolve;
-    settings.velocityTolerance *= dt; // here the rows are displacements (m), one step's worth
-    coupleRowsByTree(mBlocks, mLayout.treeOfBody, mCoupling, mTreeRuns);
-    solveExtraRows(mBlocks, mG, mFree, settings, mImpulse, problem.scratch(), &mCoupling);
+    settings.velocityTolerance = mModel.contact.tolerance * dt; // here the rows are displacements (m)
+    solveExtraRows(mBlocks, mG, mFree, settings, mImpulse, problem.scratch());
     mDisplacement.setZero();
     mSolver.applyExtraImpulses(mBlocks, mImpulse, mDisplacement);
     const double scale = displacementScale(mModel, mDisplacement, mOptions.penetrationMaxSpeed * dt,

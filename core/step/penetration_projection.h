@@ -61,12 +61,10 @@ class PenetrationProjection
     Eigen::VectorXd mRowVelocity;
     std::vector<ExtraBlock> mBlocks;
     std::vector<int> mRows;
-    Eigen::MatrixXd mG;
+    DelassusMatrix mG; // the step's G on the rows projected
     Eigen::VectorXd mFree, mImpulse;
-    RowCoupling mCoupling;
-    std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
-    BlockVector mDisplacement, mRhs;                         // m, rad; the joints' conditions
-    RowSystem mMovedRows;                                    // rows at the displaced pose (restoreJoints)
+    BlockVector mDisplacement, mRhs;     // m, rad; the joints' conditions
+    RowSystem mMovedRows;                // rows at the displaced pose (restoreJoints)
     std::vector<Vec6> mJointErrorBefore; // restoreJoints: C per joint before the displacement
 };
 

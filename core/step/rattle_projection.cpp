@@ -59,12 +59,12 @@ void RattleProjection::project(State& state, RowSystem& rows, RowSystem& rowsAft
         if (!mEndBlocks.empty())
         {
             const int n = layoutExtraRows(mEndBlocks);
-            mSolver.delassus(mEndBlocks, n, mEndG);
+            mSolver.delassus(mEndBlocks, mEndG);
             extraRowVelocities(mEndBlocks, mCorrection, mEndVelocity);
             mEndLambda.setZero(n);
-            coupleRowsByTree(mEndBlocks, mLayout.treeOfBody, mEndCoupling, mTreeRuns);
-            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, mOptions.contactSolve, mEndLambda,
-                           problem.scratch(), &mEndCoupling);
+            ExtraSolveSettings settings = mOptions.contactSolve;
+            settings.velocityTolerance = mModel.contact.tolerance;
+            solveExtraRows(mEndBlocks, mEndG, mEndVelocity, settings, mEndLambda, problem.scratch());
             mSolver.applyExtraImpulses(mEndBlocks, mEndLambda, mCorrection);
         }
         if (actuation.acceptSolve(rows, mCorrection, mEndBlocks, mEndLambda, driveStep))

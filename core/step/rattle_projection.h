@@ -53,10 +53,8 @@ class RattleProjection
     bool mFactoredPoseValid = false;
     BlockVector mCorrection; // the projected velocities and joint impulses
     std::vector<ExtraBlock> mEndBlocks;
-    Eigen::MatrixXd mEndG;
+    DelassusMatrix mEndG;
     Eigen::VectorXd mEndVelocity, mEndLambda;
-    RowCoupling mEndCoupling;                                // rows each block can move
-    std::vector<std::vector<std::pair<int, int>>> mTreeRuns; // scratch of coupleRowsByTree
 };
 
 } // namespace frontier::core

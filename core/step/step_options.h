@@ -27,8 +27,10 @@ struct StepOptions
     double penetrationMaxSpeed = 5.0;         // m/s
     double penetrationMaxAngularSpeed = 20.0; // rad/s
     double penetrationHeldRatio = 1e-9;
-    double limitMargin = 0.02;       // rad or m: limit rows appear this close to a limit
-    ExtraSolveSettings contactSolve; // tolerance of the contact problem
+    double limitMargin = 0.02; // rad or m: limit rows appear this close to a limit
+    // The Gauss-Seidel of the contact problem: its sweep cap, stall rule and impulse-change test; its
+    // velocity tolerance comes from the model (ContactSettings::tolerance, relativeTolerance).
+    ExtraSolveSettings contactSolve;
     // Resting contact may solve with the Delassus matrix of a recent step with the same rows, the
     // result checked exactly against this step's (core/step/contact_problem.h); false always
     // builds this step's matrix when the carried-over impulses do not hold.

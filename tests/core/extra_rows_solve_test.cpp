@@ -1,7 +1,9 @@
 // tests/core/extra_rows_solve_test.cpp: the block Gauss-Seidel of the extra rows
-// (core/extra_rows_solve.cpp) on Delassus matrices of random forests: the per-tree sparsity it
-// exploits is exact, it gives the same impulses as the dense sweep, a lone sticking contact is
-// solved exactly, and the stated velocity tolerance is what the result satisfies.
+// (core/extra_rows_solve.cpp) on Delassus matrices of random forests: G stored by tree
+// (core/delassus.h) is G computed one row at a time, with nothing left out; islands are solved as
+// the separate problems they are; a lone sticking contact is solved exactly; the stated velocity
+// tolerance is what the result satisfies; a stalled sweep stops.
+#include "core/delassus.h"
 #include "core/extra_rows.h"
 #include "core/tree_solver.h"
 #include "random_model.h"
@@ -21,10 +23,39 @@ struct ContactProblem
     std::unique_ptr<core::Model> model; // problem->system points into it: kept at one address
     std::unique_ptr<Problem> problem;
     std::vector<core::ExtraBlock> blocks;
-    Eigen::MatrixXd G;
+    Eigen::MatrixXd G;           // dense, one O(n) solve per row (the oracle)
+    core::DelassusMatrix byTree; // by tree, from the tree solver's paths
     Eigen::VectorXd freeVelocity;
     int rows = 0;
 };
+
+// The matrix as one part (every row coupled to every other): what the by-tree storage is checked
+// against.
+core::DelassusMatrix whole(const std::vector<core::ExtraBlock>& blocks, const Eigen::MatrixXd& G)
+{
+    core::DelassusMatrix matrix;
+    matrix.setDense(blocks, G);
+    return matrix;
+}
+
+// G = J H^-1 J^T one column at a time: the response to a unit impulse on each row, through the
+// whole problem (no tree structure used).
+Eigen::MatrixXd delassusByColumns(core::ImpulseSolver& solver, const core::Model& model,
+                                  const std::vector<core::ExtraBlock>& blocks, int rows)
+{
+    Eigen::MatrixXd G(rows, rows);
+    core::BlockVector response;
+    response.resize(model.bodies.size(), model.joints.size());
+    Eigen::VectorXd column;
+    for (int r = 0; r < rows; ++r)
+    {
+        response.setZero();
+        solver.applyExtraImpulses(blocks, Eigen::VectorXd::Unit(rows, r), response);
+        core::extraRowVelocities(blocks, response, column);
+        G.col(r) = column;
+    }
+    return G;
+}
 
 // Rows n, t1, t2 (n a unit normal) of a contact at `arm` (m) from body A's centre: J_A rows
 // [d, arm x d] with sign `sideA`, and for body B (when bodyB >= 0) the opposite at -arm.
@@ -46,8 +77,9 @@ void setContactRows(core::ExtraBlock& block, const Vec3& n, const Vec3& arm, dou
 }
 
 // `contacts` random contact blocks (normal + two tangents, mu 0.5) on a forest of `trees`
-// trees: against the world, within a tree, and across trees; free velocities approaching.
-ContactProblem makeContacts(unsigned seed, int trees, int contacts)
+// trees: against the world, within a tree, and (acrossTrees) across trees; free velocities
+// approaching.
+ContactProblem makeContacts(unsigned seed, int trees, int contacts, bool acrossTrees = true)
 {
     ContactProblem out;
     Rng rng(seed);
@@ -63,7 +95,10 @@ ContactProblem makeContacts(unsigned seed, int trees, int contacts)
         block.friction = 0.5;
         block.bodyA = rng.integer(0, nb - 1);
         block.bodyB = rng.coin(0.4) ? -1 : rng.integer(0, nb - 1);
-        if (block.bodyB == block.bodyA)
+        const std::vector<int>& treeOf = out.problem->layout.treeOfBody;
+        if (block.bodyB == block.bodyA ||
+            (!acrossTrees && block.bodyB >= 0 &&
+             treeOf[static_cast<std::size_t>(block.bodyB)] != treeOf[static_cast<std::size_t>(block.bodyA)]))
         {
             block.bodyB = -1;
         }
@@ -74,7 +109,8 @@ ContactProblem makeContacts(unsigned seed, int trees, int contacts)
     out.rows = core::layoutExtraRows(out.blocks);
     core::TreeSolver solver;
     solver.factor(out.problem->system);
-    solver.delassus(out.blocks, out.rows, out.G);
+    out.G = delassusByColumns(solver, model, out.blocks, out.rows);
+    solver.delassus(out.blocks, out.byTree);
     // Free velocities as the simulator has them: the tree solve of M u for the random state's
     // body velocities (joint-consistent), seen through the rows. The problem is then the KKT
     // system of a projection, which has a solution.
@@ -86,66 +122,73 @@ ContactProblem makeContacts(unsigned seed, int trees, int contacts)
 
 } // namespace
 
-// Every nonzero of G lies in the runs its column's block is given; and with several trees the
-// runs leave most of G out (what makes a sweep cheaper than O(rows^2)).
-TEST(ExtraRowsSolve, TreeCouplingCoversEveryNonzeroOfG)
+// G by tree is G: its parts summed give the matrix computed one row at a time, so every entry
+// it does not store is an exact zero of G; and with several trees the parts hold well under the
+// square of the rows (what makes a sweep cheaper than O(rows^2)).
+TEST(ExtraRowsSolve, PartsByTreeHoldAllOfG)
 {
     const ContactProblem p = makeContacts(71, 8, 60);
-    core::RowCoupling coupling;
-    std::vector<std::vector<std::pair<int, int>>> scratch;
-    core::coupleRowsByTree(p.blocks, p.problem->layout.treeOfBody, coupling, scratch);
-    ASSERT_EQ(coupling.firstRun.size(), p.blocks.size() + 1);
-    long covered = 0;
-    for (std::size_t b = 0; b < p.blocks.size(); ++b)
+    Eigen::MatrixXd assembled;
+    p.byTree.toDense(assembled);
+    ASSERT_EQ(assembled.rows(), p.rows);
+    const double scale = p.G.cwiseAbs().maxCoeff();
+    EXPECT_LE((assembled - p.G).cwiseAbs().maxCoeff(), 1e-10 * scale); // masses span 1e4 in these forests
+    long stored = 0;
+    for (int part = 0; part < p.byTree.parts(); ++part)
     {
-        std::vector<char> inRun(static_cast<std::size_t>(p.rows), 0);
-        for (int k = coupling.firstRun[b]; k < coupling.firstRun[b + 1]; ++k)
-        {
-            const auto [begin, end] = coupling.runs[static_cast<std::size_t>(k)];
-            ASSERT_LE(0, begin);
-            ASSERT_LE(end, p.rows);
-            for (int i = begin; i < end; ++i)
-            {
-                inRun[static_cast<std::size_t>(i)] = 1;
-            }
-            covered += end - begin;
-        }
-        for (int i = 0; i < p.rows; ++i)
-        {
-            for (int q = 0; q < 3; ++q)
-            {
-                if (p.G(i, p.blocks[b].offset + q) != 0.0)
-                {
-                    ASSERT_TRUE(inRun[static_cast<std::size_t>(i)])
-                        << "row " << i << " couples to block " << b << " but is outside its runs";
-                }
-            }
-        }
+        stored += static_cast<long>(p.byTree.part(part).rows) * p.byTree.part(part).rows;
     }
-    const double fraction = static_cast<double>(covered) / (static_cast<double>(p.rows) * p.blocks.size());
-    std::printf("8 trees, %d rows: a block's runs cover %.2f of the rows on average\n", p.rows, fraction);
+    const double fraction = static_cast<double>(stored) / (static_cast<double>(p.rows) * p.rows);
+    std::printf("8 trees, %d rows, %d parts, %d islands: the parts store %.2f of rows^2\n", p.rows,
+                p.byTree.parts(), p.byTree.islands(), fraction);
     EXPECT_LT(fraction, 0.6);
+    for (int r = 0; r < p.rows; ++r) // entry() reads the same sums
+    {
+        EXPECT_LE(std::abs(p.byTree.entry(r, (7 * r) % p.rows) - p.G(r, (7 * r) % p.rows)), 1e-10 * scale);
+    }
 }
 
-// The sparse sweep adds exactly the terms the dense one adds (the others are exact zeros): the
-// same impulses, the same number of sweeps.
-TEST(ExtraRowsSolve, SparseSweepsEqualDenseSweeps)
+// Islands are separate problems: solving the forest by tree gives each island's blocks exactly the
+// impulses that solving that island alone (its blocks, its part of G as one matrix) gives.
+TEST(ExtraRowsSolve, IslandsAreSolvedAsSeparateProblems)
 {
-    const ContactProblem p = makeContacts(72, 8, 60);
-    core::RowCoupling coupling;
-    std::vector<std::vector<std::pair<int, int>>> scratch;
-    core::coupleRowsByTree(p.blocks, p.problem->layout.treeOfBody, coupling, scratch);
+    const ContactProblem p = makeContacts(72, 8, 60, false);
+    ASSERT_GT(p.byTree.islands(), 1);
     core::ExtraSolveSettings settings;
-    core::ExtraSolveScratch solveScratch;
-    Eigen::VectorXd sparse = Eigen::VectorXd::Zero(p.rows);
-    Eigen::VectorXd dense = Eigen::VectorXd::Zero(p.rows);
-    const core::ExtraSolveStats a =
-        core::solveExtraRows(p.blocks, p.G, p.freeVelocity, settings, sparse, solveScratch, &coupling);
-    const core::ExtraSolveStats b =
-        core::solveExtraRows(p.blocks, p.G, p.freeVelocity, settings, dense, solveScratch);
-    EXPECT_EQ(a.sweeps, b.sweeps);
-    EXPECT_GT(sparse.cwiseAbs().maxCoeff(), 0.0);
-    EXPECT_LE((sparse - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
+    core::ExtraSolveScratch scratch;
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.rows);
+    core::solveExtraRows(p.blocks, p.byTree, p.freeVelocity, settings, lambda, scratch);
+    int islandsSolved = 0;
+    for (int island = 0; island < p.byTree.islands(); ++island)
+    {
+        // No block here spans two trees: an island is one tree's part. Alone: its blocks laid out
+        // anew (in the part's order), its part's matrix, its rows of the free velocities.
+        ASSERT_EQ(p.byTree.islandParts(island).size(), 1u);
+        const core::DelassusMatrix::Part& part = p.byTree.part(p.byTree.islandParts(island)[0]);
+        std::vector<core::ExtraBlock> blocks;
+        for (int b : part.blocks)
+        {
+            blocks.push_back(p.blocks[static_cast<std::size_t>(b)]);
+        }
+        const int n = core::layoutExtraRows(blocks);
+        ASSERT_EQ(n, part.rows);
+        Eigen::VectorXd free(n);
+        for (int i = 0; i < n; ++i)
+        {
+            free(i) = p.freeVelocity(part.global[static_cast<std::size_t>(i)]);
+        }
+        core::ExtraSolveScratch alone;
+        Eigen::VectorXd expected = Eigen::VectorXd::Zero(n);
+        core::DelassusMatrix matrix = whole(blocks, part.G);
+        matrix.part(0).free = part.free; // the rows' scales on free bodies, as the tree solver gave them
+        core::solveExtraRows(blocks, matrix, free, settings, expected, alone);
+        for (int i = 0; i < n; ++i)
+        {
+            EXPECT_EQ(lambda(part.global[static_cast<std::size_t>(i)]), expected(i)) << "island " << island;
+        }
+        islandsSolved += expected.cwiseAbs().maxCoeff() > 0.0;
+    }
+    EXPECT_GT(islandsSolved, 1);
 }
 
 // One contact that can stick (mu large) is solved by its sticking trial (docs/method.md §1: try
@@ -169,7 +212,7 @@ TEST(ExtraRowsSolve, LoneStickingContactIsSolvedByItsStickingTrial)
     p.rows = core::layoutExtraRows(p.blocks);
     core::TreeSolver solver;
     solver.factor(p.problem->system);
-    solver.delassus(p.blocks, p.rows, p.G);
+    p.G = delassusByColumns(solver, model, p.blocks, p.rows);
     p.freeVelocity = Eigen::Vector3d(-1.0, 0.4, -0.2); // approaching at 1 m/s, slipping
     p.blocks[0].friction = 100.0;
     p.blocks[0].target(0) = 0.3; // restitution-like target, m/s
@@ -184,7 +227,7 @@ TEST(ExtraRowsSolve, LoneStickingContactIsSolvedByItsStickingTrial)
     settings.velocityTolerance = 0.0;
     core::ExtraSolveScratch scratch;
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.rows);
-    core::solveExtraRows(p.blocks, p.G, p.freeVelocity, settings, lambda, scratch);
+    core::solveExtraRows(p.blocks, whole(p.blocks, p.G), p.freeVelocity, settings, lambda, scratch);
     const Eigen::Vector3d v = p.freeVelocity + p.G * lambda;
     const double scale = p.freeVelocity.cwiseAbs().maxCoeff() + 0.3;
     std::printf("lone sticking contact: impulse %.6g %.6g %.6g N s, velocity error %.3g m/s\n", lambda(0),
@@ -207,10 +250,11 @@ TEST(ExtraRowsSolve, ResultHoldsTheStatedVelocityTolerance)
         settings.velocityTolerance = tolerance;
         settings.tolerance = 0.0; // stop on velocities only
         settings.maxSweeps = 100000;
+        settings.stallSweeps = 0;
         core::ExtraSolveScratch scratch;
         Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.rows);
         const core::ExtraSolveStats stats =
-            core::solveExtraRows(p.blocks, p.G, p.freeVelocity, settings, lambda, scratch);
+            core::solveExtraRows(p.blocks, p.byTree, p.freeVelocity, settings, lambda, scratch);
         ASSERT_LT(stats.sweeps, settings.maxSweeps);
         const Eigen::VectorXd v = p.freeVelocity + p.G * lambda;
         double worst = 0.0;
@@ -237,9 +281,9 @@ TEST(ExtraRowsSolve, ResultHoldsTheStatedVelocityTolerance)
     }
 }
 
-// Pivots kept for the same matrix (matrixVersion): a second solve on the same G with other
-// targets, from other impulses, gives bit for bit what a solve computing its pivots afresh gives
-// (the targets are read anew), and a solve on another matrix under version 0 is not misled.
+// Pivots kept for the same matrix (DelassusMatrix::version): a second solve on the same G with
+// other targets, from other impulses, gives bit for bit what a solve computing its pivots afresh
+// gives (the targets are read anew), and a solve on another matrix is not misled by them.
 TEST(ExtraRowsSolve, PivotsKeptForTheSameMatrixGiveTheSameImpulses)
 {
     ContactProblem p = makeContacts(75, 4, 40);
@@ -247,7 +291,7 @@ TEST(ExtraRowsSolve, PivotsKeptForTheSameMatrixGiveTheSameImpulses)
     core::ExtraSolveScratch kept;
     Eigen::VectorXd first = Eigen::VectorXd::Zero(p.rows);
     kept.velocity = p.freeVelocity;
-    core::solveExtraRowsFrom(p.blocks, p.G, settings, first, kept, nullptr, 7);
+    core::solveExtraRowsFrom(p.blocks, p.byTree, settings, first, kept);
     ASSERT_GT(first.cwiseAbs().maxCoeff(), 0.0);
     for (core::ExtraBlock& block : p.blocks)
     {
@@ -255,27 +299,27 @@ TEST(ExtraRowsSolve, PivotsKeptForTheSameMatrixGiveTheSameImpulses)
     }
     Eigen::VectorXd again = 0.5 * first;
     kept.velocity = p.freeVelocity + p.G * again;
-    core::solveExtraRowsFrom(p.blocks, p.G, settings, again, kept, nullptr, 7);
+    core::solveExtraRowsFrom(p.blocks, p.byTree, settings, again, kept);
     core::ExtraSolveScratch fresh;
     Eigen::VectorXd reference = 0.5 * first;
-    fresh.velocity = p.freeVelocity + p.G * reference;
-    core::solveExtraRowsFrom(p.blocks, p.G, settings, reference, fresh, nullptr, 0);
+    fresh.velocity = kept.velocity = p.freeVelocity + p.G * reference;
+    core::solveExtraRowsFrom(p.blocks, p.byTree, settings, reference, fresh);
     ASSERT_EQ(again.size(), reference.size());
     for (Eigen::Index i = 0; i < again.size(); ++i)
     {
         EXPECT_EQ(again(i), reference(i)) << "row " << i;
     }
     EXPECT_GT((again - first).cwiseAbs().maxCoeff(), 0.0); // the new targets changed the result
-    // Another matrix (scaled G) with version 0 after version 7: pivots recomputed, so the
-    // result is that of a fresh scratch.
-    const Eigen::MatrixXd other = 2.0 * p.G;
+    // Another matrix (scaled G, as one part): pivots recomputed, so the result is that of a fresh
+    // scratch.
+    const core::DelassusMatrix other = whole(p.blocks, 2.0 * p.G);
     Eigen::VectorXd scaled = Eigen::VectorXd::Zero(p.rows);
     kept.velocity = p.freeVelocity;
-    core::solveExtraRowsFrom(p.blocks, other, settings, scaled, kept, nullptr, 0);
+    core::solveExtraRowsFrom(p.blocks, other, settings, scaled, kept);
     core::ExtraSolveScratch fresh2;
     Eigen::VectorXd scaledReference = Eigen::VectorXd::Zero(p.rows);
     fresh2.velocity = p.freeVelocity;
-    core::solveExtraRowsFrom(p.blocks, other, settings, scaledReference, fresh2, nullptr, 0);
+    core::solveExtraRowsFrom(p.blocks, other, settings, scaledReference, fresh2);
     EXPECT_EQ((scaled - scaledReference).cwiseAbs().maxCoeff(), 0.0);
 }
 
@@ -292,13 +336,13 @@ TEST(ExtraRowsSolve, ConditionsMetAgreesWithTheLargestResidual)
     settings.velocityTolerance = 1e-4;
     core::ExtraSolveScratch scratch;
     scratch.velocity = p.freeVelocity;
+    const core::DelassusMatrix G = whole(p.blocks, p.G); // one island: one sweep is one sweep of all
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(p.rows);
     int unmet = 0;
     int met = 0;
     for (int sweep = 0; sweep < 100000 && met == 0; ++sweep)
     {
-        const core::ExtraSolveStats stats =
-            core::solveExtraRowsFrom(p.blocks, p.G, settings, lambda, scratch);
+        const core::ExtraSolveStats stats = core::solveExtraRowsFrom(p.blocks, G, settings, lambda, scratch);
         const double residual = core::conditionResidual(p.blocks, scratch.velocity, lambda);
         EXPECT_EQ(stats.converged, residual <= settings.velocityTolerance) << "sweep " << sweep;
         EXPECT_EQ(core::conditionsMet(p.blocks, scratch.velocity, lambda, settings.velocityTolerance),
@@ -387,7 +431,7 @@ TEST(ExtraRowsSolve, DriveRowsTakeTheClampedClosedFormImpulse)
         Eigen::VectorXd lambda = Eigen::VectorXd::Zero(1);
         core::ExtraSolveScratch scratch;
         const core::ExtraSolveStats stats =
-            core::solveExtraRows(blocks, G, free, core::ExtraSolveSettings{}, lambda, scratch);
+            core::solveExtraRows(blocks, whole(blocks, G), free, core::ExtraSolveSettings{}, lambda, scratch);
         const double expected = std::clamp((c.target - c.free) / (g + c.compliance), -c.bound, c.bound);
         EXPECT_NEAR(lambda(0), expected, 1e-15 * std::abs(expected))
             << "free " << c.free << ", bound " << c.bound;
@@ -420,7 +464,8 @@ TEST(ExtraRowsSolve, CoupledDriveRowsMeetTheirConditions)
     settings.velocityTolerance = 1e-13;
     settings.tolerance = 0.0;
     settings.maxSweeps = 200;
-    const core::ExtraSolveStats stats = core::solveExtraRows(blocks, G, free, settings, lambda, scratch);
+    const core::ExtraSolveStats stats =
+        core::solveExtraRows(blocks, whole(blocks, G), free, settings, lambda, scratch);
     ASSERT_TRUE(stats.converged);
     // Row 1 on its lower bound; row 0 then sticks: 2 l0 + 1 (-0.25) = -1.
     EXPECT_DOUBLE_EQ(lambda(1), -0.25);

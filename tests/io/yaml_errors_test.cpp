@@ -47,6 +47,27 @@ bodies:
     EXPECT_EQ(std::string(e.what()).rfind("scene.yaml:4:11: error: ", 0), 0u) << e.what();
 }
 
+// The contact solve's tolerances: a velocity in [0, 1] m/s and a finite fraction in [0, 1).
+TEST(YamlErrors, ContactTolerancesOutOfRange)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"contact: {tolerance: -1.0e-5}",
+         "expected a velocity in [0, 1] m/s for 'tolerance' in 'contact', got '-1.0e-5'"},
+        {"contact: {tolerance: 5}",
+         "expected a velocity in [0, 1] m/s for 'tolerance' in 'contact', got '5'"},
+        {"contact: {relative_tolerance: 1}",
+         "expected a fraction in [0, 1) for 'relative_tolerance' in 'contact', got '1'"},
+        {"contact: {relative_tolerance: .nan}",
+         "expected a finite number for 'relative_tolerance' in 'contact', got '.nan'"},
+    };
+    for (const auto& [line, message] : cases)
+    {
+        const InputError e = yamlError(std::string(line) + "\n");
+        EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 1, static_cast<int>(std::string(line).find(':', 10)) + 3,
+                              message);
+    }
+}
+
 TEST(YamlErrors, UnknownKeySuggestsClosest)
 {
     const InputError e = yamlError(text(R"(

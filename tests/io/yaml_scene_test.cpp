@@ -15,6 +15,8 @@ simulation: {dt: 0.002, duration: 3.5, gravity: [0, 0, -1.62], solver: pgs, pgs_
 contact:
   friction: 0.8
   restitution: 0.25
+  tolerance: 1.0e-4
+  relative_tolerance: 0.01
   ignore: [[upper, lower]]
 camera: {position: [4, -4, 2], look_at: [0, 0, 1], fov: 60}
 bodies:
@@ -56,6 +58,8 @@ TEST(YamlScene, EverySectionIsRead)
     EXPECT_EQ(model.simulation.integrator, core::IntegratorKind::Rattle);
     EXPECT_EQ(model.contact.friction, 0.8);
     EXPECT_EQ(model.contact.restitution, 0.25);
+    EXPECT_EQ(model.contact.tolerance, 1e-4);
+    EXPECT_EQ(model.contact.relativeTolerance, 0.01);
     ASSERT_EQ(model.contact.ignore.size(), 1u);
     EXPECT_EQ(model.contact.ignore[0], (std::array<int, 2>{1, 2}));
     EXPECT_FALSE(model.camera.automatic);
