@@ -323,9 +323,10 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
             // Moving meshes collide as their convex hulls (built here, once); static ones keep
             // their triangles: terrain and fixtures may be concave, and nothing moves them into
             // each other (two static bodies never collide).
-            shapes.push_back(detail::makeShapeInstance(
-                shape, b, !body.isStatic && movingMeshes == MovingMeshes::ConvexHulls,
-                shared ? shared->own : nullptr));
+            shapes.push_back(
+                detail::makeShapeInstance(shape, b, !body.isStatic && movingMeshes != MovingMeshes::Triangles,
+                                          shared ? shared->own : nullptr,
+                                          movingMeshes == MovingMeshes::ConvexHulls ? cHullCorners : 0));
             if (shared && !shared->own)
                 shared->own = shapes.back().geometry;
             detail::setBodyPose(shapes.back(), R_WB, body.position_W);

@@ -49,6 +49,10 @@ struct ShapeGeometry
     // The shape as a convex polytope, in S: the hull of a convexHull mesh, or a box's 8 corners
     // and 6 faces (for the face clipping of polytope_manifold.cpp); empty for other shapes.
     ConvexHull hull;
+    // convexHull: how many corners the mesh's full hull has, and how far (m) that full hull reaches
+    // beyond `hull` when `hull` keeps only some of them (capConvexHull; 0 when it keeps all).
+    int fullHullCorners = 0;
+    double hullDeviation = 0.0;
 };
 
 // One non-plane shape of one body, with its geometry in its own frame S and its current pose.
@@ -94,11 +98,13 @@ inline constexpr int cRimSamples = 8;
 const std::array<std::array<double, 2>, cRimSamples>& rimDirections();
 
 // Builds the instance (everything but the world pose) from a model shape of a given body. A
-// mesh becomes its convex hull when meshAsHull and it has one. `shared`, when given, is the
+// mesh becomes its convex hull when meshAsHull and it has one, of at most maxHullCorners corners
+// when that is positive (capConvexHull), of all of them when it is 0. `shared`, when given, is the
 // geometry of an instance of an equal shape (same type and sizes): the instance shares it
 // instead of building its own. A mesh ignores it (its geometry is its own).
 ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
-                                std::shared_ptr<const ShapeGeometry> shared = nullptr);
+                                std::shared_ptr<const ShapeGeometry> shared = nullptr,
+                                int maxHullCorners = 0);
 
 // World pose from the body pose: R_WS = R_WB R_BS, p_WS = p_WB + R_WB p_BS.
 void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB);

@@ -51,7 +51,7 @@ ConvexHull boxPolytope(const Vec3& half)
 } // namespace
 
 ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
-                                std::shared_ptr<const ShapeGeometry> shared)
+                                std::shared_ptr<const ShapeGeometry> shared, int maxHullCorners)
 {
     ShapeInstance s;
     if (shape.type == core::ShapeType::Mesh)
@@ -95,6 +95,22 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         // still collides as before, and a flat plate has no volume for GJK/EPA to work in.
         std::string reason;
         s.convexHull = meshAsHull && computeConvexHull(shape.vertices, g.hull, reason);
+        if (s.convexHull && maxHullCorners > 0 &&
+            g.hull.vertices.size() > static_cast<std::size_t>(maxHullCorners))
+        {
+            // At most maxHullCorners corners (collision/README.md "Meshes"): the capped hull lies
+            // inside the full one, at most hullDeviation from it. Should qhull fail on the subset
+            // (it never has), the full hull stays.
+            ConvexHull capped;
+            if (capConvexHull(g.hull, maxHullCorners, capped, reason))
+            {
+                g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
+                g.hullDeviation = hullDeviation(g.hull, capped);
+                g.hull = std::move(capped);
+            }
+        }
+        if (s.convexHull && g.fullHullCorners == 0)
+            g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
         // Only the hull's corners can be a deepest point (against a plane, a face, along an
         // axis), so the plane and feature contacts, bounds and support functions use them.
         g.meshVertices = s.convexHull ? g.hull.vertices : uniqueVertices(shape.vertices);
