@@ -723,7 +723,9 @@ void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeI
     raw.clear();
     RawContact closest;
     const bool near = detail::sweptSphereContact(a, b, margin, closest);
-    if (detail::usesFeatureManifold(a, b))
+    // A pair farther apart than the margin has no feature within it either: each feature is a
+    // point of one segment with that capsule's radius, no nearer the other than the segments are.
+    if (near && detail::usesFeatureManifold(a, b))
     {
         detail::featureContacts(a, b, near && closest.depth > 0.0 ? &closest : nullptr, margin, raw);
     }

@@ -11,6 +11,9 @@ namespace frontier::collision::detail
 namespace
 {
 
+// Hulls of at most this many corners find their extreme corner in one pass over them.
+constexpr std::size_t cLinearScanCorners = 40;
+
 // Unique mesh vertices, in a deterministic (lexicographic) order.
 std::vector<Vec3> uniqueVertices(const std::vector<Vec3>& vertices)
 {
@@ -190,6 +193,20 @@ int hullExtremeCorner(const ShapeGeometry& s, const Vec3& u_S)
 {
     int best = 0;
     double bestValue = u_S.dot(s.meshVertices.front());
+    if (s.meshVertices.size() <= cLinearScanCorners)
+    {
+        // Few corners: one pass over them is cheaper than the seeds and the climb.
+        for (std::size_t k = 1; k < s.meshVertices.size(); ++k)
+        {
+            const double value = u_S.dot(s.meshVertices[k]);
+            if (value > bestValue)
+            {
+                best = static_cast<int>(k);
+                bestValue = value;
+            }
+        }
+        return best;
+    }
     for (const int seed : s.hullSeeds)
     {
         const double value = u_S.dot(s.meshVertices[static_cast<std::size_t>(seed)]);
