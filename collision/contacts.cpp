@@ -9,20 +9,24 @@
 //      spheres, the cylinder rim points and the mesh vertices within the margin.
 //   3. Everything else: a DynamicAABBTreeCollisionManagerd holding only the shapes of bodies
 //      that have at least one allowed partner (AABBs grown by the margin). Its callback only
-//      collects allowed shape pairs; they are sorted and then tested in that order, so the
-//      result never depends on the tree's traversal order.
+//      collects shape pairs of two bodies not both static; they are sorted and then tested in
+//      that order, so the result never depends on the tree's traversal order. Each pair keeps
+//      its state from the last call while the broadphase reports it (PairState: the filter's
+//      answer, a separating axis that skips the narrowphase while it still proves the pair apart).
 //   4. Narrowphase per pair: spheres and capsules against each other in closed form
 //      (swept_spheres.cpp); pairs proven apart by more than the margin along an axis are done
 //      (separation.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
-//      (up to 4 points). Moving meshes are their convex hulls (fcl::Convexd, built once
-//      here); a hull against a hull or a box, and a hull or box against a static triangle
-//      mesh, get one face clipped against the other along FCL's normal (polytope_manifold.cpp).
+//      (up to 4 points). Moving meshes are their convex hulls of at most cHullCorners corners
+//      (fcl::Convexd, built once here); a hull against a hull or a box, and a hull or box
+//      against a static triangle mesh, get one face clipped against the other along FCL's
+//      normal (polytope_manifold.cpp); two polytopes ask fcl::distance first and fcl::collide
+//      only when they touch.
 //      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
 //      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
 //      vertices, capsule end spheres, cylinder rim points and mesh vertices tested against the
 //      exact signed distance of the other shape, plus the capsule axis clipped to the other's
 //      contact face. We chose this over a persistent contact cache: it gives the full manifold
-//      in the very first step, keeps detect() free of history (same state -> same contacts),
+//      in the very first step, keeps the contacts free of history (same state -> same contacts),
 //      still works when FCL's single point never moves (a cache only grows when it wanders) and
 //      costs a few dozen flops per feature. FCL's own point is dropped when the features
 //      already reach its depth. Zero-normal/zero-depth FCL points (meshes) are dropped.
@@ -214,6 +218,19 @@ constexpr double cSweptMargins = 2.0;
 constexpr double cSweepTolerance = 0.1;
 constexpr int cSweepIterations = 64;
 
+// What the detector keeps of a shape pair from one detect() call to the next while the broadphase
+// reports it (collision/README.md "Per-pair state"): the axis along which the pair was last found
+// apart, in shape a's frame. Tried first, it proves the pair still apart beyond the margin in one
+// support-function test, where the axes of separatedBeyond may not and FCL's collide and distance
+// would (the same result: no contact). It only ever skips work whose outcome it proves.
+struct PairState
+{
+    int i = 0;                  // shape a
+    int j = 0;                  // shape b
+    bool allowed = false;       // the filter allows the pair of their bodies (asked once per pair)
+    Vec3 axis_S = Vec3::Zero(); // unit, shape a's frame; zero: none yet
+};
+
 } // namespace
 
 struct ContactDetector::Impl
@@ -234,13 +251,20 @@ struct ContactDetector::Impl
     std::vector<int> inflatedBox;
     std::vector<PlaneInstance> planes;
     std::vector<int> movingShapes; // shapes of moving bodies that can touch something: posed per call
-    std::vector<int> staticShapes; // shapes of static bodies
+    std::vector<char>
+        planeAllowed; // per moving shape (its place in movingShapes) and plane: the filter allows it
+    std::vector<int> staticShapes;                        // shapes of static bodies
     std::vector<fcl::CollisionObjectd*> movingRegistered; // moving objects in the manager
     std::vector<char> registeredMoving;                   // per shape: in movingRegistered
     std::vector<fcl::CollisionObjectd*> changed;          // scratch: their AABBs changed this step
     fcl::DynamicAABBTreeCollisionManagerd manager;
     bool useBroadphase = false;
     bool staticPosed = false;
+
+    // Per shape pair of the last call's broadphase, in the order of shapePairs (sorted): what
+    // narrowphase() learnt of it (PairState). The next call's pairs are matched against it.
+    std::vector<PairState> pairStates;
+    std::vector<PairState> nextPairStates;
 
     // Scratch, reused every step.
     std::vector<std::pair<int, int>> shapePairs;
@@ -264,12 +288,12 @@ struct ContactDetector::Impl
     void poseShape(int index, const core::State& state);
     void planePass(std::vector<Contact>& out);
     void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
-    void narrowphase(int i, int j, std::vector<Contact>& out);
+    void narrowphase(int i, int j, PairState& pair, std::vector<Contact>& out);
     void sweepMotions(const core::State& state);
     double shapeReach(const ShapeInstance& s) const;
     fcl::Transform3d poseAt(const ShapeInstance& s, double tau, Mat3* turn) const;
     void sweptPair(int i, int j, std::vector<Contact>& out);
-    bool nearestGap(int i, int j, RawContact& out);
+    bool nearestGap(int i, int j, RawContact& out, Vec3* apart = nullptr);
     void clipAgainstTriangles(int i, int j);
     void emit(int bodyA, int bodyB, std::vector<Contact>& out);
     static bool broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
@@ -411,6 +435,12 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
                                           { return filter.allowed(body, plane.body); });
                   });
 
+    planeAllowed.reserve(movingShapes.size() * planes.size());
+    for (const int index : movingShapes)
+        for (const PlaneInstance& plane : planes)
+            planeAllowed.push_back(
+                filter.allowed(shapes[static_cast<std::size_t>(index)].body, plane.body) ? 1 : 0);
+
     bodyReach.assign(model.bodies.size(), 0.0);
     motions.assign(model.bodies.size(), BodyMotion{});
     for (const ShapeInstance& s : shapes)
@@ -506,12 +536,15 @@ void ContactDetector::Impl::emit(int bodyA, int bodyB, std::vector<Contact>& out
 
 void ContactDetector::Impl::planePass(std::vector<Contact>& out)
 {
+    const char* allowed = planeAllowed.data();
     for (const int index : movingShapes)
     {
         const ShapeInstance& s = shapes[static_cast<std::size_t>(index)];
         const BodyMotion& m = motions[static_cast<std::size_t>(s.body)];
         for (const PlaneInstance& plane : planes)
         {
+            if (!*allowed++)
+                continue;
             // A swept body's window reaches as far as it moves towards the plane in the step,
             // plus its turn's reach (docs/method.md §10); the solver's speculative rows then let
             // it close the gap, not pass it.
@@ -520,8 +553,6 @@ void ContactDetector::Impl::planePass(std::vector<Contact>& out)
                 window += stepTime * (std::max(0.0, -plane.normal.dot(m.velocity)) +
                                       m.angularVelocity.norm() * shapeReach(s));
             if (plane.normal.dot(s.p_WS) - plane.offset - s.boundingRadius >= window)
-                continue;
-            if (!filter.allowed(s.body, plane.body))
                 continue;
             ++stats.planeTests;
             raw.clear();
@@ -540,8 +571,8 @@ bool ContactDetector::Impl::broadphaseCallback(fcl::CollisionObjectd* o1, fcl::C
     int j = userDataToIndex(o2);
     int bi = self->shapes[static_cast<std::size_t>(i)].body;
     int bj = self->shapes[static_cast<std::size_t>(j)].body;
-    if (bi == bj || !self->filter.allowed(bi, bj))
-        return false;
+    if (bi == bj || (self->filter.isStatic(bi) && self->filter.isStatic(bj)))
+        return false; // the filter is asked once per pair, when detect() first sees it (PairState)
     // A is the moving body; of two moving bodies, the lower index.
     if (self->filter.isStatic(bi) || (!self->filter.isStatic(bj) && bj < bi))
     {
@@ -552,7 +583,7 @@ bool ContactDetector::Impl::broadphaseCallback(fcl::CollisionObjectd* o1, fcl::C
     return false; // never stop early
 }
 
-void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
+void ContactDetector::Impl::narrowphase(int i, int j, PairState& pair, std::vector<Contact>& out)
 {
     const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
     const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
@@ -565,10 +596,45 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         sweptSpherePair(a, b, out);
         return;
     }
-    if (detail::separatedBeyond(a, b, margin))
+    // Apart beyond the margin along the axis that proved it last time, or along one of
+    // separatedBeyond's: no contact within the margin, nothing for FCL to do.
+    if (pair.axis_S != Vec3::Zero() && detail::separatedAlongAxis(a, b, a.R_WS * pair.axis_S, margin))
     {
-        ++stats.separatedPairs; // no contact within the margin: nothing for FCL to do
+        ++stats.separatedPairs;
         return;
+    }
+    Vec3 axis_W = Vec3::Zero();
+    if (detail::separatedBeyond(a, b, margin, &axis_W))
+    {
+        pair.axis_S = a.R_WS.transpose() * axis_W;
+        ++stats.separatedPairs;
+        return;
+    }
+    pair.axis_S.setZero();
+    axis_W.setZero(); // nearestGap sets it when it finds the pair apart beyond the margin
+
+    if (polytopes)
+    {
+        // Two polytopes (hulls, boxes) are mostly apart, resting within the margin or farther:
+        // fcl::distance alone says so, and the face clipping needs nothing more than the gap's
+        // normal. FCL's collide (MPR: the normal and depth of an overlap) runs for the pairs
+        // that touch.
+        RawContact gap;
+        const bool near = nearestGap(i, j, gap, &axis_W);
+        if (near || axis_W != Vec3::Zero())
+        {
+            ++stats.narrowphaseTests;
+            if (!near)
+            {
+                pair.axis_S = a.R_WS.transpose() * axis_W; // apart beyond the margin along it
+                return;
+            }
+            raw.clear();
+            detail::polytopeContacts(a, b, gap, margin, raw);
+            detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
+            emit(a.body, b.body, out);
+            return;
+        }
     }
 
     // FCL 0.7 computes a shape against a triangle mesh as the mesh against the shape, whatever
@@ -615,7 +681,7 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         // (or, apart, the normal of the gap) for the whole patch.
         RawContact reference = deepest;
         raw.clear();
-        if (fclDepth > 0.0 || nearestGap(i, j, reference))
+        if (fclDepth > 0.0 || nearestGap(i, j, reference, &axis_W))
             detail::polytopeContacts(a, b, reference, margin, raw);
     }
     else if (triangles && !(aTriangles && bTriangles) && (detail::isPolytope(a) || detail::isPolytope(b)))
@@ -657,9 +723,11 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         // Apart: a speculative contact at the nearest points when the gap is below the margin,
         // so that a body arriving fast is caught before it sinks in (depth = -gap).
         RawContact gap;
-        if (nearestGap(i, j, gap))
+        if (nearestGap(i, j, gap, &axis_W))
             raw.push_back(gap);
     }
+    if (axis_W != Vec3::Zero())
+        pair.axis_S = a.R_WS.transpose() * axis_W; // found apart beyond the margin along it
     detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
     emit(a.body, b.body, out);
 }
@@ -695,20 +763,27 @@ void ContactDetector::Impl::clipAgainstTriangles(int i, int j)
 
 // The nearest points of shapes i and j when they are apart by less than the margin: a contact
 // halfway between them, normal from i towards j, depth = -gap. False when they touch, overlap or
-// are farther apart.
-bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out)
+// are farther apart; when farther apart, `apart` (if given) receives the unit direction from i's
+// nearest point to j's, along which they are separated by the gap (for PairState).
+bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out, Vec3* apart)
 {
     distanceResult.clear();
     const double gap =
         fcl::distance(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
                       distanceRequest, distanceResult);
-    if (!(gap > 0.0 && gap < margin))
+    if (!(gap > 0.0))
         return false;
     const Vec3 pa = distanceResult.nearest_points[0];
     const Vec3 pb = distanceResult.nearest_points[1];
     const Vec3 d = pb - pa;
     if (!(d.norm() > 1e-12) || !pa.allFinite() || !pb.allFinite())
         return false;
+    if (!(gap < margin))
+    {
+        if (apart != nullptr)
+            *apart = d / d.norm();
+        return false;
+    }
     out = {0.5 * (pa + pb), d / d.norm(), -gap};
     return true;
 }
@@ -852,16 +927,33 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
         m.shapePairs.clear();
         m.manager.collide(&m, &Impl::broadphaseCallback);
         std::sort(m.shapePairs.begin(), m.shapePairs.end());
-        m.stats.broadphasePairs += static_cast<long>(m.shapePairs.size());
+        // Each pair's state from the last call, if the broadphase reported it then too (both
+        // lists sorted: one merge pass); a pair it no longer reports is forgotten.
+        m.nextPairStates.clear();
+        std::size_t last = 0;
         for (const auto& [i, j] : m.shapePairs)
         {
+            while (last < m.pairStates.size() &&
+                   std::pair(m.pairStates[last].i, m.pairStates[last].j) < std::pair(i, j))
+                ++last;
+            if (last < m.pairStates.size() && m.pairStates[last].i == i && m.pairStates[last].j == j)
+                m.nextPairStates.push_back(m.pairStates[last]);
+            else
+                m.nextPairStates.push_back({i, j,
+                                            m.filter.allowed(m.shapes[static_cast<std::size_t>(i)].body,
+                                                             m.shapes[static_cast<std::size_t>(j)].body),
+                                            Vec3::Zero()});
+            if (!m.nextPairStates.back().allowed)
+                continue;
+            ++m.stats.broadphasePairs;
             const std::size_t before = out.size();
-            m.narrowphase(i, j, out);
+            m.narrowphase(i, j, m.nextPairStates.back(), out);
             if (m.anySwept && out.size() == before &&
                 (m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(i)].body)].swept ||
                  m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(j)].body)].swept))
                 m.sweptPair(i, j, out);
         }
+        std::swap(m.pairStates, m.nextPairStates);
     }
 
     std::sort(out.begin(), out.end(), contactLess);

@@ -166,8 +166,13 @@ bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, S
 // --- separation.cpp -------------------------------------------------------------------------
 // True when a and b are proven farther apart than margin (m) along some axis: the centre line,
 // a box's face normals, a capsule's or cylinder's axis. A convex hull's extent along an axis
-// is exact (its corners); a triangle mesh counts as its bounding sphere.
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin);
+// is exact (its corners); a triangle mesh counts as its bounding sphere. axis, when given,
+// receives the unit world axis that proved it.
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis = nullptr);
+
+// True when a and b are proven farther apart than margin (m) along the unit world axis u (the
+// same test as separatedBeyond's for one axis).
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin);
 
 // --- swept_spheres.cpp ----------------------------------------------------------------------
 // Spheres and capsules (sphere-swept segments) against each other in closed form.

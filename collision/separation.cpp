@@ -88,8 +88,10 @@ bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& 
     return (a.convexHull || b.convexHull) && separationAlong(a, b, u, true) > margin;
 }
 
-// Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder).
-bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const ShapeInstance& b, double margin)
+// Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder); the
+// one that separates goes to axis.
+bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const ShapeInstance& b, double margin,
+                        Vec3& axis)
 {
     switch (s.type)
     {
@@ -98,13 +100,15 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
         {
             if (separatedAlong(a, b, s.R_WS.col(k), margin))
             {
+                axis = s.R_WS.col(k);
                 return true;
             }
         }
         return false;
     case core::ShapeType::Capsule:
     case core::ShapeType::Cylinder:
-        return separatedAlong(a, b, s.R_WS.col(2), margin);
+        axis = s.R_WS.col(2);
+        return separatedAlong(a, b, axis, margin);
     default:
         return false;
     }
@@ -112,15 +116,27 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
 
 } // namespace
 
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin)
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis)
 {
+    Vec3 found = Vec3::UnitZ();
     const Vec3 between = b.p_WS - a.p_WS;
     const double length = between.norm();
+    bool apart = false;
     if (length > 0.0 && separatedAlong(a, b, between / length, margin))
     {
-        return true;
+        found = between / length;
+        apart = true;
     }
-    return separatedByOwnAxes(a, a, b, margin) || separatedByOwnAxes(b, a, b, margin);
+    else
+        apart = separatedByOwnAxes(a, a, b, margin, found) || separatedByOwnAxes(b, a, b, margin, found);
+    if (apart && axis != nullptr)
+        *axis = found;
+    return apart;
+}
+
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin)
+{
+    return separatedAlong(a, b, u, margin);
 }
 
 } // namespace frontier::collision::detail
