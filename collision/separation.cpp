@@ -5,10 +5,12 @@
 // function). Trying the line between the centres and the shapes' own axes (box face normals,
 // capsule and cylinder axes) catches most pairs that the margin-grown AABBs let through. A
 // convex hull's extent is exact (its corners); a triangle mesh counts as its bounding sphere.
+#include "collision/contacts.h"
 #include "collision/internal.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace frontier::collision::detail
 {
@@ -56,6 +58,20 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi, 
             // Exact: the hull's corners furthest either way, which need not be centred on the
             // shape origin.
             const Vec3 u_S = s.R_WS.transpose() * u;
+            if (s.meshVertices().size() <= static_cast<std::size_t>(cHullCorners))
+            {
+                // Both ends in one pass over the corners (a capped hull's at most): cheaper than
+                // two climbs from the seeds, and the same values.
+                lo = std::numeric_limits<double>::infinity();
+                hi = -lo;
+                for (const Vec3& v : s.meshVertices())
+                {
+                    const double x = u_S.dot(v);
+                    lo = std::min(lo, x);
+                    hi = std::max(hi, x);
+                }
+                return;
+            }
             lo = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, -u_S))]);
             hi = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, u_S))]);
             return;
