@@ -12,7 +12,9 @@
 //      collects shape pairs of two bodies not both static; they are sorted and then tested in
 //      that order, so the result never depends on the tree's traversal order. Each pair keeps
 //      its state from the last call while the broadphase reports it (PairState: the filter's
-//      answer, a separating axis that skips the narrowphase while it still proves the pair apart).
+//      answer; a proven distance, which skips the pair while its bodies have travelled less than
+//      it exceeds the margin by; a separating axis, which skips the narrowphase while it still
+//      proves the pair apart).
 //   4. Narrowphase per pair: spheres and capsules against each other in closed form
 //      (swept_spheres.cpp); pairs proven apart by more than the margin along an axis are done
 //      (separation.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
@@ -219,17 +221,26 @@ constexpr double cSweepTolerance = 0.1;
 constexpr int cSweepIterations = 64;
 
 // What the detector keeps of a shape pair from one detect() call to the next while the broadphase
-// reports it (collision/README.md "Per-pair state"): the axis along which the pair was last found
-// apart, in shape a's frame. Tried first, it proves the pair still apart beyond the margin in one
-// support-function test, where the axes of separatedBeyond may not and FCL's collide and distance
-// would (the same result: no contact). It only ever skips work whose outcome it proves.
+// reports it (collision/README.md "Per-pair state"): how far apart the pair was last proven to be,
+// with how far its bodies had travelled then, and the axis along which it was found apart, in
+// shape a's frame. While the bodies have not travelled the proven distance less the margin
+// between them, the pair is still apart beyond the margin; else the axis, tried first, proves it
+// in one support-function test, where the axes of separatedBeyond may not and FCL's collide and
+// distance would (the same result: no contact). It only ever skips work whose outcome it proves.
 struct PairState
 {
     int i = 0;                  // shape a
     int j = 0;                  // shape b
     bool allowed = false;       // the filter allows the pair of their bodies (asked once per pair)
     Vec3 axis_S = Vec3::Zero(); // unit, shape a's frame; zero: none yet
+    double apart = 0.0;         // m: a lower bound of the distance when last proven apart; 0: none
+    double travelA = 0.0;       // m: body a's travel (ContactDetector::Impl::bodyTravel) then
+    double travelB = 0.0;       // m: body b's
 };
+
+// Rounding allowance (m) of the travel bound: the pair must be proven farther apart than the
+// margin by this much more before a pair is skipped on its bodies' travel alone.
+constexpr double cTravelSlack = 1e-9;
 
 } // namespace
 
@@ -238,11 +249,18 @@ struct ContactDetector::Impl
     double margin = 1e-3;  // m
     double stepTime = 0.0; // s; the swept search is off while 0
     detail::PairFilter filter;
-    std::vector<char> bodyCollides;    // per body: has a shape that can touch something
-    std::vector<double> bodyReach;     // per body: farthest shape point from the centre of mass (m)
-    std::vector<BodyMotion> motions;   // per body, this detect() call (swept search)
-    bool anySwept = false;             // some body is swept this call
-    std::vector<ShapeInstance> shapes; // non-plane shapes, in body order
+    std::vector<char> bodyCollides;  // per body: has a shape that can touch something
+    std::vector<double> bodyReach;   // per body: farthest shape point from the centre of mass (m)
+    std::vector<BodyMotion> motions; // per body, this detect() call (swept search)
+    // Per body: an upper bound (m) of how far any point of its shapes has moved over the states
+    // detect() was given so far (the sum over calls of |dp| + 2 |sin(angle / 2)| reach), and the
+    // pose of the last call. bodyTravel now less bodyTravel then bounds the move in between.
+    std::vector<double> bodyTravel;
+    std::vector<Vec3> lastPosition;
+    std::vector<core::Quat> lastOrientation;
+    bool travelStarted = false;
+    bool anySwept = false;                              // some body is swept this call
+    std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
     // Boxes grown by the margin on every side: colliding one with the other box of a pair gives
     // FCL's box-box manifold while they are still apart, for speculative contacts. One object per
@@ -287,8 +305,11 @@ struct ContactDetector::Impl
     Impl(const core::Model& model, double marginIn, MovingMeshes movingMeshes);
     void poseShape(int index, const core::State& state);
     void planePass(std::vector<Contact>& out);
-    void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
+    void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, PairState& pair,
+                         std::vector<Contact>& out);
     void narrowphase(int i, int j, PairState& pair, std::vector<Contact>& out);
+    void addTravel(const core::State& state);
+    void provenApart(PairState& pair, double distanceAtLeast) const;
     void sweepMotions(const core::State& state);
     double shapeReach(const ShapeInstance& s) const;
     fcl::Transform3d poseAt(const ShapeInstance& s, double tau, Mat3* turn) const;
@@ -443,6 +464,9 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
 
     bodyReach.assign(model.bodies.size(), 0.0);
     motions.assign(model.bodies.size(), BodyMotion{});
+    bodyTravel.assign(model.bodies.size(), 0.0);
+    lastPosition.assign(model.bodies.size(), Vec3::Zero());
+    lastOrientation.assign(model.bodies.size(), core::Quat::Identity());
     for (const ShapeInstance& s : shapes)
         bodyReach[static_cast<std::size_t>(s.body)] =
             std::max(bodyReach[static_cast<std::size_t>(s.body)], s.p_BS.norm() + s.boundingRadius);
@@ -591,22 +615,36 @@ void ContactDetector::Impl::narrowphase(int i, int j, PairState& pair, std::vect
     const bool bTriangles = isTriangleMesh(b);
     const bool triangles = aTriangles || bTriangles;
     const bool polytopes = detail::usesPolytopeManifold(a, b);
-    if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
-    {
-        sweptSpherePair(a, b, out);
-        return;
-    }
-    // Apart beyond the margin along the axis that proved it last time, or along one of
-    // separatedBeyond's: no contact within the margin, nothing for FCL to do.
-    if (pair.axis_S != Vec3::Zero() && detail::separatedAlongAxis(a, b, a.R_WS * pair.axis_S, margin))
+    // Proven apart by more than the margin and the bodies' travel since: still apart beyond the
+    // margin, no contact (any point of a shape moved at most its body's travel).
+    if (pair.apart > 0.0 && pair.apart - (bodyTravel[static_cast<std::size_t>(a.body)] - pair.travelA) -
+                                    (bodyTravel[static_cast<std::size_t>(b.body)] - pair.travelB) >
+                                margin + cTravelSlack)
     {
         ++stats.separatedPairs;
         return;
     }
+    pair.apart = 0.0;
+    if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
+    {
+        sweptSpherePair(a, b, pair, out);
+        return;
+    }
+    // Apart beyond the margin along the axis that proved it last time, or along one of
+    // separatedBeyond's: no contact within the margin, nothing for FCL to do.
+    double separation = 0.0;
+    if (pair.axis_S != Vec3::Zero() &&
+        detail::separatedAlongAxis(a, b, a.R_WS * pair.axis_S, margin, &separation))
+    {
+        provenApart(pair, separation);
+        ++stats.separatedPairs;
+        return;
+    }
     Vec3 axis_W = Vec3::Zero();
-    if (detail::separatedBeyond(a, b, margin, &axis_W))
+    if (detail::separatedBeyond(a, b, margin, &axis_W, &separation))
     {
         pair.axis_S = a.R_WS.transpose() * axis_W;
+        provenApart(pair, separation);
         ++stats.separatedPairs;
         return;
     }
@@ -627,6 +665,8 @@ void ContactDetector::Impl::narrowphase(int i, int j, PairState& pair, std::vect
             if (!near)
             {
                 pair.axis_S = a.R_WS.transpose() * axis_W; // apart beyond the margin along it
+                if (detail::separatedAlongAxis(a, b, axis_W, margin, &separation))
+                    provenApart(pair, separation); // FCL's gap, proven by the support functions
                 return;
             }
             raw.clear();
@@ -732,6 +772,33 @@ void ContactDetector::Impl::narrowphase(int i, int j, PairState& pair, std::vect
     emit(a.body, b.body, out);
 }
 
+// Pair is farther apart than distanceAtLeast (m, > margin) at the bodies' present travel.
+void ContactDetector::Impl::provenApart(PairState& pair, double distanceAtLeast) const
+{
+    pair.apart = distanceAtLeast;
+    pair.travelA = bodyTravel[static_cast<std::size_t>(shapes[static_cast<std::size_t>(pair.i)].body)];
+    pair.travelB = bodyTravel[static_cast<std::size_t>(shapes[static_cast<std::size_t>(pair.j)].body)];
+}
+
+// Adds each body's move since the last call to its travel: |dp| of its centre of mass plus what
+// the turn moves the farthest shape point, 2 |sin(angle / 2)| reach = 2 |vec(q_last* q)| reach.
+void ContactDetector::Impl::addTravel(const core::State& state)
+{
+    for (std::size_t b = 0; b < bodyTravel.size(); ++b)
+    {
+        if (!bodyCollides[b])
+            continue;
+        const core::BodyState& body = state.bodies[b];
+        const core::Quat q = body.orientation_WB.normalized();
+        if (travelStarted)
+            bodyTravel[b] += (body.position_W - lastPosition[b]).norm() +
+                             2.0 * (lastOrientation[b].conjugate() * q).vec().norm() * bodyReach[b];
+        lastPosition[b] = body.position_W;
+        lastOrientation[b] = q;
+    }
+    travelStarted = true;
+}
+
 // A box or a hull (one of shapes i and j) against a triangle mesh (the other): the contacts of
 // the polytope clipped against each triangle that FCL reported touching (raw, rawTriangles),
 // with FCL's contact there as the reference; they replace raw.
@@ -791,13 +858,16 @@ bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out, Vec3* apar
 // Spheres and capsules in closed form (swept_spheres.cpp) instead of libccd's MPR and GJK; a
 // capsule pair then gets its feature points as FCL's point would, the closed-form point kept
 // unless the features reach its depth.
-void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b,
+void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, PairState& pair,
                                             std::vector<Contact>& out)
 {
     ++stats.narrowphaseTests;
     raw.clear();
     RawContact closest;
-    const bool near = detail::sweptSphereContact(a, b, margin, closest);
+    double separation = 0.0; // m: the segments' distance less the radii, exact
+    const bool near = detail::sweptSphereContact(a, b, margin, closest, &separation);
+    if (!near && separation > margin)
+        provenApart(pair, separation);
     // A pair farther apart than the margin has no feature within it either: each feature is a
     // point of one segment with that capsule's radius, no nearer the other than the segments are.
     if (near && detail::usesFeatureManifold(a, b))
@@ -906,6 +976,7 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
     ++m.stats.detectCalls;
 
     m.sweepMotions(state);
+    m.addTravel(state);
     m.changed.clear();
     for (const int index : m.movingShapes)
         m.poseShape(index, state);

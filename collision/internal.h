@@ -167,12 +167,15 @@ bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, S
 // True when a and b are proven farther apart than margin (m) along some axis: the centre line,
 // a box's face normals, a capsule's or cylinder's axis. A convex hull's extent along an axis
 // is exact (its corners); a triangle mesh counts as its bounding sphere. axis, when given,
-// receives the unit world axis that proved it.
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis = nullptr);
+// receives the unit world axis that proved it, separation the separation along it (m, > margin:
+// a lower bound of the distance).
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis = nullptr,
+                     double* separation = nullptr);
 
 // True when a and b are proven farther apart than margin (m) along the unit world axis u (the
-// same test as separatedBeyond's for one axis).
-bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin);
+// same test as separatedBeyond's for one axis); separation as there.
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                        double* separation = nullptr);
 
 // --- swept_spheres.cpp ----------------------------------------------------------------------
 // Spheres and capsules (sphere-swept segments) against each other in closed form.
@@ -181,7 +184,9 @@ bool isSweptSphere(core::ShapeType type);
 // The contact of two spheres or capsules when their separation is below margin (m): on the line
 // joining the closest points of their segments, normal from a towards b, depth = the radii less
 // the segments' distance (< 0 a gap). False when they are farther apart.
-bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out);
+// separation, when given, receives the segments' distance less the radii (m) either way.
+bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out,
+                        double* separation = nullptr);
 
 // --- manifold.cpp ---------------------------------------------------------------------------
 // Cleans the contacts out[begin, end) of one shape pair in place and shrinks the vector: drops

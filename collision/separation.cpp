@@ -94,27 +94,33 @@ double separationAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec
     return std::max(d - hiA + loB, -d + loA - hiB);
 }
 
-// Separation along u beyond the margin: first by the hulls' boxes (cheap), then exactly.
-bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin)
+// Separation along u beyond the margin: first by the hulls' boxes (cheap), then exactly. found
+// receives the separation that exceeded the margin (a lower bound of the distance).
+bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                    double& found)
 {
-    if (separationAlong(a, b, u, false) > margin)
+    found = separationAlong(a, b, u, false);
+    if (found > margin)
     {
         return true;
     }
-    return (a.convexHull || b.convexHull) && separationAlong(a, b, u, true) > margin;
+    if (!(a.convexHull || b.convexHull))
+        return false;
+    found = separationAlong(a, b, u, true);
+    return found > margin;
 }
 
 // Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder); the
 // one that separates goes to axis.
 bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const ShapeInstance& b, double margin,
-                        Vec3& axis)
+                        Vec3& axis, double& found)
 {
     switch (s.type)
     {
     case core::ShapeType::Box:
         for (int k = 0; k < 3; ++k)
         {
-            if (separatedAlong(a, b, s.R_WS.col(k), margin))
+            if (separatedAlong(a, b, s.R_WS.col(k), margin, found))
             {
                 axis = s.R_WS.col(k);
                 return true;
@@ -124,7 +130,7 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
     case core::ShapeType::Capsule:
     case core::ShapeType::Cylinder:
         axis = s.R_WS.col(2);
-        return separatedAlong(a, b, axis, margin);
+        return separatedAlong(a, b, axis, margin, found);
     default:
         return false;
     }
@@ -132,27 +138,37 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
 
 } // namespace
 
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis)
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis,
+                     double* separation)
 {
     Vec3 found = Vec3::UnitZ();
+    double by = 0.0;
     const Vec3 between = b.p_WS - a.p_WS;
     const double length = between.norm();
     bool apart = false;
-    if (length > 0.0 && separatedAlong(a, b, between / length, margin))
+    if (length > 0.0 && separatedAlong(a, b, between / length, margin, by))
     {
         found = between / length;
         apart = true;
     }
     else
-        apart = separatedByOwnAxes(a, a, b, margin, found) || separatedByOwnAxes(b, a, b, margin, found);
+        apart =
+            separatedByOwnAxes(a, a, b, margin, found, by) || separatedByOwnAxes(b, a, b, margin, found, by);
     if (apart && axis != nullptr)
         *axis = found;
+    if (apart && separation != nullptr)
+        *separation = by;
     return apart;
 }
 
-bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin)
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                        double* separation)
 {
-    return separatedAlong(a, b, u, margin);
+    double found = 0.0;
+    const bool apart = separatedAlong(a, b, u, margin, found);
+    if (apart && separation != nullptr)
+        *separation = found;
+    return apart;
 }
 
 } // namespace frontier::collision::detail
