@@ -9,20 +9,26 @@
 //      spheres, the cylinder rim points and the mesh vertices within the margin.
 //   3. Everything else: a DynamicAABBTreeCollisionManagerd holding only the shapes of bodies
 //      that have at least one allowed partner (AABBs grown by the margin). Its callback only
-//      collects allowed shape pairs; they are sorted and then tested in that order, so the
-//      result never depends on the tree's traversal order.
+//      collects shape pairs of two bodies not both static; they are sorted and then tested in
+//      that order, so the result never depends on the tree's traversal order. Each pair keeps
+//      its state from the last call while the broadphase reports it (PairState: the filter's
+//      answer; a proven distance, which skips the pair while its bodies have travelled less than
+//      it exceeds the margin by; a separating axis, which skips the narrowphase while it still
+//      proves the pair apart).
 //   4. Narrowphase per pair: spheres and capsules against each other in closed form
 //      (swept_spheres.cpp); pairs proven apart by more than the margin along an axis are done
 //      (separation.cpp); every other pair with fcl::collide. Box-box keeps FCL's manifold
-//      (up to 4 points). Moving meshes are their convex hulls (fcl::Convexd, built once
-//      here); a hull against a hull or a box, and a hull or box against a static triangle
-//      mesh, get one face clipped against the other along FCL's normal (polytope_manifold.cpp).
+//      (up to 4 points). Moving meshes are their convex hulls of at most cHullCorners corners
+//      (fcl::Convexd, built once here); a hull against a hull or a box, and a hull or box
+//      against a static triangle mesh, get one face clipped against the other along FCL's
+//      normal (polytope_manifold.cpp); two polytopes ask fcl::distance first and fcl::collide
+//      only when they touch.
 //      A capsule or cylinder against a box, capsule or cylinder gets one point from FCL, and a
 //      mesh gets per-triangle points, so we add feature points (feature_manifold.cpp): box
 //      vertices, capsule end spheres, cylinder rim points and mesh vertices tested against the
 //      exact signed distance of the other shape, plus the capsule axis clipped to the other's
 //      contact face. We chose this over a persistent contact cache: it gives the full manifold
-//      in the very first step, keeps detect() free of history (same state -> same contacts),
+//      in the very first step, keeps the contacts free of history (same state -> same contacts),
 //      still works when FCL's single point never moves (a cache only grows when it wanders) and
 //      costs a few dozen flops per feature. FCL's own point is dropped when the features
 //      already reach its depth. Zero-normal/zero-depth FCL points (meshes) are dropped.
@@ -214,6 +220,28 @@ constexpr double cSweptMargins = 2.0;
 constexpr double cSweepTolerance = 0.1;
 constexpr int cSweepIterations = 64;
 
+// What the detector keeps of a shape pair from one detect() call to the next while the broadphase
+// reports it (collision/README.md "Per-pair state"): how far apart the pair was last proven to be,
+// with how far its bodies had travelled then, and the axis along which it was found apart, in
+// shape a's frame. While the bodies have not travelled the proven distance less the margin
+// between them, the pair is still apart beyond the margin; else the axis, tried first, proves it
+// in one support-function test, where the axes of separatedBeyond may not and FCL's collide and
+// distance would (the same result: no contact). It only ever skips work whose outcome it proves.
+struct PairState
+{
+    int i = 0;                  // shape a
+    int j = 0;                  // shape b
+    bool allowed = false;       // the filter allows the pair of their bodies (asked once per pair)
+    Vec3 axis_S = Vec3::Zero(); // unit, shape a's frame; zero: none yet
+    double apart = 0.0;         // m: a lower bound of the distance when last proven apart; 0: none
+    double travelA = 0.0;       // m: body a's travel (ContactDetector::Impl::bodyTravel) then
+    double travelB = 0.0;       // m: body b's
+};
+
+// Rounding allowance (m) of the travel bound: the pair must be proven farther apart than the
+// margin by this much more before a pair is skipped on its bodies' travel alone.
+constexpr double cTravelSlack = 1e-9;
+
 } // namespace
 
 struct ContactDetector::Impl
@@ -221,11 +249,18 @@ struct ContactDetector::Impl
     double margin = 1e-3;  // m
     double stepTime = 0.0; // s; the swept search is off while 0
     detail::PairFilter filter;
-    std::vector<char> bodyCollides;    // per body: has a shape that can touch something
-    std::vector<double> bodyReach;     // per body: farthest shape point from the centre of mass (m)
-    std::vector<BodyMotion> motions;   // per body, this detect() call (swept search)
-    bool anySwept = false;             // some body is swept this call
-    std::vector<ShapeInstance> shapes; // non-plane shapes, in body order
+    std::vector<char> bodyCollides;  // per body: has a shape that can touch something
+    std::vector<double> bodyReach;   // per body: farthest shape point from the centre of mass (m)
+    std::vector<BodyMotion> motions; // per body, this detect() call (swept search)
+    // Per body: an upper bound (m) of how far any point of its shapes has moved over the states
+    // detect() was given so far (the sum over calls of |dp| + 2 |sin(angle / 2)| reach), and the
+    // pose of the last call. bodyTravel now less bodyTravel then bounds the move in between.
+    std::vector<double> bodyTravel;
+    std::vector<Vec3> lastPosition;
+    std::vector<core::Quat> lastOrientation;
+    bool travelStarted = false;
+    bool anySwept = false;                              // some body is swept this call
+    std::vector<ShapeInstance> shapes;                  // non-plane shapes, in body order
     std::vector<std::unique_ptr<MarginObject>> objects; // per shape; null for a mesh without triangles
     // Boxes grown by the margin on every side: colliding one with the other box of a pair gives
     // FCL's box-box manifold while they are still apart, for speculative contacts. One object per
@@ -234,13 +269,20 @@ struct ContactDetector::Impl
     std::vector<int> inflatedBox;
     std::vector<PlaneInstance> planes;
     std::vector<int> movingShapes; // shapes of moving bodies that can touch something: posed per call
-    std::vector<int> staticShapes; // shapes of static bodies
+    std::vector<char>
+        planeAllowed; // per moving shape (its place in movingShapes) and plane: the filter allows it
+    std::vector<int> staticShapes;                        // shapes of static bodies
     std::vector<fcl::CollisionObjectd*> movingRegistered; // moving objects in the manager
     std::vector<char> registeredMoving;                   // per shape: in movingRegistered
     std::vector<fcl::CollisionObjectd*> changed;          // scratch: their AABBs changed this step
     fcl::DynamicAABBTreeCollisionManagerd manager;
     bool useBroadphase = false;
     bool staticPosed = false;
+
+    // Per shape pair of the last call's broadphase, in the order of shapePairs (sorted): what
+    // narrowphase() learnt of it (PairState). The next call's pairs are matched against it.
+    std::vector<PairState> pairStates;
+    std::vector<PairState> nextPairStates;
 
     // Scratch, reused every step.
     std::vector<std::pair<int, int>> shapePairs;
@@ -263,13 +305,16 @@ struct ContactDetector::Impl
     Impl(const core::Model& model, double marginIn, MovingMeshes movingMeshes);
     void poseShape(int index, const core::State& state);
     void planePass(std::vector<Contact>& out);
-    void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, std::vector<Contact>& out);
-    void narrowphase(int i, int j, std::vector<Contact>& out);
+    void sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, PairState& pair,
+                         std::vector<Contact>& out);
+    void narrowphase(int i, int j, PairState& pair, std::vector<Contact>& out);
+    void addTravel(const core::State& state);
+    void provenApart(PairState& pair, double distanceAtLeast) const;
     void sweepMotions(const core::State& state);
     double shapeReach(const ShapeInstance& s) const;
     fcl::Transform3d poseAt(const ShapeInstance& s, double tau, Mat3* turn) const;
     void sweptPair(int i, int j, std::vector<Contact>& out);
-    bool nearestGap(int i, int j, RawContact& out);
+    bool nearestGap(int i, int j, RawContact& out, Vec3* apart = nullptr);
     void clipAgainstTriangles(int i, int j);
     void emit(int bodyA, int bodyB, std::vector<Contact>& out);
     static bool broadphaseCallback(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data);
@@ -323,9 +368,10 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
             // Moving meshes collide as their convex hulls (built here, once); static ones keep
             // their triangles: terrain and fixtures may be concave, and nothing moves them into
             // each other (two static bodies never collide).
-            shapes.push_back(detail::makeShapeInstance(
-                shape, b, !body.isStatic && movingMeshes == MovingMeshes::ConvexHulls,
-                shared ? shared->own : nullptr));
+            shapes.push_back(
+                detail::makeShapeInstance(shape, b, !body.isStatic && movingMeshes != MovingMeshes::Triangles,
+                                          shared ? shared->own : nullptr,
+                                          movingMeshes == MovingMeshes::ConvexHulls ? cHullCorners : 0));
             if (shared && !shared->own)
                 shared->own = shapes.back().geometry;
             detail::setBodyPose(shapes.back(), R_WB, body.position_W);
@@ -410,8 +456,17 @@ ContactDetector::Impl::Impl(const core::Model& model, double marginIn, MovingMes
                                           { return filter.allowed(body, plane.body); });
                   });
 
+    planeAllowed.reserve(movingShapes.size() * planes.size());
+    for (const int index : movingShapes)
+        for (const PlaneInstance& plane : planes)
+            planeAllowed.push_back(
+                filter.allowed(shapes[static_cast<std::size_t>(index)].body, plane.body) ? 1 : 0);
+
     bodyReach.assign(model.bodies.size(), 0.0);
     motions.assign(model.bodies.size(), BodyMotion{});
+    bodyTravel.assign(model.bodies.size(), 0.0);
+    lastPosition.assign(model.bodies.size(), Vec3::Zero());
+    lastOrientation.assign(model.bodies.size(), core::Quat::Identity());
     for (const ShapeInstance& s : shapes)
         bodyReach[static_cast<std::size_t>(s.body)] =
             std::max(bodyReach[static_cast<std::size_t>(s.body)], s.p_BS.norm() + s.boundingRadius);
@@ -505,12 +560,15 @@ void ContactDetector::Impl::emit(int bodyA, int bodyB, std::vector<Contact>& out
 
 void ContactDetector::Impl::planePass(std::vector<Contact>& out)
 {
+    const char* allowed = planeAllowed.data();
     for (const int index : movingShapes)
     {
         const ShapeInstance& s = shapes[static_cast<std::size_t>(index)];
         const BodyMotion& m = motions[static_cast<std::size_t>(s.body)];
         for (const PlaneInstance& plane : planes)
         {
+            if (!*allowed++)
+                continue;
             // A swept body's window reaches as far as it moves towards the plane in the step,
             // plus its turn's reach (docs/method.md §10); the solver's speculative rows then let
             // it close the gap, not pass it.
@@ -519,8 +577,6 @@ void ContactDetector::Impl::planePass(std::vector<Contact>& out)
                 window += stepTime * (std::max(0.0, -plane.normal.dot(m.velocity)) +
                                       m.angularVelocity.norm() * shapeReach(s));
             if (plane.normal.dot(s.p_WS) - plane.offset - s.boundingRadius >= window)
-                continue;
-            if (!filter.allowed(s.body, plane.body))
                 continue;
             ++stats.planeTests;
             raw.clear();
@@ -539,8 +595,8 @@ bool ContactDetector::Impl::broadphaseCallback(fcl::CollisionObjectd* o1, fcl::C
     int j = userDataToIndex(o2);
     int bi = self->shapes[static_cast<std::size_t>(i)].body;
     int bj = self->shapes[static_cast<std::size_t>(j)].body;
-    if (bi == bj || !self->filter.allowed(bi, bj))
-        return false;
+    if (bi == bj || (self->filter.isStatic(bi) && self->filter.isStatic(bj)))
+        return false; // the filter is asked once per pair, when detect() first sees it (PairState)
     // A is the moving body; of two moving bodies, the lower index.
     if (self->filter.isStatic(bi) || (!self->filter.isStatic(bj) && bj < bi))
     {
@@ -551,7 +607,7 @@ bool ContactDetector::Impl::broadphaseCallback(fcl::CollisionObjectd* o1, fcl::C
     return false; // never stop early
 }
 
-void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
+void ContactDetector::Impl::narrowphase(int i, int j, PairState& pair, std::vector<Contact>& out)
 {
     const ShapeInstance& a = shapes[static_cast<std::size_t>(i)];
     const ShapeInstance& b = shapes[static_cast<std::size_t>(j)];
@@ -559,15 +615,66 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
     const bool bTriangles = isTriangleMesh(b);
     const bool triangles = aTriangles || bTriangles;
     const bool polytopes = detail::usesPolytopeManifold(a, b);
-    if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
+    // Proven apart by more than the margin and the bodies' travel since: still apart beyond the
+    // margin, no contact (any point of a shape moved at most its body's travel).
+    if (pair.apart > 0.0 && pair.apart - (bodyTravel[static_cast<std::size_t>(a.body)] - pair.travelA) -
+                                    (bodyTravel[static_cast<std::size_t>(b.body)] - pair.travelB) >
+                                margin + cTravelSlack)
     {
-        sweptSpherePair(a, b, out);
+        ++stats.separatedPairs;
         return;
     }
-    if (detail::separatedBeyond(a, b, margin))
+    pair.apart = 0.0;
+    if (detail::isSweptSphere(a.type) && detail::isSweptSphere(b.type))
     {
-        ++stats.separatedPairs; // no contact within the margin: nothing for FCL to do
+        sweptSpherePair(a, b, pair, out);
         return;
+    }
+    // Apart beyond the margin along the axis that proved it last time, or along one of
+    // separatedBeyond's: no contact within the margin, nothing for FCL to do.
+    double separation = 0.0;
+    if (pair.axis_S != Vec3::Zero() &&
+        detail::separatedAlongAxis(a, b, a.R_WS * pair.axis_S, margin, &separation))
+    {
+        provenApart(pair, separation);
+        ++stats.separatedPairs;
+        return;
+    }
+    Vec3 axis_W = Vec3::Zero();
+    if (detail::separatedBeyond(a, b, margin, &axis_W, &separation))
+    {
+        pair.axis_S = a.R_WS.transpose() * axis_W;
+        provenApart(pair, separation);
+        ++stats.separatedPairs;
+        return;
+    }
+    pair.axis_S.setZero();
+    axis_W.setZero(); // nearestGap sets it when it finds the pair apart beyond the margin
+
+    if (polytopes)
+    {
+        // Two polytopes (hulls, boxes) are mostly apart, resting within the margin or farther:
+        // fcl::distance alone says so, and the face clipping needs nothing more than the gap's
+        // normal. FCL's collide (MPR: the normal and depth of an overlap) runs for the pairs
+        // that touch.
+        RawContact gap;
+        const bool near = nearestGap(i, j, gap, &axis_W);
+        if (near || axis_W != Vec3::Zero())
+        {
+            ++stats.narrowphaseTests;
+            if (!near)
+            {
+                pair.axis_S = a.R_WS.transpose() * axis_W; // apart beyond the margin along it
+                if (detail::separatedAlongAxis(a, b, axis_W, margin, &separation))
+                    provenApart(pair, separation); // FCL's gap, proven by the support functions
+                return;
+            }
+            raw.clear();
+            detail::polytopeContacts(a, b, gap, margin, raw);
+            detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
+            emit(a.body, b.body, out);
+            return;
+        }
     }
 
     // FCL 0.7 computes a shape against a triangle mesh as the mesh against the shape, whatever
@@ -614,7 +721,7 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         // (or, apart, the normal of the gap) for the whole patch.
         RawContact reference = deepest;
         raw.clear();
-        if (fclDepth > 0.0 || nearestGap(i, j, reference))
+        if (fclDepth > 0.0 || nearestGap(i, j, reference, &axis_W))
             detail::polytopeContacts(a, b, reference, margin, raw);
     }
     else if (triangles && !(aTriangles && bTriangles) && (detail::isPolytope(a) || detail::isPolytope(b)))
@@ -656,11 +763,40 @@ void ContactDetector::Impl::narrowphase(int i, int j, std::vector<Contact>& out)
         // Apart: a speculative contact at the nearest points when the gap is below the margin,
         // so that a body arriving fast is caught before it sinks in (depth = -gap).
         RawContact gap;
-        if (nearestGap(i, j, gap))
+        if (nearestGap(i, j, gap, &axis_W))
             raw.push_back(gap);
     }
+    if (axis_W != Vec3::Zero())
+        pair.axis_S = a.R_WS.transpose() * axis_W; // found apart beyond the margin along it
     detail::mergeAndReduce(raw, 0, std::min(a.mergeDistance, b.mergeDistance));
     emit(a.body, b.body, out);
+}
+
+// Pair is farther apart than distanceAtLeast (m, > margin) at the bodies' present travel.
+void ContactDetector::Impl::provenApart(PairState& pair, double distanceAtLeast) const
+{
+    pair.apart = distanceAtLeast;
+    pair.travelA = bodyTravel[static_cast<std::size_t>(shapes[static_cast<std::size_t>(pair.i)].body)];
+    pair.travelB = bodyTravel[static_cast<std::size_t>(shapes[static_cast<std::size_t>(pair.j)].body)];
+}
+
+// Adds each body's move since the last call to its travel: |dp| of its centre of mass plus what
+// the turn moves the farthest shape point, 2 |sin(angle / 2)| reach = 2 |vec(q_last* q)| reach.
+void ContactDetector::Impl::addTravel(const core::State& state)
+{
+    for (std::size_t b = 0; b < bodyTravel.size(); ++b)
+    {
+        if (!bodyCollides[b])
+            continue;
+        const core::BodyState& body = state.bodies[b];
+        const core::Quat q = body.orientation_WB.normalized();
+        if (travelStarted)
+            bodyTravel[b] += (body.position_W - lastPosition[b]).norm() +
+                             2.0 * (lastOrientation[b].conjugate() * q).vec().norm() * bodyReach[b];
+        lastPosition[b] = body.position_W;
+        lastOrientation[b] = q;
+    }
+    travelStarted = true;
 }
 
 // A box or a hull (one of shapes i and j) against a triangle mesh (the other): the contacts of
@@ -694,20 +830,27 @@ void ContactDetector::Impl::clipAgainstTriangles(int i, int j)
 
 // The nearest points of shapes i and j when they are apart by less than the margin: a contact
 // halfway between them, normal from i towards j, depth = -gap. False when they touch, overlap or
-// are farther apart.
-bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out)
+// are farther apart; when farther apart, `apart` (if given) receives the unit direction from i's
+// nearest point to j's, along which they are separated by the gap (for PairState).
+bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out, Vec3* apart)
 {
     distanceResult.clear();
     const double gap =
         fcl::distance(objects[static_cast<std::size_t>(i)].get(), objects[static_cast<std::size_t>(j)].get(),
                       distanceRequest, distanceResult);
-    if (!(gap > 0.0 && gap < margin))
+    if (!(gap > 0.0))
         return false;
     const Vec3 pa = distanceResult.nearest_points[0];
     const Vec3 pb = distanceResult.nearest_points[1];
     const Vec3 d = pb - pa;
     if (!(d.norm() > 1e-12) || !pa.allFinite() || !pb.allFinite())
         return false;
+    if (!(gap < margin))
+    {
+        if (apart != nullptr)
+            *apart = d / d.norm();
+        return false;
+    }
     out = {0.5 * (pa + pb), d / d.norm(), -gap};
     return true;
 }
@@ -715,14 +858,19 @@ bool ContactDetector::Impl::nearestGap(int i, int j, RawContact& out)
 // Spheres and capsules in closed form (swept_spheres.cpp) instead of libccd's MPR and GJK; a
 // capsule pair then gets its feature points as FCL's point would, the closed-form point kept
 // unless the features reach its depth.
-void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b,
+void ContactDetector::Impl::sweptSpherePair(const ShapeInstance& a, const ShapeInstance& b, PairState& pair,
                                             std::vector<Contact>& out)
 {
     ++stats.narrowphaseTests;
     raw.clear();
     RawContact closest;
-    const bool near = detail::sweptSphereContact(a, b, margin, closest);
-    if (detail::usesFeatureManifold(a, b))
+    double separation = 0.0; // m: the segments' distance less the radii, exact
+    const bool near = detail::sweptSphereContact(a, b, margin, closest, &separation);
+    if (!near && separation > margin)
+        provenApart(pair, separation);
+    // A pair farther apart than the margin has no feature within it either: each feature is a
+    // point of one segment with that capsule's radius, no nearer the other than the segments are.
+    if (near && detail::usesFeatureManifold(a, b))
     {
         detail::featureContacts(a, b, near && closest.depth > 0.0 ? &closest : nullptr, margin, raw);
     }
@@ -828,6 +976,7 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
     ++m.stats.detectCalls;
 
     m.sweepMotions(state);
+    m.addTravel(state);
     m.changed.clear();
     for (const int index : m.movingShapes)
         m.poseShape(index, state);
@@ -849,16 +998,33 @@ void ContactDetector::detect(const core::State& state, std::vector<Contact>& out
         m.shapePairs.clear();
         m.manager.collide(&m, &Impl::broadphaseCallback);
         std::sort(m.shapePairs.begin(), m.shapePairs.end());
-        m.stats.broadphasePairs += static_cast<long>(m.shapePairs.size());
+        // Each pair's state from the last call, if the broadphase reported it then too (both
+        // lists sorted: one merge pass); a pair it no longer reports is forgotten.
+        m.nextPairStates.clear();
+        std::size_t last = 0;
         for (const auto& [i, j] : m.shapePairs)
         {
+            while (last < m.pairStates.size() &&
+                   std::pair(m.pairStates[last].i, m.pairStates[last].j) < std::pair(i, j))
+                ++last;
+            if (last < m.pairStates.size() && m.pairStates[last].i == i && m.pairStates[last].j == j)
+                m.nextPairStates.push_back(m.pairStates[last]);
+            else
+                m.nextPairStates.push_back({i, j,
+                                            m.filter.allowed(m.shapes[static_cast<std::size_t>(i)].body,
+                                                             m.shapes[static_cast<std::size_t>(j)].body),
+                                            Vec3::Zero()});
+            if (!m.nextPairStates.back().allowed)
+                continue;
+            ++m.stats.broadphasePairs;
             const std::size_t before = out.size();
-            m.narrowphase(i, j, out);
+            m.narrowphase(i, j, m.nextPairStates.back(), out);
             if (m.anySwept && out.size() == before &&
                 (m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(i)].body)].swept ||
                  m.motions[static_cast<std::size_t>(m.shapes[static_cast<std::size_t>(j)].body)].swept))
                 m.sweptPair(i, j, out);
         }
+        std::swap(m.pairStates, m.nextPairStates);
     }
 
     std::sort(out.begin(), out.end(), contactLess);

@@ -36,9 +36,16 @@ struct DetectorStats
 // How the meshes of moving bodies collide (static bodies' meshes are always triangles).
 enum class MovingMeshes
 {
-    ConvexHulls, // as their convex hulls (collision/README.md "Meshes"): the default
-    Triangles,   // as triangle meshes (FCL's BVH), for comparison in tests and benchmarks
+    ConvexHulls,     // as their convex hulls of at most cHullCorners corners (collision/README.md
+                     // "Meshes"): the default
+    FullConvexHulls, // as their convex hulls with every corner (`frontier run --full-hulls`)
+    Triangles,       // as triangle meshes (FCL's BVH), for comparison in tests and benchmarks
 };
+
+// The most corners a moving mesh's convex hull keeps by default: a larger hull is replaced by the
+// hull of cHullCorners of its corners, picked so that it changes least (collision::capConvexHull;
+// collision/README.md "Meshes" gives what it changes on real robots).
+inline constexpr int cHullCorners = 64;
 
 class ContactDetector final : public core::ContactSource
 {

@@ -81,7 +81,8 @@ class MessageStream
 
 // Runs qhull on the points (x, y, z per point, m). Returns its exit code (0 on success) and,
 // on success, its facets. Nothing of qhull outlives this function.
-int runQhull(std::vector<double>& coordinates, std::vector<Facet>& facets, std::string& message)
+int runQhull(std::vector<double>& coordinates, std::vector<Facet>& facets, std::string& message,
+             const char* extraOptions = "")
 {
     MessageStream messages;
     qhT context;
@@ -89,8 +90,9 @@ int runQhull(std::vector<double>& coordinates, std::vector<Facet>& facets, std::
     qh_zero(qh, messages.file());
     // "Pp": no precision warnings. The default merging of coplanar facets ('C-0') stays on, so a
     // cube gives six square faces, not twelve triangles. No joggling, no random rotation: the
-    // same points give the same hull on every run.
-    char options[] = "qhull Pp";
+    // same points give the same hull on every run. extraOptions: capConvexHull's.
+    char options[96];
+    std::snprintf(options, sizeof options, "qhull Pp%s", extraOptions);
     const int pointCount = static_cast<int>(coordinates.size() / 3);
     const int code =
         qh_new_qhull(qh, 3, pointCount, coordinates.data(), False, options, nullptr, messages.file());
@@ -140,6 +142,34 @@ void orderCounterClockwise(const std::vector<Vec3>& points, Facet& f)
     std::sort(byAngle.begin(), byAngle.end());
     for (std::size_t k = 0; k < byAngle.size(); ++k)
         f.vertices[k] = byAngle[k].second;
+}
+
+// The point of face k of h nearest to p, which lies `height` (> 0) above the face's plane.
+Vec3 nearestOnFace(const ConvexHull& h, std::size_t k, const Vec3& p, double height)
+{
+    const Vec3& n = h.normals[k];
+    const Vec3 q = p - height * n; // p projected onto the plane
+    bool inside = true;
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 nearest = q;
+    const auto start = static_cast<std::size_t>(h.faceStart[k]);
+    const auto count = static_cast<std::size_t>(h.faces[start]);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        const Vec3& a = h.vertices[static_cast<std::size_t>(h.faces[start + 1 + i])];
+        const Vec3& b = h.vertices[static_cast<std::size_t>(h.faces[start + 1 + (i + 1) % count])];
+        const Vec3 e = b - a;
+        if (n.cross(e).dot(q - a) < 0.0) // outside this edge (n x e points inwards)
+            inside = false;
+        const double t = std::clamp(e.dot(q - a) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
+        const Vec3 onEdge = a + t * e;
+        if ((q - onEdge).squaredNorm() < best)
+        {
+            best = (q - onEdge).squaredNorm();
+            nearest = onEdge;
+        }
+    }
+    return inside ? q : nearest;
 }
 
 } // namespace
@@ -202,6 +232,88 @@ bool computeConvexHull(const std::vector<Vec3>& points, ConvexHull& out, std::st
         out.offsets.push_back(offset);
     }
     return true;
+}
+
+bool capConvexHull(const ConvexHull& full, int maxCorners, ConvexHull& out, std::string& reason)
+{
+    if (maxCorners < 4)
+    {
+        out = ConvexHull{};
+        reason = "a hull needs at least 4 corners";
+        return false;
+    }
+    if (full.vertices.size() <= static_cast<std::size_t>(maxCorners))
+    {
+        out = full;
+        return true;
+    }
+    // qhull starts from a simplex of 4 corners and adds one at a time; Q9 takes the point farthest
+    // above any facet next (Qf puts each point in the outside set of the facet it is farthest
+    // above), TA stops after maxCorners - 4 additions. Its facets then span the corners picked.
+    std::vector<double> coordinates;
+    coordinates.reserve(3 * full.vertices.size());
+    for (const Vec3& p : full.vertices)
+        coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+    char options[32];
+    std::snprintf(options, sizeof options, " Qf Q9 TA%d", maxCorners - 4);
+    std::vector<Facet> facets;
+    if (runQhull(coordinates, facets, reason, options) != 0)
+    {
+        out = ConvexHull{};
+        return false;
+    }
+    std::vector<char> picked(full.vertices.size(), 0);
+    for (const Facet& f : facets)
+        for (const int i : f.vertices)
+            picked[static_cast<std::size_t>(i)] = 1;
+    std::vector<Vec3> corners;
+    for (std::size_t i = 0; i < full.vertices.size(); ++i)
+        if (picked[i])
+            corners.push_back(full.vertices[i]);
+    // The hull of the picked corners, from scratch: faces merged and ordered as every hull's.
+    return computeConvexHull(corners, out, reason);
+}
+
+double hullSignedDistance(const ConvexHull& h, const Vec3& p, Vec3& grad, double exactBelow)
+{
+    std::size_t best = 0;
+    double planeDistance = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < h.normals.size(); ++k)
+    {
+        const double d = h.normals[k].dot(p) - h.offsets[k];
+        if (d > planeDistance)
+        {
+            planeDistance = d;
+            best = k;
+        }
+    }
+    grad = h.normals[best];
+    if (planeDistance <= 0.0 || planeDistance >= exactBelow)
+        return planeDistance;
+    double distance = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < h.normals.size(); ++k)
+    {
+        const double height = h.normals[k].dot(p) - h.offsets[k];
+        if (height <= 0.0)
+            continue; // p is behind this face: the nearest point is on a face p is in front of
+        const Vec3 nearest = nearestOnFace(h, k, p, height);
+        const double d = (p - nearest).norm();
+        if (d < distance) // d >= height > 0
+        {
+            distance = d;
+            grad = (p - nearest) / d;
+        }
+    }
+    return std::max(distance, planeDistance); // the face `best` was visited: distance is finite
+}
+
+double hullDeviation(const ConvexHull& full, const ConvexHull& capped)
+{
+    double largest = 0.0;
+    Vec3 grad;
+    for (const Vec3& p : full.vertices)
+        largest = std::max(largest, hullSignedDistance(capped, p, grad));
+    return largest;
 }
 
 } // namespace frontier::collision

@@ -59,71 +59,8 @@ template <class F> void forEachFaceEdge(const ConvexHull& h, std::size_t k, F&& 
     }
 }
 
-// The point of face k nearest to p, which lies `height` (> 0) above the face's plane.
-Vec3 nearestOnFace(const ConvexHull& h, std::size_t k, const Vec3& p, double height)
-{
-    const Vec3& n = h.normals[k];
-    const Vec3 q = p - height * n; // p projected onto the plane
-    bool inside = true;
-    double best = std::numeric_limits<double>::infinity();
-    Vec3 nearest = q;
-    forEachFaceEdge(h, k,
-                    [&](const Vec3& a, const Vec3& b)
-                    {
-                        const Vec3 e = b - a;
-                        if (n.cross(e).dot(q - a) < 0.0) // outside this edge (n x e points inwards)
-                            inside = false;
-                        const double t =
-                            std::clamp(e.dot(q - a) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
-                        const Vec3 onEdge = a + t * e;
-                        if ((q - onEdge).squaredNorm() < best)
-                        {
-                            best = (q - onEdge).squaredNorm();
-                            nearest = onEdge;
-                        }
-                    });
-    return inside ? q : nearest;
-}
-
-// Signed distance to a convex hull in its frame. Inside (or on it), the largest face-plane
-// distance, exact. Outside, the distance to the nearest face polygon among those facing p, exact
-// but O(faces x corners), so only computed when the largest face-plane distance (a lower bound
-// of the distance) is below exactBelow; otherwise that lower bound is returned.
-double hullDistance(const ConvexHull& h, const Vec3& p, double exactBelow, Vec3& grad)
-{
-    std::size_t best = 0;
-    double planeDistance = -std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < h.normals.size(); ++k)
-    {
-        const double d = h.normals[k].dot(p) - h.offsets[k];
-        if (d > planeDistance)
-        {
-            planeDistance = d;
-            best = k;
-        }
-    }
-    grad = h.normals[best];
-    if (planeDistance <= 0.0 || planeDistance >= exactBelow)
-        return planeDistance;
-    double distance = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < h.normals.size(); ++k)
-    {
-        const double height = h.normals[k].dot(p) - h.offsets[k];
-        if (height <= 0.0)
-            continue; // p is behind this face: the nearest point is on a face p is in front of
-        const Vec3 nearest = nearestOnFace(h, k, p, height);
-        const double d = (p - nearest).norm();
-        if (d < distance) // d >= height > 0
-        {
-            distance = d;
-            grad = (p - nearest) / d;
-        }
-    }
-    return std::max(distance, planeDistance); // the face `best` was visited: distance is finite
-}
-
 // Signed distance in the shape frame; grad is the unit outward direction there. exactBelow: see
-// hullDistance (the other shapes are always exact).
+// hullSignedDistance (the other shapes are always exact).
 double localDistance(const ShapeInstance& s, const Vec3& p, double exactBelow, Vec3& grad)
 {
     switch (s.type)
@@ -175,7 +112,7 @@ double localDistance(const ShapeInstance& s, const Vec3& p, double exactBelow, V
     }
     case core::ShapeType::Mesh:
         if (s.convexHull)
-            return hullDistance(s.hull(), p, exactBelow, grad);
+            return hullSignedDistance(s.hull(), p, grad, exactBelow);
         break;
     case core::ShapeType::Plane:
         break;

@@ -49,6 +49,10 @@ struct ShapeGeometry
     // The shape as a convex polytope, in S: the hull of a convexHull mesh, or a box's 8 corners
     // and 6 faces (for the face clipping of polytope_manifold.cpp); empty for other shapes.
     ConvexHull hull;
+    // convexHull: how many corners the mesh's full hull has, and how far (m) that full hull reaches
+    // beyond `hull` when `hull` keeps only some of them (capConvexHull; 0 when it keeps all).
+    int fullHullCorners = 0;
+    double hullDeviation = 0.0;
 };
 
 // One non-plane shape of one body, with its geometry in its own frame S and its current pose.
@@ -94,11 +98,13 @@ inline constexpr int cRimSamples = 8;
 const std::array<std::array<double, 2>, cRimSamples>& rimDirections();
 
 // Builds the instance (everything but the world pose) from a model shape of a given body. A
-// mesh becomes its convex hull when meshAsHull and it has one. `shared`, when given, is the
+// mesh becomes its convex hull when meshAsHull and it has one, of at most maxHullCorners corners
+// when that is positive (capConvexHull), of all of them when it is 0. `shared`, when given, is the
 // geometry of an instance of an equal shape (same type and sizes): the instance shares it
 // instead of building its own. A mesh ignores it (its geometry is its own).
 ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
-                                std::shared_ptr<const ShapeGeometry> shared = nullptr);
+                                std::shared_ptr<const ShapeGeometry> shared = nullptr,
+                                int maxHullCorners = 0);
 
 // World pose from the body pose: R_WS = R_WB R_BS, p_WS = p_WB + R_WB p_BS.
 void setBodyPose(ShapeInstance& s, const Mat3& R_WB, const Vec3& p_WB);
@@ -160,8 +166,16 @@ bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, S
 // --- separation.cpp -------------------------------------------------------------------------
 // True when a and b are proven farther apart than margin (m) along some axis: the centre line,
 // a box's face normals, a capsule's or cylinder's axis. A convex hull's extent along an axis
-// is exact (its corners); a triangle mesh counts as its bounding sphere.
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin);
+// is exact (its corners); a triangle mesh counts as its bounding sphere. axis, when given,
+// receives the unit world axis that proved it, separation the separation along it (m, > margin:
+// a lower bound of the distance).
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis = nullptr,
+                     double* separation = nullptr);
+
+// True when a and b are proven farther apart than margin (m) along the unit world axis u (the
+// same test as separatedBeyond's for one axis); separation as there.
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                        double* separation = nullptr);
 
 // --- swept_spheres.cpp ----------------------------------------------------------------------
 // Spheres and capsules (sphere-swept segments) against each other in closed form.
@@ -170,7 +184,9 @@ bool isSweptSphere(core::ShapeType type);
 // The contact of two spheres or capsules when their separation is below margin (m): on the line
 // joining the closest points of their segments, normal from a towards b, depth = the radii less
 // the segments' distance (< 0 a gap). False when they are farther apart.
-bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out);
+// separation, when given, receives the segments' distance less the radii (m) either way.
+bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out,
+                        double* separation = nullptr);
 
 // --- manifold.cpp ---------------------------------------------------------------------------
 // Cleans the contacts out[begin, end) of one shape pair in place and shrinks the vector: drops

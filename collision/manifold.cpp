@@ -39,6 +39,8 @@ void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double merg
 {
     const auto first = out.begin() + static_cast<std::ptrdiff_t>(begin);
     out.erase(std::remove_if(first, out.end(), [](const RawContact& c) { return !finite(c); }), out.end());
+    if (out.size() <= begin + 1)
+        return; // one contact or none: nothing to merge or reduce
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end(), deeper);
 
     // Greedy merge: a contact closer than mergeDistance to a deeper kept one is dropped.

@@ -80,9 +80,17 @@ void planeContacts(const ShapeInstance& s, const Vec3& n, double offset, double 
         break;
     }
     case core::ShapeType::Mesh:
+    {
+        // Each vertex's separation in the shape frame first (a dot product, not a rotation): only
+        // those within the margin, give or take a nanometre for the rounding, are put in the world
+        // and tested as before.
+        const Vec3 n_S = R.transpose() * n;
+        const double above = n.dot(p) - offset; // m, the shape origin's separation
         for (const Vec3& vertex : s.meshVertices())
-            sink.add(p + R * vertex);
+            if (above + n_S.dot(vertex) < margin + 1e-9)
+                sink.add(p + R * vertex);
         break;
+    }
     case core::ShapeType::Plane:
         break;
     }

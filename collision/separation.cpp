@@ -5,10 +5,12 @@
 // function). Trying the line between the centres and the shapes' own axes (box face normals,
 // capsule and cylinder axes) catches most pairs that the margin-grown AABBs let through. A
 // convex hull's extent is exact (its corners); a triangle mesh counts as its bounding sphere.
+#include "collision/contacts.h"
 #include "collision/internal.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace frontier::collision::detail
 {
@@ -56,6 +58,20 @@ void extentAlong(const ShapeInstance& s, const Vec3& u, double& lo, double& hi, 
             // Exact: the hull's corners furthest either way, which need not be centred on the
             // shape origin.
             const Vec3 u_S = s.R_WS.transpose() * u;
+            if (s.meshVertices().size() <= static_cast<std::size_t>(cHullCorners))
+            {
+                // Both ends in one pass over the corners (a capped hull's at most): cheaper than
+                // two climbs from the seeds, and the same values.
+                lo = std::numeric_limits<double>::infinity();
+                hi = -lo;
+                for (const Vec3& v : s.meshVertices())
+                {
+                    const double x = u_S.dot(v);
+                    lo = std::min(lo, x);
+                    hi = std::max(hi, x);
+                }
+                return;
+            }
             lo = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, -u_S))]);
             hi = u_S.dot(s.meshVertices()[static_cast<std::size_t>(hullExtremeCorner(s, u_S))]);
             return;
@@ -78,33 +94,43 @@ double separationAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec
     return std::max(d - hiA + loB, -d + loA - hiB);
 }
 
-// Separation along u beyond the margin: first by the hulls' boxes (cheap), then exactly.
-bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin)
+// Separation along u beyond the margin: first by the hulls' boxes (cheap), then exactly. found
+// receives the separation that exceeded the margin (a lower bound of the distance).
+bool separatedAlong(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                    double& found)
 {
-    if (separationAlong(a, b, u, false) > margin)
+    found = separationAlong(a, b, u, false);
+    if (found > margin)
     {
         return true;
     }
-    return (a.convexHull || b.convexHull) && separationAlong(a, b, u, true) > margin;
+    if (!(a.convexHull || b.convexHull))
+        return false;
+    found = separationAlong(a, b, u, true);
+    return found > margin;
 }
 
-// Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder).
-bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const ShapeInstance& b, double margin)
+// Tries the shape's own axes (face normals of a box, the axis of a capsule or cylinder); the
+// one that separates goes to axis.
+bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const ShapeInstance& b, double margin,
+                        Vec3& axis, double& found)
 {
     switch (s.type)
     {
     case core::ShapeType::Box:
         for (int k = 0; k < 3; ++k)
         {
-            if (separatedAlong(a, b, s.R_WS.col(k), margin))
+            if (separatedAlong(a, b, s.R_WS.col(k), margin, found))
             {
+                axis = s.R_WS.col(k);
                 return true;
             }
         }
         return false;
     case core::ShapeType::Capsule:
     case core::ShapeType::Cylinder:
-        return separatedAlong(a, b, s.R_WS.col(2), margin);
+        axis = s.R_WS.col(2);
+        return separatedAlong(a, b, axis, margin, found);
     default:
         return false;
     }
@@ -112,15 +138,37 @@ bool separatedByOwnAxes(const ShapeInstance& s, const ShapeInstance& a, const Sh
 
 } // namespace
 
-bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin)
+bool separatedBeyond(const ShapeInstance& a, const ShapeInstance& b, double margin, Vec3* axis,
+                     double* separation)
 {
+    Vec3 found = Vec3::UnitZ();
+    double by = 0.0;
     const Vec3 between = b.p_WS - a.p_WS;
     const double length = between.norm();
-    if (length > 0.0 && separatedAlong(a, b, between / length, margin))
+    bool apart = false;
+    if (length > 0.0 && separatedAlong(a, b, between / length, margin, by))
     {
-        return true;
+        found = between / length;
+        apart = true;
     }
-    return separatedByOwnAxes(a, a, b, margin) || separatedByOwnAxes(b, a, b, margin);
+    else
+        apart =
+            separatedByOwnAxes(a, a, b, margin, found, by) || separatedByOwnAxes(b, a, b, margin, found, by);
+    if (apart && axis != nullptr)
+        *axis = found;
+    if (apart && separation != nullptr)
+        *separation = by;
+    return apart;
+}
+
+bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Vec3& u, double margin,
+                        double* separation)
+{
+    double found = 0.0;
+    const bool apart = separatedAlong(a, b, u, margin, found);
+    if (apart && separation != nullptr)
+        *separation = found;
+    return apart;
 }
 
 } // namespace frontier::collision::detail

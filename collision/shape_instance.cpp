@@ -11,6 +11,9 @@ namespace frontier::collision::detail
 namespace
 {
 
+// Hulls of at most this many corners find their extreme corner in one pass over them.
+constexpr std::size_t cLinearScanCorners = 40;
+
 // Unique mesh vertices, in a deterministic (lexicographic) order.
 std::vector<Vec3> uniqueVertices(const std::vector<Vec3>& vertices)
 {
@@ -51,7 +54,7 @@ ConvexHull boxPolytope(const Vec3& half)
 } // namespace
 
 ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
-                                std::shared_ptr<const ShapeGeometry> shared)
+                                std::shared_ptr<const ShapeGeometry> shared, int maxHullCorners)
 {
     ShapeInstance s;
     if (shape.type == core::ShapeType::Mesh)
@@ -95,6 +98,22 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         // still collides as before, and a flat plate has no volume for GJK/EPA to work in.
         std::string reason;
         s.convexHull = meshAsHull && computeConvexHull(shape.vertices, g.hull, reason);
+        if (s.convexHull && maxHullCorners > 0 &&
+            g.hull.vertices.size() > static_cast<std::size_t>(maxHullCorners))
+        {
+            // At most maxHullCorners corners (collision/README.md "Meshes"): the capped hull lies
+            // inside the full one, at most hullDeviation from it. Should qhull fail on the subset
+            // (it never has), the full hull stays.
+            ConvexHull capped;
+            if (capConvexHull(g.hull, maxHullCorners, capped, reason))
+            {
+                g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
+                g.hullDeviation = hullDeviation(g.hull, capped);
+                g.hull = std::move(capped);
+            }
+        }
+        if (s.convexHull && g.fullHullCorners == 0)
+            g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
         // Only the hull's corners can be a deepest point (against a plane, a face, along an
         // axis), so the plane and feature contacts, bounds and support functions use them.
         g.meshVertices = s.convexHull ? g.hull.vertices : uniqueVertices(shape.vertices);
@@ -174,6 +193,20 @@ int hullExtremeCorner(const ShapeGeometry& s, const Vec3& u_S)
 {
     int best = 0;
     double bestValue = u_S.dot(s.meshVertices.front());
+    if (s.meshVertices.size() <= cLinearScanCorners)
+    {
+        // Few corners: one pass over them is cheaper than the seeds and the climb.
+        for (std::size_t k = 1; k < s.meshVertices.size(); ++k)
+        {
+            const double value = u_S.dot(s.meshVertices[k]);
+            if (value > bestValue)
+            {
+                best = static_cast<int>(k);
+                bestValue = value;
+            }
+        }
+        return best;
+    }
     for (const int seed : s.hullSeeds)
     {
         const double value = u_S.dot(s.meshVertices[static_cast<std::size_t>(seed)]);

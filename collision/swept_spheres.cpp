@@ -83,7 +83,8 @@ bool isSweptSphere(core::ShapeType type)
     return type == core::ShapeType::Sphere || type == core::ShapeType::Capsule;
 }
 
-bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out)
+bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out,
+                        double* separation)
 {
     const Segment one = axisOf(a);
     const Segment two = axisOf(b);
@@ -94,6 +95,8 @@ bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double m
     const Vec3 between = cb - ca;
     const double distance = between.norm();
     const double depth = a.radius + b.radius - distance;
+    if (separation != nullptr)
+        *separation = -depth;
     if (!(depth > -margin))
     {
         return false;

@@ -8,8 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <tuple>
 
@@ -125,6 +130,116 @@ TEST(ConvexHull, HillClimbFindsTheFurthestCornerInEveryDirection)
             best = std::max(best, u.dot(v));
         EXPECT_EQ(u.dot(s.meshVertices()[static_cast<std::size_t>(detail::hullExtremeCorner(s, u))]), best)
             << k;
+    }
+}
+
+// The distance (m) from p to the hull h by FCL's GJK (a point as a sphere of radius 1e-12 against
+// fcl::Convex): an oracle independent of hullSignedDistance; 0 inside.
+double fclDistance(const ConvexHull& h, const Vec3& p)
+{
+    const fcl::Convexd convex(std::make_shared<const std::vector<Vec3>>(h.vertices),
+                              static_cast<int>(h.normals.size()),
+                              std::make_shared<const std::vector<int>>(h.faces));
+    const fcl::Sphered point(1e-12);
+    fcl::Transform3d at = fcl::Transform3d::Identity();
+    at.translation() = p;
+    fcl::DistanceRequestd request;
+    fcl::DistanceResultd result;
+    return std::max(0.0, fcl::distance(&convex, fcl::Transform3d::Identity(), &point, at, request, result));
+}
+
+// A hull capped at K corners keeps K of the full hull's corners (so it lies inside it), reaches
+// every corner left out within the distance hullDeviation states (checked against FCL), and
+// grows towards the full hull as K grows; a hull of few corners is kept as it is.
+TEST(ConvexHull, CappedHullKeepsItsCornersWithinTheStatedDistance)
+{
+    ConvexHull full;
+    std::string reason;
+    ASSERT_TRUE(computeConvexHull(rockMesh(0.1, 32, 48, 0.25, 3).vertices, full, reason)) << reason;
+    ASSERT_GT(full.vertices.size(), 100u);
+    const double fullVolume = enclosedVolume(full);
+    double lastDeviation = std::numeric_limits<double>::infinity();
+    double lastVolume = 0.0;
+    for (const int k : {8, 16, 32, 64, 128})
+    {
+        ConvexHull capped;
+        ASSERT_TRUE(capConvexHull(full, k, capped, reason)) << reason;
+        EXPECT_LE(capped.vertices.size(), static_cast<std::size_t>(k));
+        EXPECT_GE(capped.vertices.size(), static_cast<std::size_t>(k) - 2) << "qhull stopped early";
+        for (const Vec3& v : capped.vertices)
+            EXPECT_NE(std::find(full.vertices.begin(), full.vertices.end(), v), full.vertices.end())
+                << "K = " << k << ": " << v.transpose() << " is not a corner of the full hull";
+        const double deviation = hullDeviation(full, capped);
+        double farthest = 0.0;
+        for (const Vec3& v : full.vertices)
+        {
+            const double d = fclDistance(capped, v);
+            EXPECT_LE(d, deviation + 1e-6) << "K = " << k;
+            farthest = std::max(farthest, d);
+        }
+        EXPECT_NEAR(farthest, deviation, 1e-6) << "K = " << k;
+        const double volume = enclosedVolume(capped);
+        EXPECT_LE(volume, fullVolume * (1.0 + 1e-12));
+        EXPECT_LE(deviation, lastDeviation) << "K = " << k;
+        EXPECT_GE(volume, lastVolume) << "K = " << k;
+        std::printf("K = %d: %zu of %zu corners, %.2f mm from the full hull, %.1f %% of its volume\n", k,
+                    capped.vertices.size(), full.vertices.size(), 1e3 * deviation,
+                    100.0 * volume / fullVolume);
+        lastDeviation = deviation;
+        lastVolume = volume;
+        if (k == cHullCorners)
+        {
+            // The detector's cap on a rough 10 cm rock (radii +-25 %): within 8 mm, 95 % of its
+            // volume.
+            EXPECT_LT(deviation, 0.008);
+            EXPECT_GT(volume, 0.95 * fullVolume);
+        }
+    }
+    ConvexHull same;
+    ASSERT_TRUE(capConvexHull(full, static_cast<int>(full.vertices.size()), same, reason));
+    EXPECT_EQ(same.vertices, full.vertices);
+    EXPECT_EQ(same.faces, full.faces);
+    EXPECT_EQ(hullDeviation(full, same), 0.0);
+    EXPECT_FALSE(capConvexHull(full, 3, same, reason));
+}
+
+// The detector's meshes keep at most cHullCorners corners unless asked for the full hull: the
+// instance says how many the full hull had and how far it reaches beyond the capped one, and a
+// rock sunk into the floor touches it with the capped hull's corners, no deeper than the full
+// hull's and at most that distance shallower.
+TEST(HullContacts, LargeHullsAreCappedUnlessAskedForTheFull)
+{
+    const core::Shape rock = rockMesh(0.1, 32, 48, 0.25, 3);
+    const detail::ShapeInstance capped = detail::makeShapeInstance(rock, 0, true, nullptr, cHullCorners);
+    const detail::ShapeInstance full = detail::makeShapeInstance(rock, 0, true, nullptr, 0);
+    ASSERT_TRUE(capped.convexHull);
+    EXPECT_LE(capped.hull().vertices.size(), static_cast<std::size_t>(cHullCorners));
+    EXPECT_EQ(capped.meshVertices(), capped.hull().vertices);
+    EXPECT_EQ(capped.geometry->fullHullCorners, static_cast<int>(full.hull().vertices.size()));
+    EXPECT_EQ(capped.geometry->hullDeviation, hullDeviation(full.hull(), capped.hull()));
+    EXPECT_GT(capped.geometry->hullDeviation, 0.0);
+    EXPECT_EQ(full.geometry->hullDeviation, 0.0);
+
+    for (int k = 0; k < 8; ++k)
+    {
+        core::Model model;
+        model.bodies.push_back(floorBody());
+        model.bodies.push_back(
+            movingMesh("rock", rock, Vec3(0, 0, 0.09), 1000.0, rotation(0.8 * k, Vec3(1, 0.3 * k, 2))));
+        ContactDetector cappedDetector(model, 2e-3);
+        ContactDetector fullDetector(model, 2e-3, MovingMeshes::FullConvexHulls);
+        std::vector<Contact> a, b;
+        cappedDetector.detect(core::initialState(model), a);
+        fullDetector.detect(core::initialState(model), b);
+        ASSERT_FALSE(a.empty());
+        ASSERT_FALSE(b.empty());
+        double deepestA = -1.0, deepestB = -1.0;
+        for (const Contact& c : a)
+            deepestA = std::max(deepestA, c.depth);
+        for (const Contact& c : b)
+            deepestB = std::max(deepestB, c.depth);
+        EXPECT_LE(deepestA, deepestB + 1e-12) << k;
+        EXPECT_GE(deepestA, deepestB - capped.geometry->hullDeviation - 1e-12) << k;
     }
 }
 
