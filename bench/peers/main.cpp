@@ -155,11 +155,17 @@ Summary summarize(const Row& row, const Row* baseline, const Settings& s)
         if (baseline && baseline->ran())
             out.ratio = spread(pairedRatios(row.microsecondsPerStep(), baseline->microsecondsPerStep()));
     }
-    out.accuracy = worstAccuracy(row.rounds);
+    // A later round that --max-seconds cut shorter than the first measured less: it has a time
+    // (and its note says where it stopped), not accuracy figures.
+    std::vector<EngineRun> complete;
+    for (const EngineRun& r : row.rounds)
+        if (!(r.timedOut && r.steps < first.steps))
+            complete.push_back(r);
+    out.accuracy = worstAccuracy(complete);
     std::vector<std::string> parts;
     if (!out.accuracy.agree)
         parts.push_back("the rounds' accuracy figures differ: the worst of " +
-                        std::to_string(row.rounds.size()) + " shown");
+                        std::to_string(complete.size()) + " shown");
     parts.push_back(note(first));
     for (std::size_t k = 1; k < row.rounds.size(); ++k)
         if (note(row.rounds[k]) != note(first))
