@@ -38,6 +38,55 @@ class Unsupported : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+// What a run asks of an engine beyond the model: the size of its fixed buffers. MuJoCo 2.2 keeps
+// its contacts and constraint rows in buffers of fixed size (nconmax, njmax), sized from the scene
+// (engine_mujoco.cpp); Bullet and ODE grow theirs as they need. ODE takes a fixed number of contact
+// points per pair of geoms (engine_ode.cpp), Bullet at most 4 per pair of bodies by design (its
+// contact manifold keeps the 4 that span the largest area).
+struct EngineOptions
+{
+    // The buffers sized from the scene, times this (>= 1): the harness doubles it and reruns when a
+    // run reports a full buffer (harness.h).
+    int bufferGrowth = 1;
+    // Test only: MuJoCo's nconmax and njmax before the growth (0: sized from the scene).
+    int mujocoContacts = 0;
+    int mujocoRows = 0;
+};
+
+// A warning an engine raised: its text (the engine's name first), the step it first came at (1:
+// the first step; 0: while the engine was set up) and in how many steps it came.
+struct EngineWarning
+{
+    std::string text;
+    long firstStep = 0;
+    long steps = 1;
+    bool bufferFull = false; // a fixed buffer was full: larger buffers (EngineOptions) may avoid it
+};
+
+// The warnings of one engine, each text once.
+class WarningLog
+{
+  public:
+    // Records `text` at `step` (see EngineWarning); a text already recorded counts one more step
+    // (when `step` is not the step it last came at). Returns its index in all().
+    std::size_t raise(const std::string& text, long step, bool bufferFull = false);
+    // One more step of the warning at `index`.
+    void again(std::size_t index, long step);
+    const std::vector<EngineWarning>& all() const { return mWarnings; }
+
+  private:
+    std::vector<EngineWarning> mWarnings;
+    std::vector<long> mLastStep; // per warning
+};
+
+// An engine failed in a way that ends its run (an ODE or MuJoCo error, which by default would end
+// the process): the run stops and its note says why.
+class EngineError : public std::runtime_error
+{
+  public:
+    using std::runtime_error::runtime_error;
+};
+
 class Engine
 {
   public:
@@ -46,6 +95,16 @@ class Engine
     virtual void step() = 0;
     // The moving bodies' poses, in Model::bodies order (static bodies keep their model pose).
     virtual void poses(std::vector<Pose>& out) = 0;
+    // Looks at what the steps so far raised that the engine only counts (MuJoCo's warning
+    // counters): called after every step, outside the timed step.
+    virtual void checkStep() {}
+    // Every warning the engine raised so far, each once (its handlers' messages as they come).
+    const std::vector<EngineWarning>& warnings() const { return mLog.all(); }
+    // Its fixed buffers as the note of a rerun with larger ones names them ("" when it has none).
+    virtual std::string bufferSizes() const { return ""; }
+
+  protected:
+    WarningLog mLog;
 };
 
 // Every engine and method of the harness, by the names the command line and the tables use:
@@ -56,7 +115,8 @@ class Engine
 //   mujoco, mujoco-rk4               MuJoCo (reduced coordinates), its default Euler integrator or RK4
 std::vector<std::string> engineNames();
 // Throws Unsupported, or std::invalid_argument for an unknown name.
-std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model);
+std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model,
+                                   const EngineOptions& options = {});
 
 // Per-engine constructors (engine_*.cpp).
 std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator);
@@ -68,6 +128,7 @@ enum class MujocoIntegrator
     Euler, // MuJoCo's default (semi-implicit Euler)
     Rk4,   // its fourth-order Runge-Kutta
 };
-std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator);
+std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator,
+                                   const EngineOptions& options = {});
 
 } // namespace frontier::peers

@@ -15,6 +15,13 @@
 // built in the frame of its principal axes (principal.h) and its pose turned back. Revolute limits:
 // btMultiBodyJointLimitConstraint on a multibody, btHingeConstraint::setLimit on rigid bodies
 // (the hinge frames built so that the initial pose is angle 0, where the model's limits count from).
+//
+// Limits and warnings: Bullet's pools and pair caches grow as needed; a contact manifold keeps at
+// most 4 points per pair of bodies by design. Bullet reports trouble through the world's debug
+// drawer (reportErrorWarning: an object whose bounding box overflows is taken out of the
+// simulation): the drawer here draws nothing and makes each report a warning of the engine.
+// btMultiBody cuts every velocity coordinate to +-100 (m_maxCoordinateVelocity, rad/s or m/s, its
+// default): checkStep makes a coordinate at that bound a warning.
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/principal.h"
@@ -65,11 +72,30 @@ btVector3 principalInertia(const core::Body& body)
     return {I(0, 0), I(1, 1), I(2, 2)};
 }
 
+// Bullet's error and warning reports (btIDebugDraw::reportErrorWarning) as warnings of the
+// engine, at the step it is taking; it draws nothing.
+class WarningDrawer final : public btIDebugDraw
+{
+  public:
+    WarningDrawer(WarningLog& log, const long& step) : mLog(log), mStep(step) {}
+    void reportErrorWarning(const char* text) override { mLog.raise(std::string("Bullet: ") + text, mStep); }
+    void drawLine(const btVector3&, const btVector3&, const btVector3&) override {}
+    void drawContactPoint(const btVector3&, const btVector3&, btScalar, int, const btVector3&) override {}
+    void draw3dText(const btVector3&, const char*) override {}
+    void setDebugMode(int) override {}
+    int getDebugMode() const override { return DBG_NoDebug; }
+
+  private:
+    WarningLog& mLog;
+    const long& mStep;
+};
+
 // Parts every Bullet world needs, owned together (Bullet keeps raw pointers to them), with the
-// collision geometry and the pair filter.
+// collision geometry, the pair filter and the warning drawer.
 struct BulletParts
 {
-    explicit BulletParts(const core::Model& m) : model(m), contacts(hasContacts(m))
+    BulletParts(const core::Model& m, WarningLog& log)
+        : model(m), contacts(hasContacts(m)), drawer(log, steps)
     {
         if (contacts)
             pairs = std::make_unique<collision::PairFilter>(m);
@@ -87,8 +113,10 @@ struct BulletParts
         }
     };
 
-    void installFilter(btCollisionWorld& world)
+    // The pair filter and the warning drawer.
+    void install(btCollisionWorld& world)
     {
+        world.setDebugDrawer(&drawer);
         if (!contacts)
             return;
         filter.pairs = pairs.get();
@@ -185,6 +213,8 @@ struct BulletParts
 
     const core::Model& model;
     bool contacts;
+    long steps = 0; // the engine's steps so far (the one it is taking)
+    WarningDrawer drawer;
     std::unique_ptr<collision::PairFilter> pairs;
     Filter filter;
     std::vector<std::unique_ptr<btCollisionShape>> shapes;
@@ -202,12 +232,12 @@ class BulletMultibody final : public Engine
 {
   public:
     explicit BulletMultibody(const core::Model& model)
-        : mModel(inPrincipalFrames(model, mRotation_BP)), mTree(jointTree(mModel)), mParts(mModel)
+        : mModel(inPrincipalFrames(model, mRotation_BP)), mTree(jointTree(mModel)), mParts(mModel, mLog)
     {
         mWorld = std::make_unique<btMultiBodyDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                             &mParts.configuration);
         mWorld->setGravity(toBt(mModel.simulation.gravity));
-        mParts.installFilter(*mWorld);
+        mParts.install(*mWorld);
         mParts.addStatics(*mWorld);
         mLinkOf.assign(mModel.bodies.size(), {-1, -1});
         std::size_t k = 0;
@@ -232,7 +262,30 @@ class BulletMultibody final : public Engine
             mWorld->removeMultiBody(b.get());
     }
 
-    void step() override { mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt); }
+    void step() override
+    {
+        ++mParts.steps;
+        mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt);
+    }
+
+    // A velocity coordinate at btMultiBody's bound was cut there.
+    void checkStep() override
+    {
+        for (const auto& b : mBodies)
+        {
+            const btScalar* v = b->getVelocityVector();
+            const btScalar bound = b->getMaxCoordinateVelocity();
+            for (int k = 0; k < 6 + b->getNumDofs(); ++k)
+                if (std::abs(v[k]) >= bound)
+                {
+                    mLog.raise("Bullet: a velocity coordinate of a btMultiBody reached its bound of " +
+                                   std::to_string(static_cast<int>(bound)) +
+                                   " (m_maxCoordinateVelocity, rad/s or m/s), which cuts it",
+                               mParts.steps);
+                    break;
+                }
+        }
+    }
 
     void poses(std::vector<Pose>& out) override
     {
@@ -423,13 +476,13 @@ class BulletSequentialImpulses final : public Engine
 {
   public:
     explicit BulletSequentialImpulses(const core::Model& model)
-        : mModel(inPrincipalFrames(model, mRotation_BP)), mParts(mModel)
+        : mModel(inPrincipalFrames(model, mRotation_BP)), mParts(mModel, mLog)
     {
         jointTree(mModel); // the scope check
         mWorld = std::make_unique<btDiscreteDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                            &mParts.configuration);
         mWorld->setGravity(toBt(mModel.simulation.gravity));
-        mParts.installFilter(*mWorld);
+        mParts.install(*mWorld);
         mParts.addStatics(*mWorld);
         for (std::size_t b = 0; b < mModel.bodies.size(); ++b)
         {
@@ -468,7 +521,11 @@ class BulletSequentialImpulses final : public Engine
         mParts.removeStatics(*mWorld);
     }
 
-    void step() override { mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt); }
+    void step() override
+    {
+        ++mParts.steps;
+        mWorld->stepSimulation(mModel.simulation.dt, 0, mModel.simulation.dt);
+    }
 
     void poses(std::vector<Pose>& out) override
     {

@@ -2,23 +2,88 @@
 // Gauss-Seidel, 20 iterations) or dWorldStep (the direct "big matrix" LCP solver), ODE's usual
 // settings otherwise (ERP 0.2, its default CFM, gyroscopic term on). Contacts: the shapes as ODE
 // geoms in one hash space (a static plane as dCreatePlane), dCollide on the pairs Frontier's filter
-// allows (up to 8 points a pair), contact joints with Coulomb friction (dContactApprox1, the
+// allows (every point it gives: below), contact joints with Coulomb friction (dContactApprox1, the
 // friction pyramid) of the scene's mu and its restitution as bounce. A mesh is its convex hull
 // (dCreateConvex). Revolute limits are the hinge's stops (dParamLoStop, dParamHiStop), its angle 0
 // at the initial pose as the model's.
+//
+// Limits and messages: the contact joints live in a joint group that grows as needed. dCollide
+// writes at most as many points per pair of geoms as it is given room for, and drops the rest
+// without a word (a convex hull on the floor gives one point per corner below it: up to 78 for a
+// foot of Debian's DRC-Hubo): the room is sized from the scene, 8 (the most of ODE's colliders of
+// primitive shapes, box-box) plus the corners of the two largest hulls, and a pair that fills it
+// anyway is a warning.
+//
+// ODE's message handlers are global and print (a message) or print and end the process (an error,
+// an internal error): here a message is a warning of the engine that is stepping (or being set
+// up), an error ends its run with an EngineError. QuickStep reorders its rows with ODE's global
+// random generator: every engine starts it from ODE's initial seed, as a new process would, so
+// that a run does not depend on the runs before it.
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/tree.h"
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
 #include <deque>
+#include <functional>
 #include <ode/ode.h>
+#include <vector>
 
 namespace frontier::peers
 {
 namespace
 {
+
+constexpr int cPrimitivePoints = 8; // the most points ODE's colliders give two primitive shapes (box-box)
+
+thread_local WarningLog* tLog = nullptr;
+thread_local long tStep = 0;
+
+std::string formatted(const char* format, va_list arguments)
+{
+    char buffer[512];
+    std::vsnprintf(buffer, sizeof buffer, format, arguments);
+    return buffer;
+}
+
+void onMessage(int number, const char* format, va_list arguments)
+{
+    const std::string text = "ODE message " + std::to_string(number) + ": " + formatted(format, arguments);
+    if (tLog)
+        tLog->raise(text, tStep);
+    else
+        std::fprintf(stderr, "%s\n", text.c_str());
+}
+
+[[noreturn]] void onError(int number, const char* format, va_list arguments)
+{
+    throw EngineError("ODE error " + std::to_string(number) + ": " + formatted(format, arguments));
+}
+
+// Sends ODE's messages to `log`, as raised at `step`, while it lives.
+class MessageScope
+{
+  public:
+    MessageScope(WarningLog& log, long step)
+    {
+        static const bool installed = []
+        {
+            dSetMessageHandler(onMessage);
+            dSetErrorHandler(onError);
+            dSetDebugHandler(onError);
+            return true;
+        }();
+        (void)installed;
+        tLog = &log;
+        tStep = step;
+    }
+    ~MessageScope() { tLog = nullptr; }
+    MessageScope(const MessageScope&) = delete;
+    MessageScope& operator=(const MessageScope&) = delete;
+};
 
 class OdeEngine final : public Engine
 {
@@ -30,6 +95,8 @@ class OdeEngine final : public Engine
         static const bool initialised = dInitODE2(0) != 0;
         if (!initialised)
             throw Unsupported("ODE failed to initialise");
+        const MessageScope scope(mLog, 0);
+        dRandSetSeed(0); // ODE's initial seed
         mWorld = dWorldCreate();
         const core::Vec3& g = model.simulation.gravity;
         dWorldSetGravity(mWorld, g.x(), g.y(), g.z());
@@ -67,6 +134,11 @@ class OdeEngine final : public Engine
         }
         for (const core::Joint& joint : model.joints)
             addJoint(joint);
+        std::sort(mHullCorners.begin(), mHullCorners.end(), std::greater<>());
+        std::size_t room = cPrimitivePoints;
+        for (std::size_t k = 0; k < std::min<std::size_t>(2, mHullCorners.size()); ++k)
+            room += mHullCorners[k];
+        mContacts.resize(room);
     }
 
     ~OdeEngine() override
@@ -81,6 +153,7 @@ class OdeEngine final : public Engine
 
     void step() override
     {
+        const MessageScope scope(mLog, ++mSteps);
         if (mSpace)
             dSpaceCollide(mSpace, this, &OdeEngine::nearCallback);
         if (mQuickStep)
@@ -141,6 +214,7 @@ class OdeEngine final : public Engine
                 for (const core::Vec3& v : hull.vertices)
                     centre_S += v / static_cast<double>(hull.vertices.size());
                 geom = convexGeom(hull, centre_S);
+                mHullCorners.push_back(hull.vertices.size());
                 break;
             }
             }
@@ -195,9 +269,13 @@ class OdeEngine final : public Engine
         const auto b = static_cast<int>(reinterpret_cast<std::intptr_t>(dGeomGetData(o2)));
         if (a == b || !self.mPairs->allowed(a, b))
             return;
-        constexpr int cMaxPoints = 8;
-        dContact contact[cMaxPoints];
-        const int n = dCollide(o1, o2, cMaxPoints, &contact[0].geom, sizeof(dContact));
+        dContact* contact = self.mContacts.data();
+        const int room = static_cast<int>(self.mContacts.size());
+        const int n = dCollide(o1, o2, room, &contact[0].geom, sizeof(dContact));
+        if (n == room)
+            self.mLog.raise("ODE: a pair of geoms filled the room for " + std::to_string(room) +
+                                " contact points given to dCollide (it may have had more)",
+                            self.mSteps);
         for (int k = 0; k < n; ++k)
         {
             contact[k].surface.mode = dContactApprox1 | dContactBounce;
@@ -268,6 +346,7 @@ class OdeEngine final : public Engine
 
     const core::Model& mModel;
     bool mQuickStep;
+    long mSteps = 0;
     dWorldID mWorld = nullptr;
     dSpaceID mSpace = nullptr;              // null: no contacts
     dJointGroupID mContactJoints = nullptr; // this step's contact joints
@@ -280,6 +359,8 @@ class OdeEngine final : public Engine
         std::vector<unsigned> polygons; // [n, i0, ..., in-1] per face
     };
     std::deque<HullArrays> mHulls;
+    std::vector<std::size_t> mHullCorners; // per convex geom: its hull's corners
+    std::vector<dContact> mContacts;       // room for one pair's contact points
 };
 
 } // namespace

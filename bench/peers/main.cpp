@@ -2,7 +2,8 @@
 // ODE, MuJoCo), with the same dt; one CSV row and one table row per engine.
 //
 //   frontier_peers --chain 100 --duration 1 --csv peers.csv --markdown peers.md
-//   frontier_peers --scene scenes/chain30.yaml --engines frontier-euler,mujoco
+//   frontier_peers --scene scenes/chain30.yaml --engines frontier-euler,mujoco --rounds 1
+//   frontier_peers --scene scenes/pileup44.yaml --rounds 5 --baseline bullet-si --variants 6
 //   frontier_peers --scene scenes/chain30.yaml --dt 0.002,0.001,0.0005 --reference-dt 5e-6 --chart out/peers
 //
 // Per engine: wall time of its steps alone (us per step and per body-step), the largest joint gap
@@ -15,11 +16,35 @@
 // runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
 // (app/sweep_chart.h), one line per engine; --chart-accuracy joint-gap or penetration puts that
 // on the y axis instead (for scenes whose trajectories are chaotic, like the pileup).
+//
+// Rounds (--rounds N, default 5): every engine's run is repeated N times, the engines alternating
+// within each round (A B C, A B C, ...), so that a shared machine's slow spells fall on all of
+// them; the time per step is the median over the rounds with its range (smallest-largest).
+// --baseline ENGINE gives each engine's time over the baseline's, taken round by round (engine in
+// round k over baseline in round k) and reported as the median and range of those ratios. The
+// accuracy columns are the first round's: every engine here is deterministic (a run starts from a
+// new engine; ODE's random generator is reset for each), which the harness checks; should the rounds
+// ever disagree, each column shows the worst of them and the note says so.
+//
+// Jittered starts (--variants N, --seed S): N more runs of every engine, each from a variant of
+// the scene whose free trees (moving bodies joined by joints and by none to the world or to a
+// static body; a free body alone) are each moved rigidly by a pseudo-random offset: up to +-2 cm
+// in x and in y, up to 5 mm upwards, and a yaw of up to +-0.05 rad about the vertical through the
+// tree's centre of mass (uniform; std::mt19937_64 seeded with S, default 1: reproducible). Joints
+// stay exactly closed; a variant that would start overlapping more deeply than the scene itself is
+// drawn again (jitter.h). The table gives the median and the largest penetration over the variants.
+//
+// Warnings: whatever an engine reports (MuJoCo's warning counters, ODE's and Bullet's messages, a
+// full buffer, a bound it cuts at; engine.h) goes into the row's note with the step it first came
+// at. MuJoCo's fixed buffers are sized from the scene; a run that still fills one is rerun with
+// them doubled (up to 8x), and the note says so.
 #include "app/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
+#include "bench/peers/harness.h"
+#include "bench/peers/jitter.h"
 #include "bench/peers/measures.h"
 #include "io/scene.h"
 
@@ -42,41 +67,34 @@ using namespace frontier::peers;
 
 constexpr double cNan = std::numeric_limits<double>::quiet_NaN();
 
+struct Settings
+{
+    RunSettings run;
+    int referenceDivisions = 16;
+    int rounds = 5;
+    std::string baseline; // an engine's name, or none
+    int variants = 0;
+    std::uint64_t seed = 1;
+};
+
+// One engine at one time step: its runs over the rounds and over the jittered variants.
 struct Row
 {
     std::string engine;
     double dt = 0.0; // s
-    long steps = 0;
-    double secondsStepping = 0.0;
-    double maxGapM = 0.0;
-    double maxPenetrationM = 0.0;
-    double energyChangeJ = cNan;
-    double energyChangePercent = cNan;
-    double errorM = cNan;
-    std::string note;
-};
+    std::vector<EngineRun> rounds;
+    std::vector<EngineRun> variants;
 
-struct Settings
-{
-    double duration = 1.0;
-    int referenceDivisions = 16;
-    double maxSeconds = 60.0;
-};
-
-// Checks that an engine starts where the model does: a translation error shows here, before any
-// step.
-void checkStartPose(const core::Model& model, const std::vector<Pose>& poses, const std::string& engine)
-{
-    for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    // us per step of every round, in round order (NaN for a round that took no step).
+    std::vector<double> microsecondsPerStep() const
     {
-        const double dx = (poses[b].position_W - model.bodies[b].position_W).norm();
-        const double dq = poses[b].orientation_WB.angularDistance(model.bodies[b].orientation_WB);
-        if (dx > 1e-9 || dq > 1e-9)
-            throw std::logic_error(engine + " starts body '" + model.bodies[b].name + "' " +
-                                   std::to_string(dx) + " m and " + std::to_string(dq) +
-                                   " rad from the model's pose");
+        std::vector<double> out;
+        for (const EngineRun& r : rounds)
+            out.push_back(1e6 * r.secondsPerStep());
+        return out;
     }
-}
+    bool ran() const { return !rounds.empty() && rounds.front().steps > 0; }
+};
 
 // The poses at the end of a Frontier rattle run at the time step referenceDt (s).
 std::vector<Pose> referenceEnd(const core::Model& model, double referenceDt, const Settings& s)
@@ -84,80 +102,12 @@ std::vector<Pose> referenceEnd(const core::Model& model, double referenceDt, con
     core::Model fine = model;
     fine.simulation.dt = referenceDt;
     const auto engine = makeFrontier(fine, core::IntegratorKind::Rattle);
-    const long steps = std::lround(s.duration / fine.simulation.dt);
+    const long steps = std::lround(s.run.duration / fine.simulation.dt);
     for (long k = 0; k < steps; ++k)
         engine->step();
     std::vector<Pose> end;
     engine->poses(end);
     return end;
-}
-
-// A message as one line of a table cell: line breaks become spaces, '|' becomes '/'.
-std::string oneLine(std::string s)
-{
-    for (char& c : s)
-        c = c == '\n' || c == '\r' ? ' ' : c == '|' ? '/' : c;
-    return s;
-}
-
-Row run(const std::string& name, const core::Model& model, const std::vector<Pose>& reference,
-        const Settings& s)
-{
-    Row row;
-    row.engine = name;
-    row.dt = model.simulation.dt;
-    std::unique_ptr<Engine> engine;
-    try
-    {
-        engine = makeEngine(name, model);
-    }
-    catch (const Unsupported& e)
-    {
-        row.note = oneLine(e.what());
-        return row;
-    }
-    const double h = model.simulation.dt;
-    const long steps = std::lround(s.duration / h);
-    std::vector<Pose> before, middle, after;
-    engine->poses(after);
-    checkStartPose(model, after, name);
-    PenetrationMeter penetration(model);
-    double firstEnergy = cNan, lastEnergy = cNan, maxKinetic = 0.0;
-    using Clock = std::chrono::steady_clock;
-    for (long k = 0; k < steps; ++k)
-    {
-        const auto t0 = Clock::now();
-        engine->step();
-        row.secondsStepping += std::chrono::duration<double>(Clock::now() - t0).count();
-        ++row.steps;
-        std::swap(before, middle);
-        std::swap(middle, after);
-        engine->poses(after);
-        row.maxGapM = std::max(row.maxGapM, jointGap(model, after));
-        row.maxPenetrationM = std::max(row.maxPenetrationM, penetration.deepest(after));
-        if (!std::isfinite(row.maxGapM))
-        {
-            row.note = "blew up at step " + std::to_string(k + 1);
-            return row;
-        }
-        if (k >= 1)
-        {
-            const Energy e = energyByDifferences(model, before, middle, after, h);
-            if (std::isnan(firstEnergy))
-                firstEnergy = e.total;
-            lastEnergy = e.total;
-            maxKinetic = std::max(maxKinetic, e.kinetic);
-        }
-        if (row.secondsStepping > s.maxSeconds)
-        {
-            row.note = "stopped after " + std::to_string(row.steps) + " steps (--max-seconds)";
-            return row;
-        }
-    }
-    row.energyChangeJ = lastEnergy - firstEnergy;
-    row.energyChangePercent = maxKinetic > 0.0 ? 100.0 * row.energyChangeJ / maxKinetic : cNan;
-    row.errorM = positionError(after, reference);
-    return row;
 }
 
 std::string number(double v, const char* format = "%.3g")
@@ -179,39 +129,114 @@ std::string csvField(const std::string& s)
     return out + "\"";
 }
 
+// What the table, the CSV and the chart show of a row.
+struct Summary
+{
+    Spread microsecondsPerStep; // over the rounds
+    Spread ratio;               // to the baseline, round by round
+    Accuracy accuracy;          // the first round's (the worst of the rounds if they differ)
+    Spread variantPenetrationM; // over the variants
+    long steps = 0;             // of the first round
+    std::string failure;        // of the first round
+    std::string note;
+};
+
+Summary summarize(const Row& row, const Row* baseline, const Settings& s)
+{
+    Summary out;
+    if (row.rounds.empty())
+        return out;
+    const EngineRun& first = row.rounds.front();
+    out.steps = first.steps;
+    out.failure = first.failure;
+    if (first.steps > 0)
+    {
+        out.microsecondsPerStep = spread(row.microsecondsPerStep());
+        if (baseline && baseline->ran())
+            out.ratio = spread(pairedRatios(row.microsecondsPerStep(), baseline->microsecondsPerStep()));
+    }
+    // A later round that --max-seconds cut shorter than the first measured less: it has a time
+    // (and its note says where it stopped), not accuracy figures.
+    std::vector<EngineRun> complete;
+    for (const EngineRun& r : row.rounds)
+        if (!(r.timedOut && r.steps < first.steps))
+            complete.push_back(r);
+    out.accuracy = worstAccuracy(complete);
+    std::vector<std::string> parts;
+    if (!out.accuracy.agree)
+        parts.push_back("the rounds' accuracy figures differ: the worst of " +
+                        std::to_string(complete.size()) + " shown");
+    parts.push_back(note(first));
+    for (std::size_t k = 1; k < row.rounds.size(); ++k)
+        if (note(row.rounds[k]) != note(first))
+            parts.push_back("round " + std::to_string(k + 1) + ": " + note(row.rounds[k]));
+    std::vector<double> depths;
+    for (std::size_t v = 0; v < row.variants.size(); ++v)
+    {
+        depths.push_back(row.variants[v].steps > 0 ? row.variants[v].maxPenetrationM : cNan);
+        if (!note(row.variants[v]).empty())
+            parts.push_back("variant " + std::to_string(v + 1) + ": " + note(row.variants[v]));
+    }
+    out.variantPenetrationM = spread(depths);
+    if (row.rounds.size() < static_cast<std::size_t>(s.rounds) && !first.refused)
+        parts.push_back("1 round");
+    for (const std::string& part : parts)
+        if (!part.empty())
+            out.note += (out.note.empty() ? "" : "; ") + part;
+    return out;
+}
+
 // Error against cost, every engine a series: the cells of a sweep (study/sweep.h) whose reference
-// is Frontier rattle at referenceDt and whose one sample time is the end of the run.
+// is Frontier rattle at referenceDt and whose one sample time is the end of the run; the cost is
+// the median over the rounds.
 void drawChart(const std::string& folder, const core::Model& model, const std::vector<Row>& rows,
-               double referenceDt, const Settings& s, app::Accuracy accuracy)
+               const std::vector<Summary>& summaries, double referenceDt, const Settings& s,
+               app::Accuracy accuracy)
 {
     app::SweepResult result;
     result.bodies = static_cast<int>(model.bodies.size());
-    result.schedule.unitS = s.duration;
+    result.schedule.unitS = s.run.duration;
     result.schedule.units = 1;
     result.schedule.sampleUnits = {1};
     result.reference.method.integrator = core::IntegratorKind::Rattle;
     result.reference.dt = referenceDt;
-    for (const Row& r : rows)
+    for (std::size_t i = 0; i < rows.size(); ++i)
     {
+        const Row& r = rows[i];
+        const Summary& m = summaries[i];
+        const double secondsPerStep = 1e-6 * m.microsecondsPerStep.median;
         app::SweepCell cell;
         cell.engine = r.engine;
         cell.dt = r.dt;
-        cell.steps = std::lround(s.duration / r.dt);
-        cell.stepsRun = r.steps;
+        cell.steps = std::lround(s.run.duration / r.dt);
+        cell.stepsRun = m.steps;
         cell.bodies = result.bodies;
-        cell.survived = r.note.empty() && std::isfinite(r.errorM);
-        cell.wallSeconds = r.secondsStepping;
-        cell.secondsPerSimSecond = r.steps ? r.secondsStepping / (static_cast<double>(r.steps) * r.dt) : cNan;
-        cell.trajectoryErrorM = r.errorM;
-        cell.finalErrorM = r.errorM;
-        cell.maxJointErrorM = r.steps ? r.maxGapM : cNan;
-        cell.maxPenetrationM = r.steps ? r.maxPenetrationM : cNan;
-        cell.failure = r.note;
+        cell.survived = m.failure.empty() && std::isfinite(m.accuracy.errorM);
+        cell.wallSeconds = m.steps ? secondsPerStep * static_cast<double>(m.steps) : 0.0;
+        cell.secondsPerSimSecond = m.steps ? secondsPerStep / r.dt : cNan;
+        cell.trajectoryErrorM = m.accuracy.errorM;
+        cell.finalErrorM = m.accuracy.errorM;
+        cell.maxJointErrorM = m.steps ? m.accuracy.maxGapM : cNan;
+        cell.maxPenetrationM = m.steps ? m.accuracy.maxPenetrationM : cNan;
+        cell.failure = m.failure;
         result.cells.push_back(cell);
     }
     std::filesystem::create_directories(folder);
     if (!app::drawSweepChart(folder, model.name, result, accuracy))
         std::cerr << "frontier_peers: gnuplot is not installed: " << folder << "/sweep.png not drawn\n";
+}
+
+// A time in us: 3 significant digits, whole numbers from 1 000 on (no exponent: a range joins two).
+std::string micros(double v)
+{
+    return v >= 999.5 ? number(v, "%.0f") : number(v);
+}
+
+// "min-max" of a spread, "" when it has none.
+std::string range(
+    const Spread& v, std::string (*format)(double) = [](double x) { return number(x); })
+{
+    return std::isnan(v.min) ? "" : format(v.min) + "-" + format(v.max);
 }
 
 } // namespace
@@ -238,7 +263,7 @@ int runHarness(int argc, char** argv)
                    "time steps (s), comma-separated, each run by every engine; default: the scene's")
         ->delimiter(',')
         ->check(CLI::PositiveNumber);
-    app.add_option("--duration", s.duration, "simulated time (s)")->check(CLI::PositiveNumber);
+    app.add_option("--duration", s.run.duration, "simulated time (s)")->check(CLI::PositiveNumber);
     app.add_option("--engines", engines, "comma-separated engine names; default: all");
     app.add_option("--reference-divisions", s.referenceDivisions, "the reference's dt is dt / this")
         ->check(CLI::Range(1, 1000));
@@ -254,8 +279,21 @@ int runHarness(int argc, char** argv)
            "the chart's y axis: error (against the reference, the default), joint-gap or penetration "
            "(largest over the run)")
         ->check(CLI::IsMember(app::accuracyNames()));
-    app.add_option("--max-seconds", s.maxSeconds, "stop an engine after this much stepping time (s)")
+    app.add_option("--max-seconds", s.run.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
+    app.add_option("--rounds", s.rounds,
+                   "runs of every engine, alternating engines within a round; the time is the median "
+                   "and range over them")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    app.add_option("--baseline", s.baseline,
+                   "an engine: every engine's time over its time, round by round (median and range)");
+    app.add_option("--variants", s.variants,
+                   "more runs of every engine from jittered starts (free trees moved by up to 2 cm, "
+                   "5 mm up, 0.05 rad of yaw): median and largest penetration over them")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
+    app.add_option("--seed", s.seed, "the jitter's seed (--variants)")->capture_default_str();
     app.add_option("--csv", csvPath, "write the rows as CSV");
     app.add_option("--markdown", markdownPath, "write the rows as a markdown table");
     CLI11_PARSE(app, argc, argv);
@@ -282,6 +320,11 @@ int runHarness(int argc, char** argv)
             }
             names.push_back(name);
         }
+    }
+    if (!s.baseline.empty() && std::find(names.begin(), names.end(), s.baseline) == names.end())
+    {
+        std::cerr << "frontier_peers: --baseline " << s.baseline << " is not among the engines run\n";
+        return 2;
     }
     core::Model model;
     try
@@ -311,6 +354,20 @@ int runHarness(int argc, char** argv)
         return 2;
     }
 
+    std::vector<core::Model> variants;
+    if (s.variants > 0 && freeTrees(model).empty())
+        std::cerr
+            << "frontier_peers: --variants: the scene has no free tree to move; every variant is the scene\n";
+    try
+    {
+        variants = jitteredVariants(model, s.variants, s.seed);
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "frontier_peers: --variants: " << e.what() << "\n";
+        return 1;
+    }
+
     std::vector<Row> rows;
     std::vector<Pose> reference;
     if (referenceDt > 0.0)
@@ -320,40 +377,111 @@ int runHarness(int argc, char** argv)
         model.simulation.dt = dt;
         if (referenceDt <= 0.0)
             reference = referenceEnd(model, dt / s.referenceDivisions, s);
+        const std::size_t first = rows.size();
         for (const std::string& name : names)
+            rows.push_back({name, dt, {}, {}});
+        // A refused engine, or one stopped by --max-seconds, runs once.
+        const auto again = [](const Row& row)
+        { return !row.rounds.front().refused && !row.rounds.front().timedOut; };
+        const auto grown = [](const Row& row)
         {
-            rows.push_back(run(name, model, reference, s));
-            const Row& r = rows.back();
-            std::cerr << name << " dt " << dt
-                      << " s: " << (r.steps ? number(1e6 * r.secondsStepping / r.steps) + " us/step" : r.note)
-                      << "\n";
+            EngineOptions options;
+            options.bufferGrowth = row.rounds.front().bufferGrowth;
+            return options;
+        };
+        const auto progress = [](const Row& row, const EngineRun& run, const std::string& what)
+        {
+            std::cerr << row.engine << " dt " << row.dt << " s " << what << ": "
+                      << (run.steps ? number(1e6 * run.secondsPerStep()) + " us/step" : run.failure) << "\n";
+        };
+        for (int round = 0; round < s.rounds; ++round)
+            for (std::size_t i = first; i < rows.size(); ++i)
+            {
+                Row& row = rows[i];
+                if (round > 0 && !again(row))
+                    continue;
+                // The first round finds the buffers the scene needs; the others use them.
+                EngineRun run = round == 0 ? runGrowingBuffers(row.engine, model, reference, s.run)
+                                           : runEngine(row.engine, model, reference, s.run, grown(row));
+                if (round > 0)
+                    run.grownAfter = row.rounds.front().grownAfter;
+                progress(row, run, "round " + std::to_string(round + 1));
+                row.rounds.push_back(std::move(run));
+            }
+        for (std::size_t v = 0; v < variants.size(); ++v)
+        {
+            variants[v].simulation.dt = dt;
+            for (std::size_t i = first; i < rows.size(); ++i)
+            {
+                Row& row = rows[i];
+                if (!again(row))
+                    continue;
+                EngineRun run = runGrowingBuffers(row.engine, variants[v], {}, s.run, grown(row));
+                progress(row, run, "variant " + std::to_string(v + 1));
+                row.variants.push_back(std::move(run));
+            }
         }
     }
 
+    std::vector<Summary> summaries;
+    for (const Row& row : rows)
+    {
+        const auto baseline = std::find_if(
+            rows.begin(), rows.end(), [&](const Row& r) { return r.engine == s.baseline && r.dt == row.dt; });
+        summaries.push_back(summarize(row, baseline == rows.end() ? nullptr : &*baseline, s));
+    }
+
     const int n = static_cast<int>(model.bodies.size());
+    const bool ratios = !s.baseline.empty();
+    const bool jittered = s.variants > 0;
     std::ostringstream csv, md;
     csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,max_penetration_m,"
-           "energy_change_j,"
-           "energy_change_percent_of_max_kinetic,error_m,note\n";
+           "energy_change_j,energy_change_percent_of_max_kinetic,error_m,rounds,us_per_step_min,us_per_step_"
+           "max,"
+           "baseline,ratio_to_baseline,ratio_min,ratio_max,variants,variant_penetration_median_m,"
+           "variant_penetration_max_m,note\n";
     for (std::size_t i = 0; i < rows.size(); ++i)
     {
         const Row& r = rows[i];
+        const Summary& m = summaries[i];
+        const Accuracy& a = m.accuracy;
         if (i == 0 || r.dt != rows[i - 1].dt)
-            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt
-               << " s\n\n"
-               << "| engine | us/step | us/body-step | joint gap (m) | penetration (m) | energy change (% of "
-                  "max "
-                  "kinetic) | error at "
-               << number(s.duration, "%g") << " s (m) | note |\n|---|---|---|---|---|---|---|---|\n";
-        const double perStep = r.steps ? 1e6 * r.secondsStepping / r.steps : cNan;
+        {
+            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt << " s";
+            if (s.rounds > 1)
+                md << ", time: the median and range of " << s.rounds << " rounds";
+            md << "\n\n| engine | us/step | range";
+            if (ratios)
+                md << " | over " << s.baseline << " | range";
+            md << " | us/body-step | joint gap (m) | penetration (m)";
+            if (jittered)
+                md << " | penetration over " << s.variants << (s.variants == 1 ? " variant" : " variants")
+                   << ": median (max) (m)";
+            md << " | energy change (% of max kinetic) | error at " << number(s.run.duration, "%g")
+               << " s (m) | note |\n|---|---|---";
+            md << (ratios ? "|---|---" : "") << "|---|---|---" << (jittered ? "|---" : "")
+               << "|---|---|---|\n";
+        }
+        const double perStep = m.microsecondsPerStep.median;
+        const double gap = m.steps ? a.maxGapM : cNan;
+        const double depth = m.steps ? a.maxPenetrationM : cNan;
         csv << csvField(model.name) << "," << n << "," << r.engine << "," << number(r.dt, "%g") << ","
-            << r.steps << "," << number(perStep) << "," << number(perStep / n) << ","
-            << number(r.steps ? r.maxGapM : cNan) << "," << number(r.steps ? r.maxPenetrationM : cNan) << ","
-            << number(r.energyChangeJ) << "," << number(r.energyChangePercent) << "," << number(r.errorM)
-            << "," << csvField(r.note) << "\n";
-        md << "| " << r.engine << " | " << number(perStep) << " | " << number(perStep / n) << " | "
-           << number(r.steps ? r.maxGapM : cNan) << " | " << number(r.steps ? r.maxPenetrationM : cNan)
-           << " | " << number(r.energyChangePercent) << " | " << number(r.errorM) << " | " << r.note
+            << m.steps << "," << number(perStep) << "," << number(perStep / n) << "," << number(gap) << ","
+            << number(depth) << "," << number(a.energyChangeJ) << "," << number(a.energyChangePercent) << ","
+            << number(a.errorM) << "," << r.rounds.size() << "," << number(m.microsecondsPerStep.min) << ","
+            << number(m.microsecondsPerStep.max) << "," << s.baseline << "," << number(m.ratio.median) << ","
+            << number(m.ratio.min) << "," << number(m.ratio.max) << "," << r.variants.size() << ","
+            << number(m.variantPenetrationM.median) << "," << number(m.variantPenetrationM.max) << ","
+            << csvField(m.note) << "\n";
+        md << "| " << r.engine << " | " << micros(perStep) << " | " << range(m.microsecondsPerStep, micros);
+        if (ratios)
+            md << " | " << number(m.ratio.median) << " | " << range(m.ratio);
+        md << " | " << number(perStep / n) << " | " << number(gap) << " | " << number(depth);
+        if (jittered)
+            md << " | " << number(m.variantPenetrationM.median)
+               << (std::isnan(m.variantPenetrationM.max) ? ""
+                                                         : " (" + number(m.variantPenetrationM.max) + ")");
+        md << " | " << number(a.energyChangePercent) << " | " << number(a.errorM) << " | " << m.note
            << " |\n";
     }
     std::cout << md.str();
@@ -362,8 +490,8 @@ int runHarness(int argc, char** argv)
     if (!markdownPath.empty())
         std::ofstream(markdownPath) << md.str();
     if (!chartDir.empty())
-        drawChart(chartDir, model, rows, referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions,
-                  s, chartAccuracy);
+        drawChart(chartDir, model, rows, summaries,
+                  referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions, s, chartAccuracy);
     return 0;
 }
 

@@ -3,10 +3,14 @@
 // near Frontier's fine-step RATTLE reference (dt / 16), with the joint gaps each kind of method
 // allows: reduced coordinates none, Frontier round-off, the others the drift their solvers leave.
 // With contacts: a box dropped on the floor and a sphere sliding into rolling, in every engine.
+// The harness: MuJoCo's buffers sized from the scene, an engine's warnings in the row's note, runs
+// that repeat exactly, the rounds' statistics, and the jittered starts.
 #include "app/scene_loading.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
+#include "bench/peers/harness.h"
+#include "bench/peers/jitter.h"
 #include "bench/peers/measures.h"
 
 #include <cmath>
@@ -389,6 +393,276 @@ TEST(Peers, RealRobotFromUrdfAgreesInEveryEngine)
         const bool reduced = name == "bullet-multibody" || name.rfind("mujoco", 0) == 0;
         const bool frontier = name.rfind("frontier", 0) == 0;
         EXPECT_LT(gap, reduced ? 1e-12 : frontier ? 1e-9 : 5e-3);
+    }
+}
+
+// A floor and rows x columns free boxes (0.1 m cubes, 1 kg), 0.15 m apart, 1 mm above it: they
+// land on it after 14 ms (sqrt(2 h / g)) at 0.14 m/s.
+core::Model boxesOnTheFloor(int rows, int columns)
+{
+    core::Shape cube;
+    cube.type = core::ShapeType::Box;
+    cube.size = core::Vec3(0.1, 0.1, 0.1);
+    const double mass = 1.0;
+    core::Model model = onFloor(cube, mass, (mass * 0.02 / 12.0) * core::Mat3::Identity(), 0.05 + 1e-3);
+    model.name = "boxes on the floor";
+    const core::Body box = model.bodies[1];
+    model.bodies.resize(1);
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < columns; ++j)
+        {
+            core::Body b = box;
+            b.name = "box" + std::to_string(i) + "_" + std::to_string(j);
+            b.position_W = core::Vec3(0.15 * i, 0.15 * j, box.position_W.z());
+            model.bodies.push_back(b);
+        }
+    return model;
+}
+
+// 30 boxes landing on the floor make 120 contacts in MuJoCo (4 per box), more than MuJoCo 2.2's
+// default buffer of 100 (nconmax): with that buffer (given as a test-only option) the contacts that
+// do not fit are dropped, MuJoCo says so in its warning counters from the landing on, the note of
+// the run carries it with that step, and the boxes left without contacts fall through the floor.
+// With the buffers sized from the scene nothing is full and the boxes rest on the floor within
+// MuJoCo's compliance.
+TEST(PeersHarness, MujocoBuffersAreSizedFromTheSceneAndAFullOneIsInTheNote)
+{
+    const core::Model model = boxesOnTheFloor(5, 6);
+    RunSettings settings;
+    settings.duration = 0.2;
+
+    const EngineRun sized = runEngine("mujoco", model, {}, settings);
+    EXPECT_TRUE(sized.failure.empty()) << sized.failure;
+    EXPECT_TRUE(sized.warnings.empty()) << note(sized);
+    EXPECT_LT(sized.maxPenetrationM, 3e-3);
+
+    EngineOptions oldDefault;
+    oldDefault.mujocoContacts = 100;
+    oldDefault.mujocoRows = 500;
+    const EngineRun full = runEngine("mujoco", model, {}, settings, oldDefault);
+    ASSERT_EQ(full.warnings.size(), 1u) << note(full);
+    const EngineWarning& w = full.warnings[0];
+    EXPECT_TRUE(w.bufferFull);
+    EXPECT_GE(w.firstStep, 14); // the landing
+    EXPECT_LE(w.firstStep, 17);
+    EXPECT_EQ(w.steps, full.steps - w.firstStep + 1); // full at every step after it
+    const std::string text = note(full);
+    EXPECT_NE(text.find("contact buffer is full"), std::string::npos) << text;
+    EXPECT_NE(text.find("nconmax above 100"), std::string::npos) << text;
+    EXPECT_NE(text.find("(step " + std::to_string(w.firstStep) + " first, "), std::string::npos) << text;
+    EXPECT_GT(full.maxPenetrationM, 0.05); // the rest of 0.2 s in free fall: 0.15 m
+}
+
+// A run that fills a buffer is rerun with larger ones (doubled each time) until none is full, and
+// its note says what it grew after; a growth limit that leaves the buffer full leaves the warning
+// in the note.
+TEST(PeersHarness, AFullBufferIsGrownAndTheRunRepeated)
+{
+    const core::Model model = boxesOnTheFloor(5, 6);
+    RunSettings settings;
+    settings.duration = 0.05;
+    EngineOptions tiny; // 10 contacts and 40 rows before growth; 120 and 480 needed
+    tiny.mujocoContacts = 10;
+    tiny.mujocoRows = 40;
+
+    settings.maxBufferGrowth = 16;
+    const EngineRun grown = runGrowingBuffers("mujoco", model, {}, settings, tiny);
+    EXPECT_EQ(grown.bufferGrowth, 16);
+    EXPECT_TRUE(grown.warnings.empty()) << note(grown);
+    EXPECT_NE(note(grown).find("rerun with buffers grown 16x (nconmax 160, njmax 640) after: MuJoCo: "
+                               "Pre-allocated contact buffer is full. Increase nconmax above 10."),
+              std::string::npos)
+        << note(grown);
+
+    settings.maxBufferGrowth = 4;
+    const EngineRun limited = runGrowingBuffers("mujoco", model, {}, settings, tiny);
+    EXPECT_EQ(limited.bufferGrowth, 4);
+    ASSERT_FALSE(limited.warnings.empty());
+    EXPECT_NE(note(limited).find("Increase nconmax above 40"), std::string::npos) << note(limited);
+}
+
+// btMultiBody cuts every velocity coordinate at 100 (rad/s or m/s) by default: a box spinning at
+// 150 rad/s without gravity spins at 100 rad/s in Bullet multibody after one step, and the run's
+// warnings say so from that step on; the other engines keep its spin and warn of nothing.
+TEST(PeersHarness, BulletMultibodysVelocityBoundIsAWarning)
+{
+    core::Model model;
+    model.name = "spinning box";
+    model.simulation.dt = 0.001;
+    model.simulation.gravity = core::Vec3::Zero();
+    core::Body box;
+    box.name = "box";
+    box.mass = 1.0;
+    box.inertia_B = (0.02 / 12.0) * core::Mat3::Identity();
+    box.angularVelocity_W = core::Vec3(0.0, 0.0, 150.0);
+    model.bodies.push_back(box);
+    for (const std::string& name : engineNames())
+    {
+        SCOPED_TRACE(name);
+        const auto engine = makeEngine(name, model);
+        std::vector<Pose> before, after;
+        engine->poses(before);
+        engine->step();
+        engine->checkStep();
+        engine->poses(after);
+        const double spin =
+            after[0].orientation_WB.angularDistance(before[0].orientation_WB) / model.simulation.dt;
+        if (name == "bullet-multibody")
+        {
+            EXPECT_NEAR(spin, 100.0, 1e-6);
+            ASSERT_EQ(engine->warnings().size(), 1u);
+            EXPECT_EQ(engine->warnings()[0].firstStep, 1);
+            EXPECT_NE(engine->warnings()[0].text.find("bound of 100"), std::string::npos);
+        }
+        else
+        {
+            EXPECT_NEAR(spin, 150.0, 1.0); // ODE turns by its first-order quaternion update: 149.7
+            EXPECT_TRUE(engine->warnings().empty());
+        }
+    }
+}
+
+// Every engine runs the same model twice to the same figures (a pile of three boxes, where ODE's
+// QuickStep reorders its rows at random): the harness reports the first round's accuracy.
+TEST(PeersHarness, RunsRepeatExactlyInEveryEngine)
+{
+    core::Model model = boxesOnTheFloor(1, 3);
+    for (std::size_t b = 2; b < model.bodies.size(); ++b)
+        model.bodies[b].position_W = model.bodies[1].position_W + core::Vec3(0.02 * b, 0.01, 0.1 * (b - 1));
+    RunSettings settings;
+    settings.duration = 0.1;
+    for (const std::string& name : engineNames())
+    {
+        SCOPED_TRACE(name);
+        const EngineRun a = runEngine(name, model, {}, settings);
+        const EngineRun b = runEngine(name, model, {}, settings);
+        EXPECT_TRUE(worstAccuracy({a, b}).agree);
+        EXPECT_EQ(a.maxPenetrationM, b.maxPenetrationM);
+        EXPECT_EQ(a.energyChangeJ, b.energyChangeJ);
+    }
+}
+
+TEST(PeersHarness, RoundsGiveTheMedianAndRangeAndPairedRatios)
+{
+    const Spread odd = spread({30.0, 10.0, 20.0});
+    EXPECT_EQ(odd.median, 20.0);
+    EXPECT_EQ(odd.min, 10.0);
+    EXPECT_EQ(odd.max, 30.0);
+    EXPECT_EQ(spread({4.0, 1.0, 3.0, 2.0}).median, 2.5);
+    // Round 2 was slow for both engines: pair by pair the engine takes twice the baseline's time in
+    // every round, where the medians alone would say 11 / 6.
+    const std::vector<double> engine = {10.0, 20.0, 12.0}, baseline = {5.0, 10.0, 6.0};
+    const Spread ratio = spread(pairedRatios(engine, baseline));
+    EXPECT_EQ(ratio.median, 2.0);
+    EXPECT_EQ(ratio.min, 2.0);
+    EXPECT_EQ(ratio.max, 2.0);
+
+    EngineRun first, second;
+    first.maxGapM = 1e-3;
+    second.maxGapM = 2e-3;
+    first.energyChangeJ = -1.0;
+    second.energyChangeJ = 0.5;
+    const Accuracy worst = worstAccuracy({first, second});
+    EXPECT_FALSE(worst.agree);
+    EXPECT_EQ(worst.maxGapM, 2e-3);
+    EXPECT_EQ(worst.energyChangeJ, -1.0);
+}
+
+// Two free chains of 4 boxes and one of 3 hung from the world: a variant moves each free chain rigidly
+// within the bounds (its joints stay closed), the hung chain not at all; the same seed gives the
+// same variants, another seed others.
+TEST(PeersHarness, JitteredVariantsMoveFreeTreesRigidlyWithinTheBounds)
+{
+    core::Model model = chainOfBoxes(3);
+    const core::Model free = freeChain();
+    for (int copy = 0; copy < 2; ++copy)
+    {
+        const int offset = static_cast<int>(model.bodies.size());
+        for (core::Body body : free.bodies)
+        {
+            body.position_W += core::Vec3(0.0, 0.5 * (copy + 1), 0.0);
+            body.angularVelocity_W = core::Vec3(0.0, 0.0, 1.0);
+            model.bodies.push_back(body);
+        }
+        for (core::Joint joint : free.joints)
+        {
+            joint.parent += offset;
+            joint.child += offset;
+            model.joints.push_back(joint);
+        }
+    }
+    for (std::size_t b = 3; b < model.bodies.size(); ++b) // the free chains turn as one body about z
+        model.bodies[b].velocity_W =
+            core::Vec3::UnitZ().cross(model.bodies[b].position_W - model.bodies[3].position_W);
+    ASSERT_EQ(freeTrees(model).size(), 2u);
+    const JitterBounds bounds;
+    const std::vector<core::Model> variants = jitteredVariants(model, 6, 7);
+    ASSERT_EQ(variants.size(), 6u);
+    std::vector<Pose> start(model.bodies.size());
+    for (const core::Model& v : variants)
+    {
+        for (std::size_t b = 0; b < start.size(); ++b)
+            start[b] = {v.bodies[b].position_W, v.bodies[b].orientation_WB};
+        EXPECT_LT(jointGap(model, start), 1e-12);
+        for (std::size_t b = 0; b < 3; ++b)
+            EXPECT_EQ(v.bodies[b].position_W, model.bodies[b].position_W);
+        for (const std::vector<int>& tree : freeTrees(model))
+        {
+            const auto first = static_cast<std::size_t>(tree.front());
+            const core::Quat turn =
+                v.bodies[first].orientation_WB * model.bodies[first].orientation_WB.conjugate();
+            const double yaw = 2.0 * std::atan2(turn.z(), turn.w());
+            EXPECT_LE(std::abs(yaw), bounds.yawRad + 1e-12);
+            EXPECT_LT(std::abs(turn.x()) + std::abs(turn.y()), 1e-12); // about z only
+            core::Vec3 shift = core::Vec3::Zero();                     // of the centre of mass
+            double mass = 0.0;
+            for (int b : tree)
+            {
+                const auto i = static_cast<std::size_t>(b);
+                shift += model.bodies[i].mass * (v.bodies[i].position_W - model.bodies[i].position_W);
+                mass += model.bodies[i].mass;
+            }
+            shift /= mass;
+            EXPECT_LE(std::abs(shift.x()), bounds.horizontalM + 1e-12);
+            EXPECT_LE(std::abs(shift.y()), bounds.horizontalM + 1e-12);
+            EXPECT_GE(shift.z(), -1e-12);
+            EXPECT_LE(shift.z(), bounds.upM + 1e-12);
+            EXPECT_GT(shift.norm(), 0.0);
+            // The velocities turn with the tree: still one rigid motion about z.
+            for (int b : tree)
+            {
+                const core::Body& body = v.bodies[static_cast<std::size_t>(b)];
+                const core::Vec3 rigid =
+                    v.bodies[first].velocity_W +
+                    core::Vec3::UnitZ().cross(body.position_W - v.bodies[first].position_W);
+                EXPECT_LT((body.velocity_W - rigid).norm(), 1e-12);
+            }
+        }
+    }
+    const std::vector<core::Model> again = jitteredVariants(model, 6, 7);
+    const std::vector<core::Model> other = jitteredVariants(model, 6, 8);
+    for (std::size_t k = 0; k < variants.size(); ++k)
+    {
+        EXPECT_EQ(again[k].bodies.back().position_W, variants[k].bodies.back().position_W);
+        EXPECT_NE(other[k].bodies.back().position_W, variants[k].bodies.back().position_W);
+    }
+}
+
+// Two free boxes 1 mm apart: about half the jittered starts would push them into each other (10 of
+// the first 20 draws with seed 1), and every variant kept starts without overlap.
+TEST(PeersHarness, JitteredVariantsThatWouldOverlapAreDrawnAgain)
+{
+    core::Model model = boxesOnTheFloor(1, 2);
+    for (core::Body& body : model.bodies)
+        body.position_W.z() += 0.01; // above the floor
+    model.bodies[2].position_W = model.bodies[1].position_W + core::Vec3(0.0, 0.101, 0.0);
+    PenetrationMeter meter(model);
+    std::vector<Pose> start(model.bodies.size());
+    for (const core::Model& v : jitteredVariants(model, 20, 1))
+    {
+        for (std::size_t b = 0; b < start.size(); ++b)
+            start[b] = {v.bodies[b].position_W, v.bodies[b].orientation_WB};
+        EXPECT_EQ(meter.deepest(start), 0.0);
     }
 }
 
