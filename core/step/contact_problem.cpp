@@ -37,7 +37,7 @@ void buildLoopBlocks(const Model& model, const FrontierLayout& layout, const Row
 
 ContactProblem::ContactProblem(const Model& model, const StepOptions& options, const FrontierLayout& layout,
                                ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver), mDelassus(layout, solver)
+    : mModel(model), mOptions(options), mSolver(solver), mDelassus(layout, solver)
 {
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {

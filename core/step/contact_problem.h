@@ -79,7 +79,6 @@ class ContactProblem
 
     const Model& mModel;
     const StepOptions& mOptions;
-    const FrontierLayout& mLayout;
     ImpulseSolver& mSolver;
     std::vector<int> mLimitedJoints;  // joints with limits (revolute, prismatic)
     std::vector<int> mFrictionJoints; // joints with Coulomb friction (a bounded drive row per coordinate)
