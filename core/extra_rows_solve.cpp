@@ -84,20 +84,26 @@ Eigen::Vector3d updateContact(const ContactPivots& p, const double* v, const Eig
 
 // How far one block's velocities and impulses are from its conditions (m/s or rad/s): see
 // conditionResidual. v and lambda point at the block's rows. NaN when one of them is not finite.
-double blockResidual(const ExtraBlock& block, const double* v, const double* lambda)
+inline double blockResidual(const ExtraBlock& block, const double* v, const double* lambda)
 {
     const int n = block.count;
-    const Eigen::Map<const Eigen::VectorXd> velocity(v, n);
-    const Eigen::Map<const Eigen::VectorXd> impulse(lambda, n);
-    if (!velocity.allFinite() || !impulse.allFinite())
+    double sum = 0.0; // finite exactly when every value is (NaN and infinities propagate)
+    for (int q = 0; q < n; ++q)
+    {
+        sum += v[q] * 0.0 + lambda[q] * 0.0;
+    }
+    if (sum != 0.0)
     {
         return std::numeric_limits<double>::quiet_NaN();
     }
     if (block.kind == ExtraBlock::Kind::Loop)
     {
-        return (velocity + block.compliance.head(n).cwiseProduct(impulse) - block.target.head(n))
-            .cwiseAbs()
-            .maxCoeff();
+        double worst = 0.0;
+        for (int q = 0; q < n; ++q)
+        {
+            worst = std::max(worst, std::abs(v[q] + block.compliance(q) * lambda[q] - block.target(q)));
+        }
+        return worst;
     }
     if (block.kind == ExtraBlock::Kind::Drive)
     {
@@ -114,22 +120,18 @@ double blockResidual(const ExtraBlock& block, const double* v, const double* lam
     if (n == 3)
     {
         // Friction inside the cone: no slip. On its edge: slip opposite to the friction.
-        const Eigen::Vector2d slip(v[1], v[2]);
-        const Eigen::Vector2d friction(lambda[1], lambda[2]);
         const double limit = block.friction * lambda[0];
-        const double magnitude = friction.norm();
         if (!(limit > 0.0))
         {
             return worst; // no normal impulse, no friction: any slip
         }
+        const double magnitude = std::sqrt(lambda[1] * lambda[1] + lambda[2] * lambda[2]);
         if (magnitude < (1.0 - 1e-9) * limit)
         {
-            worst = std::max(worst, slip.cwiseAbs().maxCoeff());
+            return std::max({worst, std::abs(v[1]), std::abs(v[2])});
         }
-        else
-        {
-            worst = std::max(worst, (slip + slip.norm() / magnitude * friction).cwiseAbs().maxCoeff());
-        }
+        const double scale = std::sqrt(v[1] * v[1] + v[2] * v[2]) / magnitude;
+        return std::max({worst, std::abs(v[1] + scale * lambda[1]), std::abs(v[2] + scale * lambda[2])});
     }
     return worst;
 }
@@ -348,8 +350,9 @@ class IslandSweeper
         }
     }
 
-    // One Gauss-Seidel sweep over the island's blocks, in order.
-    SweepChange sweep()
+    // One Gauss-Seidel sweep over the island's blocks, in order; a block whose residual is at most
+    // skipBelow (m/s) is settled and left as it is.
+    SweepChange sweep(double skipBelow)
     {
         SweepChange sweep;
         double v[6];
@@ -358,6 +361,10 @@ class IslandSweeper
             const ExtraBlock& block = mBlocks[static_cast<std::size_t>(b)];
             const int o = block.offset;
             velocity(b, v);
+            if (skipBelow > 0.0 && blockResidual(block, v, mLambda.data() + o) <= skipBelow)
+            {
+                continue;
+            }
             if (block.kind == ExtraBlock::Kind::Contact && block.count == 3)
             {
                 const Eigen::Vector3d old = mLambda.segment<3>(o);
@@ -534,7 +541,7 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
         double residual = 0.0;
         for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
         {
-            const SweepChange moved = sweeper.sweep();
+            const SweepChange moved = sweeper.sweep(settings.settledRatio * tolerance);
             ++stats.sweeps;
             residual = sweeper.residual();
             if (residual <= tolerance)
