@@ -190,6 +190,19 @@ struct ContactSettings
     std::vector<std::array<int, 2>> ignore; // body index pairs that never collide
 };
 
+// The contact tolerances a model may ask (a scene file's `contact:` keys, bench/peers' Frontier
+// variants): tolerance in [0, cMaxContactTolerance] m/s (more would let resting bodies slide),
+// relativeTolerance a fraction in [0, 1). NaN is neither.
+inline constexpr double cMaxContactTolerance = 1.0; // m/s
+inline bool isContactTolerance(double mPerS)
+{
+    return mPerS >= 0.0 && mPerS <= cMaxContactTolerance;
+}
+inline bool isRelativeContactTolerance(double fraction)
+{
+    return fraction >= 0.0 && fraction < 1.0;
+}
+
 enum class SolverKind
 {
     Linear,

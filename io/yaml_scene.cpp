@@ -23,9 +23,6 @@ const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact", 
 const std::vector<std::string> cReferenceKeys = {"csv", "body"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
-// The largest contact velocity tolerance a scene may ask (m/s): more would let resting bodies slide.
-constexpr double cMaxContactTolerance = 1.0;
-
 const std::vector<std::string> cContactKeys = {"friction", "restitution", "tolerance", "relative_tolerance",
                                                "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
@@ -110,7 +107,7 @@ YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::C
     if (map.has("tolerance"))
     {
         contact.tolerance = map.number("tolerance");
-        if (!(contact.tolerance >= 0.0 && contact.tolerance <= cMaxContactTolerance))
+        if (!core::isContactTolerance(contact.tolerance))
         {
             map.failAtValue("tolerance", "expected a velocity in [0, 1] m/s for " + map.what("tolerance") +
                                              ", got " + describeNode(map.get("tolerance")));
@@ -119,7 +116,7 @@ YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::C
     if (map.has("relative_tolerance"))
     {
         contact.relativeTolerance = map.number("relative_tolerance");
-        if (!(contact.relativeTolerance >= 0.0 && contact.relativeTolerance < 1.0))
+        if (!core::isRelativeContactTolerance(contact.relativeTolerance))
         {
             map.failAtValue("relative_tolerance", "expected a fraction in [0, 1) for " +
                                                       map.what("relative_tolerance") + ", got " +
