@@ -149,6 +149,7 @@ CheckedReference loadReference(const CheckOptions& options)
     const io::TrajectorySettings header = io::readTrajectorySettings(out.trajectory, ref);
     out.model.simulation.dt = header.simulation.dt;
     Method::of(header.simulation).applyTo(out.model.simulation);
+    header.contact.applyTo(out.model.contact);
     out.steps = header.steps;
     out.recordEvery = header.recordEvery;
     indexReferenceRows(options.scene, ref, out);

@@ -26,7 +26,8 @@ struct RunOptions
     std::optional<std::string> solver;
     std::optional<int> pgsIterations;
     std::optional<std::string> integrator;
-    std::string trajectory; // CSV path, empty: none
+    core::ContactTolerances contact; // --contact-tolerance, --contact-relative-tolerance
+    std::string trajectory;          // CSV path, empty: none
     int recordEvery = 1;
     std::string stats;    // JSON path, empty: none
     std::string joints;   // joints CSV path (io/joints_file.h), empty: none
@@ -98,6 +99,7 @@ struct SweepOptions
     std::vector<std::string> solvers;     // linear, dense, pgs, pgs:K; default: linear
     std::vector<std::string> integrators; // euler, rattle, rattle4; default: euler, rattle
     std::optional<double> duration;       // s; default: the scene's, at most 2 s
+    core::ContactTolerances contact;      // every run but the reference's
     std::string out;                      // folder for sweep.csv, sweep.png, sweep.gp, sweep.dat
     std::string referenceCsv;             // rows t,x,y,z of one body's centre of mass, not a run's
     std::string referenceBody;            // that body's name

@@ -113,6 +113,39 @@ void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
                      "(gains from the joint's inertia and effort limit)");
 }
 
+// --contact-tolerance and --contact-relative-tolerance: when the contact solve stops (docs/method.md
+// §5), over the scene's contact.tolerance and contact.relative_tolerance; ranges by core's rule.
+void addContactToleranceOptions(CLI::App& command, frontier::core::ContactTolerances& o,
+                                const std::string& which)
+{
+    // Core's rule on a value numberIn (checked first) found to be a finite number.
+    const auto inRange = [](bool (*rule)(double), const char* expected)
+    {
+        return CLI::Validator(
+            [rule, expected](std::string& value)
+            {
+                return rule(std::strtod(value.c_str(), nullptr))
+                           ? std::string()
+                           : std::string("expected ") + expected + ", got " + value;
+            },
+            "");
+    };
+    command
+        .add_option("--contact-tolerance", o.tolerance,
+                    "velocity (m/s) to which each contact, limit and loop row is solved " + which +
+                        " (default: the scene's contact.tolerance, else 3e-5); larger is faster and "
+                        "lets bodies sink and creep more")
+        ->check(numberIn(0.0, 1.0, false, false))
+        ->check(inRange(frontier::core::isContactTolerance, "a velocity from 0 to 1 m/s"));
+    command
+        .add_option("--contact-relative-tolerance", o.relativeTolerance,
+                    "fraction of a contact island's starting residual to which it is solved " + which +
+                        ", if larger than --contact-tolerance (default: the scene's "
+                        "contact.relative_tolerance, else 0)")
+        ->check(numberIn(0.0, 1.0, false, false))
+        ->check(inRange(frontier::core::isRelativeContactTolerance, "a fraction from 0 to below 1"));
+}
+
 void addRunOptions(CLI::App& run, RunOptions& o)
 {
     run.add_option("scenes", o.scenes, "scene .yaml or model .urdf; several make a batch run in parallel")
@@ -129,6 +162,7 @@ void addRunOptions(CLI::App& run, RunOptions& o)
                    "or joint limits is one rattle step, first order across an impact; order 4 for "
                    "conservative joints only: damping, friction, servos are first order)")
         ->check(CLI::IsMember({"euler", "rattle", "rattle4"}));
+    addContactToleranceOptions(run, o.contact, "every step");
     run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here")->check(cPath);
     run.add_option("--record-every", o.recordEvery, "trajectory, joints and contacts rows every K steps")
         ->transform(cEvery);
@@ -178,6 +212,7 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
         .add_option("--duration", o.duration,
                     "simulated time of every run (s); default: the scene's duration, at most 2 s")
         ->check(cDuration);
+    addContactToleranceOptions(sweep, o.contact, "in every run but the reference's");
     sweep
         .add_option(
             "--out", o.out,

@@ -48,6 +48,7 @@ long applyOverrides(const RunOptions& options, core::Model& model)
         method.integrator = *core::integratorFromName(*options.integrator);
     }
     method.applyTo(sim);
+    options.contact.applyTo(model.contact);
     if (options.steps)
     {
         sim.duration = static_cast<double>(*options.steps) * sim.dt;

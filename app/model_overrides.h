@@ -18,8 +18,9 @@ inline constexpr double cMaxSteps = 1e12;
 // when dt or duration is not a finite positive number or the count exceeds cMaxSteps.
 long checkedStepCount(double duration, double dt, const std::string& source);
 
-// Applies --dt, --duration/--steps, --solver, --pgs-iterations, --integrator. Returns the step
-// count; throws io::InputError when it is not a sane one (checkedStepCount).
+// Applies --dt, --duration/--steps, --solver, --pgs-iterations, --integrator and the contact
+// tolerances. Returns the step count; throws io::InputError when it is not a sane one
+// (checkedStepCount).
 long applyOverrides(const RunOptions& options, core::Model& model);
 
 // "" when `steps` of `dt` (s) simulate the duration asked (s); else a note that the run simulates

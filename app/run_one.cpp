@@ -170,6 +170,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         io::TrajectoryMetadata metadata =
             io::makeTrajectoryMetadata(scene, model.simulation, steps, options.recordEvery);
         io::addUrdfOptions(metadata, options.urdf);
+        io::addContactTolerances(metadata, options.contact);
         for (const std::string* file : {&out.trajectory, &out.joints, &out.contacts, &out.stats})
         {
             if (!file->empty())

@@ -44,6 +44,7 @@ int sweepCommand(const SweepOptions& options)
         printLoadWarnings(loaded.report);
         model = std::move(loaded.model);
         grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
+        grid.contact = options.contact;
         requestedS = study::sweepDuration(model, options.duration);
         if (!options.referenceCsv.empty()) // the command line's, else the scene's `reference:`
         {

@@ -203,6 +203,19 @@ inline bool isRelativeContactTolerance(double fraction)
     return fraction >= 0.0 && fraction < 1.0;
 }
 
+// Contact tolerances asked over a scene's (the flags of run and sweep, a trajectory's header):
+// each one given replaces the setting's value.
+struct ContactTolerances
+{
+    std::optional<double> tolerance;         // m/s
+    std::optional<double> relativeTolerance; // of the starting residual
+    void applyTo(ContactSettings& contact) const
+    {
+        contact.tolerance = tolerance.value_or(contact.tolerance);
+        contact.relativeTolerance = relativeTolerance.value_or(contact.relativeTolerance);
+    }
+};
+
 enum class SolverKind
 {
     Linear,

@@ -313,6 +313,8 @@ Trajectory readTrajectory(const std::string& path)
 
 namespace
 {
+constexpr const char* cContactTolerance = "contact_tolerance";
+constexpr const char* cContactRelativeTolerance = "contact_relative_tolerance";
 constexpr const char* cFixedBase = "fixed_base";
 constexpr const char* cFreeBase = "free_base";
 constexpr const char* cDropHeight = "drop_height";
@@ -320,6 +322,18 @@ constexpr const char* cSelfCollision = "self_collision";
 constexpr const char* cPackagePath = "package_path"; // entries joined by ';'
 constexpr const char* cHold = "hold";
 } // namespace
+
+void addContactTolerances(TrajectoryMetadata& metadata, const core::ContactTolerances& contact)
+{
+    if (contact.tolerance)
+    {
+        metadata.emplace_back(cContactTolerance, formatNumber(*contact.tolerance));
+    }
+    if (contact.relativeTolerance)
+    {
+        metadata.emplace_back(cContactRelativeTolerance, formatNumber(*contact.relativeTolerance));
+    }
+}
 
 void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options)
 {
@@ -442,6 +456,25 @@ TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const st
                                                             std::numeric_limits<long>::max()));
     out.recordEvery = static_cast<int>(*detail::parseWholeNumber(requireKey(trajectory, path, "record_every"),
                                                                  1, std::numeric_limits<int>::max()));
+    const auto contactValue = [&](const char* key, bool (*rule)(double), const char* expected)
+    {
+        std::optional<double> value;
+        if (const auto it = trajectory.metadata.find(key); it != trajectory.metadata.end())
+        {
+            value = detail::parseFiniteNumber(it->second);
+            if (!value || !rule(*value))
+            {
+                throw InputError(path, line, 0,
+                                 std::string("the header's ") + key + "=" + it->second + " is not " +
+                                     expected);
+            }
+        }
+        return value;
+    };
+    out.contact.tolerance =
+        contactValue(cContactTolerance, core::isContactTolerance, "a velocity from 0 to 1 m/s");
+    out.contact.relativeTolerance = contactValue(cContactRelativeTolerance, core::isRelativeContactTolerance,
+                                                 "a fraction from 0 to below 1");
     return out;
 }
 

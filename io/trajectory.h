@@ -32,6 +32,10 @@ TrajectoryMetadata makeTrajectoryMetadata(const std::string& scenePath,
                                           const core::SimulationSettings& settings, long steps,
                                           int recordEvery);
 
+// The contact tolerance flags given (contact_tolerance, contact_relative_tolerance), so `check`
+// solves contacts as the run did; readTrajectorySettings reads them back.
+void addContactTolerances(TrajectoryMetadata& metadata, const core::ContactTolerances& contact);
+
 // The robot flags as key=value pairs of the header (only those given), so `check` and `render`
 // load the scene as the run did (urdfOptionsFrom reads them back).
 void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options);
@@ -83,6 +87,7 @@ struct TrajectorySettings
     core::SimulationSettings simulation; // dt, solver, pgsIterations, integrator; the rest default
     long steps = 0;                      // steps of the run
     int recordEvery = 1;                 // a row block every recordEvery steps
+    core::ContactTolerances contact;     // the run's contact tolerance flags (absent: the scene's)
 };
 
 // Throws InputError (path, the comment line) when a pair is missing or its value cannot be read.

@@ -514,6 +514,8 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     }
 
     // The cells, one after another.
+    grid.contact.applyTo(work.contact);
+    result.contact = grid.contact;
     for (core::IntegratorKind integrator : grid.integrators)
     {
         for (const Method& solver : grid.solvers)

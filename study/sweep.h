@@ -131,8 +131,9 @@ struct SweepResult
 {
     SweepSchedule schedule;
     SweepReference reference;
-    std::vector<SweepCell> cells; // integrators x solvers x time steps (coarse to fine)
-    int bodies = 0;               // moving bodies
+    std::vector<SweepCell> cells;    // integrators x solvers x time steps (coarse to fine)
+    int bodies = 0;                  // moving bodies
+    core::ContactTolerances contact; // the cells' contact tolerances over the scene's (SweepGrid)
 };
 
 // Progress of the sweep: the run being done ("reference" or a cell's label), its index among
@@ -144,6 +145,7 @@ struct SweepGrid
     std::vector<double> dts;     // s, coarse to fine
     std::vector<Method> solvers; // solver and options (the integrator is taken from integrators)
     std::vector<core::IntegratorKind> integrators;
+    core::ContactTolerances contact; // over the scene's in every cell (the reference keeps the scene's)
 };
 
 // The grid from the lists as given (empty: the defaults, defaultTimeSteps of the scene's dt,

@@ -130,7 +130,16 @@ void writeSweepCsv(const std::string& path, const std::string& scene, const Swee
                        " duration=" + exact(result.schedule.durationS()) +
                        " samples=" + std::to_string(result.schedule.sampleUnits.size()) +
                        " reference_integrator=" + core::integratorName(r.method.integrator) +
-                       " reference_solver=" + r.method.solverLabel() + " reference_dt=" + exact(r.dt) + "\n";
+                       " reference_solver=" + r.method.solverLabel() + " reference_dt=" + exact(r.dt);
+    if (result.contact.tolerance)
+    {
+        text += " contact_tolerance=" + exact(*result.contact.tolerance);
+    }
+    if (result.contact.relativeTolerance)
+    {
+        text += " contact_relative_tolerance=" + exact(*result.contact.relativeTolerance);
+    }
+    text += "\n";
     text += cSweepCsvHeader;
     text += "\n";
     for (const SweepCell& c : result.cells)

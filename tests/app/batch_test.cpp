@@ -240,6 +240,43 @@ TEST(Batch, ASettingsMapTheSceneLacksIsMade)
         << bad.err;
 }
 
+// The contact solve's tolerances are scene paths of a plan (contact.tolerance,
+// contact.relative_tolerance): each job's trajectory is, row for row, that of `frontier run` with
+// --contact-tolerance of the same value, and the two values give different runs.
+TEST(Batch, ContactTolerancesVaryAsRunsFlags)
+{
+    TestDir dir;
+    const std::string plan = dir.write("tolerance_plan.yaml", "scenes: [" + scenesDir() +
+                                                                  "/box_stack.yaml]\n"
+                                                                  "duration: 0.3\n"
+                                                                  "outputs: [trajectory]\n"
+                                                                  "vary:\n"
+                                                                  "  contact.tolerance: [3e-5, 0.01]\n");
+    const std::string out = dir.out("tolerance");
+    const Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 2U);
+    const auto rows = [](const std::string& path)
+    {
+        const std::string text = readText(path);
+        return text.substr(text.find('\n') + 1); // without the header line that names the files
+    };
+    const std::vector<std::string> values = {"3e-5", "0.01"};
+    for (std::size_t k = 0; k < jobs.size(); ++k)
+    {
+        const std::string single = dir.out("run" + std::to_string(k) + ".csv");
+        const Result run =
+            dir.run("run " + scenesDir() + "/box_stack.yaml --duration 0.3 --contact-tolerance " + values[k] +
+                    " --trajectory " + shellQuote(single) + " --quiet");
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        EXPECT_EQ(rows(out + "/jobs/" + jobs[k] + "/trajectory.csv"), rows(single)) << values[k];
+    }
+    EXPECT_NE(rows(out + "/jobs/" + jobs[0] + "/trajectory.csv"),
+              rows(out + "/jobs/" + jobs[1] + "/trajectory.csv"));
+}
+
 // The scene paths reach the physics: a box on a 20 degree incline sticks at friction 0.5 and
 // slides at 0.1 (expectStickThenSlide); the ball starts where
 // its position says; a seed moves the free ball by at most `perturb.position` per axis, the same

@@ -221,6 +221,42 @@ TEST(SweepCli, ChartAccuracyPutsThePenetrationOnTheYAxis)
     EXPECT_NE(bad.err.find("joint-gap"), std::string::npos) << bad.err;
 }
 
+// --contact-tolerance applies to every cell but not to the reference: the same sweep of the box
+// stack at 1e-2 m/s has the same reference, written in sweep.csv's first line with the cells'
+// tolerance, and cells whose boxes sink deeper than at the scene's 3e-5 m/s.
+TEST(SweepCli, ContactToleranceLoosensTheCellsNotTheReference)
+{
+    TestDir dir;
+    const auto sweep = [&](const std::string& name, const std::string& flags)
+    {
+        const std::string out = dir.out(name);
+        const Result r =
+            dir.run("sweep scenes/box_stack.yaml --duration 0.5 --dt 0.002,0.001 --integrator euler "
+                    "--chart-accuracy penetration --out " +
+                    shellQuote(out) + flags);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return lines(readText(out + "/sweep.csv"));
+    };
+    const std::vector<std::string> tight = sweep("tight", "");
+    const std::vector<std::string> loose = sweep("loose", " --contact-tolerance 1e-2");
+    ASSERT_EQ(tight.size(), 4u);
+    ASSERT_EQ(loose.size(), 4u);
+    const std::vector<std::string> header = fields(tight[1]);
+    const auto column = [&](const std::string& name)
+    { return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+    for (std::size_t i = 2; i < 4; ++i)
+    {
+        const std::vector<std::string> a = fields(tight[i]);
+        const std::vector<std::string> b = fields(loose[i]);
+        EXPECT_GT(std::stod(b[column("max_penetration_m")]), std::stod(a[column("max_penetration_m")]))
+            << tight[i] << "\n"
+            << loose[i];
+        EXPECT_NE(b[column("trajectory_error_m")], a[column("trajectory_error_m")]);
+    }
+    // The first line describes the reference, the same, and then the cells' tolerance.
+    EXPECT_EQ(tight[0] + " contact_tolerance=0.01", loose[0]);
+}
+
 } // namespace
 
 // --reference-csv: the errors are measured against rows the methods did not make. A box falling
