@@ -485,9 +485,11 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
         "    set terminal png size 1100,720 enhanced\n"
         "}\n"
         "set output out\n"
-        // gnuplot's line types repeat after 8: four more colours, so that up to 12 series differ.
+        // gnuplot's line types repeat after 8: eight more colours, so that up to 16 series differ.
         "set linetype 9 lc rgb '#8c564b'\nset linetype 10 lc rgb '#7f7f7f'\n"
         "set linetype 11 lc rgb '#bcbd22'\nset linetype 12 lc rgb '#17becf'\n"
+        "set linetype 13 lc rgb '#e377c2'\nset linetype 14 lc rgb '#393b79'\n"
+        "set linetype 15 lc rgb '#637939'\nset linetype 16 lc rgb '#ad494a'\n"
         "set title " +
         titleExpression +
         " noenhanced\n"

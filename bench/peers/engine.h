@@ -17,6 +17,7 @@
 #include "core/model.h"
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -107,6 +108,33 @@ class Engine
     WarningLog mLog;
 };
 
+// An engine's accuracy settings (unset: the engine's default), spelled after its name on the
+// command line and in the tables, each as `:KEY=VALUE` (parseEngine):
+//   frontier-*       tolerance=M/S   the contact tolerance (core::ContactSettings::tolerance; 3e-5)
+//                    relative=F      the relative one (ContactSettings::relativeTolerance; 0)
+//   bullet-si        iterations=N    the sequential-impulse solver's iterations (10)
+//   ode-quick        iterations=N    QuickStep's iterations (20)
+//   mujoco, mujoco-rk4  iterations=N  the constraint solver's iterations (100)
+//                    tolerance=T     its tolerance (1e-8)
+// e.g. `bullet-si:iterations=20`, `frontier-euler:tolerance=1e-3:relative=0.01`.
+struct EngineSettings
+{
+    std::optional<int> iterations;
+    std::optional<double> tolerance;
+    std::optional<double> relative;
+};
+
+// A spelling split into the engine's name and its settings.
+struct EngineSpelling
+{
+    std::string engine; // one of engineNames()
+    EngineSettings settings;
+};
+
+// Reads NAME[:KEY=VALUE]...; throws std::invalid_argument naming the engine and the key for an
+// unknown engine or key, a key given twice, or a value out of the key's range.
+EngineSpelling parseEngine(const std::string& spelling);
+
 // Every engine and method of the harness, by the names the command line and the tables use:
 //   frontier-euler, frontier-rattle  Frontier, `linear` solver (exact, O(n))
 //   bullet-multibody                 Bullet 3 btMultiBody (reduced coordinates, Featherstone)
@@ -114,21 +142,25 @@ class Engine
 //   ode-quick, ode-direct            ODE dWorldQuickStep (20 it.) and dWorldStep (direct LCP)
 //   mujoco, mujoco-rk4               MuJoCo (reduced coordinates), its default Euler integrator or RK4
 std::vector<std::string> engineNames();
-// Throws Unsupported, or std::invalid_argument for an unknown name.
-std::unique_ptr<Engine> makeEngine(const std::string& name, const core::Model& model,
+// The engine of a spelling (a name, or a name with settings: parseEngine). Throws Unsupported, or
+// std::invalid_argument for a spelling parseEngine refuses.
+std::unique_ptr<Engine> makeEngine(const std::string& spelling, const core::Model& model,
                                    const EngineOptions& options = {});
 
 // Per-engine constructors (engine_*.cpp).
-std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator);
+std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator,
+                                     const EngineSettings& settings = {});
 std::unique_ptr<Engine> makeBulletMultibody(const core::Model& model);
-std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model);
-std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep);
+std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model,
+                                                     const EngineSettings& settings = {});
+std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep,
+                                const EngineSettings& settings = {});
 enum class MujocoIntegrator
 {
     Euler, // MuJoCo's default (semi-implicit Euler)
     Rk4,   // its fourth-order Runge-Kutta
 };
 std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator,
-                                   const EngineOptions& options = {});
+                                   const EngineOptions& options = {}, const EngineSettings& settings = {});
 
 } // namespace frontier::peers

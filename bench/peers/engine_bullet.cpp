@@ -1,7 +1,7 @@
 // bench/peers/engine_bullet.cpp: Bullet 3 (double precision), two ways: btMultiBody (reduced
 // coordinates, Featherstone's articulated-body algorithm) and rigid bodies with constraints solved
-// by sequential impulses (btSequentialImpulseConstraintSolver, 10 iterations), each with Bullet's
-// usual settings except damping, which is set to the scene's (none): btMultiBody's default of 0.04
+// by sequential impulses (btSequentialImpulseConstraintSolver, 10 iterations or a spelling's), each with
+// Bullet's usual settings except damping, which is set to the scene's (none): btMultiBody's default of 0.04
 // would take energy out of a scene that has no damping.
 //
 // Contacts: each body's shapes as one Bullet shape (a btCompoundShape when it has several or one
@@ -475,12 +475,14 @@ class BulletMultibody final : public Engine
 class BulletSequentialImpulses final : public Engine
 {
   public:
-    explicit BulletSequentialImpulses(const core::Model& model)
+    BulletSequentialImpulses(const core::Model& model, const EngineSettings& settings)
         : mModel(inPrincipalFrames(model, mRotation_BP)), mParts(mModel, mLog)
     {
         jointTree(mModel); // the scope check
         mWorld = std::make_unique<btDiscreteDynamicsWorld>(&mParts.dispatcher, &mParts.broadphase, &mSolver,
                                                            &mParts.configuration);
+        if (settings.iterations)
+            mWorld->getSolverInfo().m_numIterations = *settings.iterations;
         mWorld->setGravity(toBt(mModel.simulation.gravity));
         mParts.install(*mWorld);
         mParts.addStatics(*mWorld);
@@ -615,9 +617,9 @@ std::unique_ptr<Engine> makeBulletMultibody(const core::Model& model)
     return std::make_unique<BulletMultibody>(model);
 }
 
-std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model)
+std::unique_ptr<Engine> makeBulletSequentialImpulses(const core::Model& model, const EngineSettings& settings)
 {
-    return std::make_unique<BulletSequentialImpulses>(model);
+    return std::make_unique<BulletSequentialImpulses>(model, settings);
 }
 
 } // namespace frontier::peers

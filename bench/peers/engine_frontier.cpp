@@ -1,6 +1,6 @@
 // bench/peers/engine_frontier.cpp: Frontier itself, the `linear` (exact, O(n)) solver, with its
 // contact detection (collision::ContactDetector at the frontier program's margin) when the scene's
-// bodies can collide.
+// bodies can collide; a spelling's tolerance and relative set the model's contact tolerances.
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "core/simulator.h"
@@ -14,8 +14,8 @@ namespace
 class FrontierEngine final : public Engine
 {
   public:
-    FrontierEngine(const core::Model& model, core::IntegratorKind integrator)
-        : mModel(withIntegrator(model, integrator)),
+    FrontierEngine(const core::Model& model, core::IntegratorKind integrator, const EngineSettings& settings)
+        : mModel(withIntegrator(model, integrator, settings)),
           mDetector(hasContacts(mModel) ? std::make_unique<collision::ContactDetector>(
                                               mModel, collision::contactMargin(mModel.simulation.dt))
                                         : nullptr),
@@ -33,10 +33,13 @@ class FrontierEngine final : public Engine
     }
 
   private:
-    static core::Model withIntegrator(core::Model model, core::IntegratorKind integrator)
+    static core::Model withIntegrator(core::Model model, core::IntegratorKind integrator,
+                                      const EngineSettings& settings)
     {
         model.simulation.integrator = integrator;
         model.simulation.solver = core::SolverKind::Linear;
+        model.contact.tolerance = settings.tolerance.value_or(model.contact.tolerance);
+        model.contact.relativeTolerance = settings.relative.value_or(model.contact.relativeTolerance);
         return model;
     }
 
@@ -48,9 +51,10 @@ class FrontierEngine final : public Engine
 
 } // namespace
 
-std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator)
+std::unique_ptr<Engine> makeFrontier(const core::Model& model, core::IntegratorKind integrator,
+                                     const EngineSettings& settings)
 {
-    return std::make_unique<FrontierEngine>(model, integrator);
+    return std::make_unique<FrontierEngine>(model, integrator, settings);
 }
 
 } // namespace frontier::peers

@@ -349,7 +349,8 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
 class MujocoEngine final : public Engine
 {
   public:
-    MujocoEngine(const core::Model& model, MujocoIntegrator integrator, const EngineOptions& options)
+    MujocoEngine(const core::Model& model, MujocoIntegrator integrator, const EngineOptions& options,
+                 const EngineSettings& settings)
         : mTree(jointTree(model))
     {
         Buffers buffers = mujocoBuffers(model, options.bufferGrowth);
@@ -369,6 +370,10 @@ class MujocoEngine final : public Engine
         std::filesystem::remove(file);
         if (!mModel)
             throw Unsupported(std::string("MuJoCo refused the model: ") + error);
+        if (settings.iterations)
+            mModel->opt.iterations = *settings.iterations;
+        if (settings.tolerance)
+            mModel->opt.tolerance = *settings.tolerance;
         mData.reset(mj_makeData(mModel.get()));
         for (const TreeLink& link : mTree)
             if (isRoot(link) && link.joint < 0) // a free root: its tree's rigid velocity (tree.h)
@@ -465,9 +470,9 @@ class MujocoEngine final : public Engine
 } // namespace
 
 std::unique_ptr<Engine> makeMujoco(const core::Model& model, MujocoIntegrator integrator,
-                                   const EngineOptions& options)
+                                   const EngineOptions& options, const EngineSettings& settings)
 {
-    return std::make_unique<MujocoEngine>(model, integrator, options);
+    return std::make_unique<MujocoEngine>(model, integrator, options, settings);
 }
 
 } // namespace frontier::peers

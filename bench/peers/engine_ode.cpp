@@ -1,11 +1,10 @@
 // bench/peers/engine_ode.cpp: ODE 0.16 (double precision), with dWorldQuickStep (projected
-// Gauss-Seidel, 20 iterations) or dWorldStep (the direct "big matrix" LCP solver), ODE's usual
-// settings otherwise (ERP 0.2, its default CFM, gyroscopic term on). Contacts: the shapes as ODE
-// geoms in one hash space (a static plane as dCreatePlane), dCollide on the pairs Frontier's filter
-// allows (every point it gives: below), contact joints with Coulomb friction (dContactApprox1, the
-// friction pyramid) of the scene's mu and its restitution as bounce. A mesh is its convex hull
-// (dCreateConvex). Revolute limits are the hinge's stops (dParamLoStop, dParamHiStop), its angle 0
-// at the initial pose as the model's.
+// Gauss-Seidel, 20 iterations or a spelling's) or dWorldStep (the direct "big matrix" LCP solver), ODE's
+// usual settings otherwise (ERP 0.2, its default CFM, gyroscopic term on). Contacts: the shapes as ODE geoms
+// in one hash space (a static plane as dCreatePlane), dCollide on the pairs Frontier's filter allows (every
+// point it gives: below), contact joints with Coulomb friction (dContactApprox1, the friction pyramid) of the
+// scene's mu and its restitution as bounce. A mesh is its convex hull (dCreateConvex). Revolute limits are
+// the hinge's stops (dParamLoStop, dParamHiStop), its angle 0 at the initial pose as the model's.
 //
 // Limits and messages: the contact joints live in a joint group that grows as needed. dCollide
 // writes at most as many points per pair of geoms as it is given room for, and drops the rest
@@ -88,7 +87,8 @@ class MessageScope
 class OdeEngine final : public Engine
 {
   public:
-    OdeEngine(const core::Model& model, bool quickStep) : mModel(model), mQuickStep(quickStep)
+    OdeEngine(const core::Model& model, bool quickStep, const EngineSettings& settings)
+        : mModel(model), mQuickStep(quickStep)
     {
         jointTree(model); // the scope check
         const bool contacts = hasContacts(model);
@@ -100,6 +100,8 @@ class OdeEngine final : public Engine
         mWorld = dWorldCreate();
         const core::Vec3& g = model.simulation.gravity;
         dWorldSetGravity(mWorld, g.x(), g.y(), g.z());
+        if (settings.iterations)
+            dWorldSetQuickStepNumIterations(mWorld, *settings.iterations);
         if (contacts)
         {
             mSpace = dHashSpaceCreate(nullptr);
@@ -365,9 +367,9 @@ class OdeEngine final : public Engine
 
 } // namespace
 
-std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep)
+std::unique_ptr<Engine> makeOde(const core::Model& model, bool quickStep, const EngineSettings& settings)
 {
-    return std::make_unique<OdeEngine>(model, quickStep);
+    return std::make_unique<OdeEngine>(model, quickStep, settings);
 }
 
 } // namespace frontier::peers

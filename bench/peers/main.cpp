@@ -15,7 +15,13 @@
 // engine that exceeds --max-seconds stops early and says so. With several time steps every engine
 // runs at each, and --chart DIR draws error against cost as `frontier sweep` draws its chart
 // (app/sweep_chart.h), one line per engine; --chart-accuracy joint-gap or penetration puts that
-// on the y axis instead (for scenes whose trajectories are chaotic, like the pileup).
+// on the y axis instead (for scenes whose trajectories are chaotic, like the pileup; with
+// --variants, the penetration is the median over the jittered starts).
+//
+// Engine settings: an engine in --engines (and --baseline) may carry accuracy settings after its
+// name, each as :KEY=VALUE (engine.h: parseEngine), and is then a row and a line of its own named
+// by that spelling: --engines frontier-euler,frontier-euler:relative=0.01,bullet-si:iterations=50.
+// An unknown engine or key, or a value out of range, exits with code 2 and names them.
 //
 // Rounds (--rounds N, default 5): every engine's run is repeated N times, the engines alternating
 // within each round (A B C, A B C, ...), so that a shared machine's slow spells fall on all of
@@ -217,7 +223,10 @@ void drawChart(const std::string& folder, const core::Model& model, const std::v
         cell.trajectoryErrorM = m.accuracy.errorM;
         cell.finalErrorM = m.accuracy.errorM;
         cell.maxJointErrorM = m.steps ? m.accuracy.maxGapM : cNan;
-        cell.maxPenetrationM = m.steps ? m.accuracy.maxPenetrationM : cNan;
+        // With jittered starts, the median over them: one start's landing is chance.
+        cell.maxPenetrationM = !m.steps             ? cNan
+                               : r.variants.empty() ? m.accuracy.maxPenetrationM
+                                                    : m.variantPenetrationM.median;
         cell.failure = m.failure;
         result.cells.push_back(cell);
     }
@@ -264,7 +273,10 @@ int runHarness(int argc, char** argv)
         ->delimiter(',')
         ->check(CLI::PositiveNumber);
     app.add_option("--duration", s.run.duration, "simulated time (s)")->check(CLI::PositiveNumber);
-    app.add_option("--engines", engines, "comma-separated engine names; default: all");
+    app.add_option("--engines", engines,
+                   "comma-separated engines, each a name with any settings as :KEY=VALUE "
+                   "(frontier-euler:tolerance=1e-3:relative=0.01, bullet-si:iterations=20; engine.h); "
+                   "default: every engine at its defaults");
     app.add_option("--reference-divisions", s.referenceDivisions, "the reference's dt is dt / this")
         ->check(CLI::Range(1, 1000));
     app.add_option("--reference-dt", referenceDt,
@@ -287,7 +299,8 @@ int runHarness(int argc, char** argv)
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
     app.add_option("--baseline", s.baseline,
-                   "an engine: every engine's time over its time, round by round (median and range)");
+                   "an engine of --engines (with its settings): every engine's time over its time, round by "
+                   "round (median and range)");
     app.add_option("--variants", s.variants,
                    "more runs of every engine from jittered starts (free trees moved by up to 2 cm, "
                    "5 mm up, 0.05 rad of yaw): median and largest penetration over them")
@@ -302,20 +315,20 @@ int runHarness(int argc, char** argv)
         std::cerr << "frontier_peers: give --scene FILE or --chain N (one of them)\n";
         return 2;
     }
-    const std::vector<std::string> all = engineNames();
-    std::vector<std::string> names = all;
+    std::vector<std::string> names = engineNames();
     if (!engines.empty())
     {
         names.clear();
         std::stringstream list(engines);
         for (std::string name; std::getline(list, name, ',');)
         {
-            if (std::find(all.begin(), all.end(), name) == all.end())
+            try
             {
-                std::cerr << "frontier_peers: unknown engine '" << name << "' (expected one of";
-                for (const auto& a : all)
-                    std::cerr << " " << a;
-                std::cerr << ")\n";
+                parseEngine(name);
+            }
+            catch (const std::invalid_argument& e)
+            {
+                std::cerr << "frontier_peers: --engines: " << e.what() << "\n";
                 return 2;
             }
             names.push_back(name);

@@ -4,7 +4,8 @@
 // allows: reduced coordinates none, Frontier round-off, the others the drift their solvers leave.
 // With contacts: a box dropped on the floor and a sphere sliding into rolling, in every engine.
 // The harness: MuJoCo's buffers sized from the scene, an engine's warnings in the row's note, runs
-// that repeat exactly, the rounds' statistics, and the jittered starts.
+// that repeat exactly, the rounds' statistics, the jittered starts, and engines' settings (their
+// spellings, and that each acts).
 #include "app/scene_loading.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
@@ -664,6 +665,104 @@ TEST(PeersHarness, JitteredVariantsThatWouldOverlapAreDrawnAgain)
             start[b] = {v.bodies[b].position_W, v.bodies[b].orientation_WB};
         EXPECT_EQ(meter.deepest(start), 0.0);
     }
+}
+
+// Spellings of engines with settings (engine.h): the settings they give, and for a bad one an
+// std::invalid_argument that names the engine and the key.
+TEST(PeersHarness, EngineSpellingsParseAndBadOnesNameTheEngineAndTheKey)
+{
+    const EngineSpelling frontier = parseEngine("frontier-euler:tolerance=1e-3:relative=0.01");
+    EXPECT_EQ(frontier.engine, "frontier-euler");
+    EXPECT_EQ(frontier.settings.tolerance, 1e-3);
+    EXPECT_EQ(frontier.settings.relative, 0.01);
+    EXPECT_FALSE(frontier.settings.iterations);
+    const EngineSpelling bullet = parseEngine("bullet-si:iterations=20");
+    EXPECT_EQ(bullet.engine, "bullet-si");
+    EXPECT_EQ(bullet.settings.iterations, 20);
+    EXPECT_FALSE(bullet.settings.tolerance);
+    const EngineSpelling mujoco = parseEngine("mujoco-rk4:tolerance=1e-6:iterations=5");
+    EXPECT_EQ(mujoco.engine, "mujoco-rk4");
+    EXPECT_EQ(mujoco.settings.iterations, 5);
+    EXPECT_EQ(mujoco.settings.tolerance, 1e-6);
+    EXPECT_EQ(parseEngine("ode-quick:iterations=50").settings.iterations, 50);
+    for (const std::string& name : engineNames())
+    {
+        const EngineSpelling plain = parseEngine(name);
+        EXPECT_EQ(plain.engine, name);
+        EXPECT_FALSE(plain.settings.iterations || plain.settings.tolerance || plain.settings.relative);
+    }
+    const auto refused = [](const std::string& spelling, const std::string& message)
+    {
+        SCOPED_TRACE(spelling);
+        try
+        {
+            parseEngine(spelling);
+            ADD_FAILURE() << "accepted";
+        }
+        catch (const std::invalid_argument& e)
+        {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    refused("bullet-si:iters=20", "engine 'bullet-si': unknown key 'iters' (expected iterations=)");
+    refused("bullet-si:iterations=0", "engine 'bullet-si': bad value '0' for iterations");
+    refused("bullet-si:iterations=2.5", "engine 'bullet-si': bad value '2.5' for iterations");
+    refused("bullet-si:iterations=", "engine 'bullet-si': bad value '' for iterations");
+    refused("bullet-si:iterations", "engine 'bullet-si': bad value '' for iterations");
+    refused("bullet-si:iterations=5:iterations=6", "engine 'bullet-si': iterations given twice");
+    refused("ode-quick:iterations= 5", "engine 'ode-quick': bad value ' 5' for iterations");
+    refused("frontier-euler:relative=1", "engine 'frontier-euler': bad value '1' for relative");
+    refused("frontier-euler:relative=-0.1", "engine 'frontier-euler': bad value '-0.1' for relative");
+    refused("frontier-euler:tolerance=2",
+            "engine 'frontier-euler': bad value '2' for tolerance (expected m/s in [0, 1])");
+    refused("frontier-rattle:tolerance=nan", "engine 'frontier-rattle': bad value 'nan' for tolerance");
+    refused("frontier-euler:tolerance=1e-3x", "engine 'frontier-euler': bad value '1e-3x' for tolerance");
+    refused("frontier-euler:iterations=5", "engine 'frontier-euler': unknown key 'iterations'");
+    refused("mujoco:tolerance=inf", "engine 'mujoco': bad value 'inf' for tolerance");
+    refused("ode-direct:iterations=5", "engine 'ode-direct': unknown key 'iterations' (it has no settings)");
+    refused("bullet:iterations=5", "unknown engine 'bullet'");
+    refused("frontier-euler,bullet-si", "unknown engine 'frontier-euler,bullet-si'");
+    EXPECT_THROW(makeEngine("bullet-si:iters=20", boxesOnTheFloor(1, 1)), std::invalid_argument);
+}
+
+// A tower of n cubes of 10 cm and 1 kg on the floor, each 0.5 mm above the one below.
+core::Model towerOfBoxes(int n)
+{
+    core::Model model = boxesOnTheFloor(1, 1);
+    model.name = "tower of boxes";
+    for (int k = 1; k < n; ++k)
+    {
+        core::Body box = model.bodies[1];
+        box.name = "box" + std::to_string(k);
+        box.position_W.z() += 0.1005 * k;
+        model.bodies.push_back(box);
+    }
+    return model;
+}
+
+// The settings act on a tower of 5 boxes standing for 1 s, seen in the deepest overlap: Bullet's
+// sequential impulses with 1 iteration let the boxes sink into each other deeper than with 50
+// (0.42 mm against 0.25 mm), and Frontier's contact solve, stopped at 0.5 m/s, leaves the tower
+// sinking (1.6 mm against 0.066 mm at its default 3e-5 m/s), as it does, less, stopped at half of
+// each step's starting residual (0.38 mm). A run and its row go by the spelling.
+TEST(PeersHarness, EngineSettingsChangeWhatTheySet)
+{
+    const core::Model model = towerOfBoxes(5);
+    RunSettings settings;
+    settings.duration = 1.0;
+    const auto deepest = [&](const std::string& spelling)
+    {
+        const EngineRun run = runEngine(spelling, model, {}, settings);
+        EXPECT_EQ(run.engine, spelling);
+        EXPECT_EQ(run.failure, "") << spelling;
+        return run.maxPenetrationM;
+    };
+    EXPECT_GT(deepest("bullet-si:iterations=1"), 1.3 * deepest("bullet-si:iterations=50"));
+    const double exact = deepest("frontier-euler");
+    EXPECT_LT(exact, 1e-4);
+    EXPECT_GT(deepest("frontier-euler:tolerance=0.5"), 10.0 * exact);
+    EXPECT_GT(deepest("frontier-euler:relative=0.5"), 2.0 * exact);
+    EXPECT_EQ(deepest("frontier-euler:tolerance=3e-5:relative=0"), exact);
 }
 
 } // namespace
