@@ -35,7 +35,7 @@ struct RowSystem
     LargeVector<double> mass;      // kg, per body index (0 for static bodies)
     LargeVector<Mat3> inertia_W;   // kg m^2, per body index, world frame
     LargeVector<Mat3> rotation_WB; // per body index: R_WB at the state the rows were evaluated at
-    LargeVector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
+    JointRowsTable joints;         // per joint index (loop joints evaluated too, used by later stages)
     int rowCount = 0;              // tree joint rows in all
     // Per body index, kg m^2: geometric stiffness h^2 k added to each diagonal entry of the
     // rotational inertia in the factorization only (docs/method.md §7a; momenta use inertia_W).

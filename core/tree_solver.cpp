@@ -105,8 +105,8 @@ inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
 
 // §3 step 2 for node b (6 rows) whose edge e has R rows (R = 0: no edge, a free root). `block`
 // holds D_b on entry; on exit its Cholesky factor, then L_b = D_b^-1 J^T (6 x R). The edge's
-// pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: 6 x 6
-// row-major (JointRows), rows 0..R-1 used.
+// pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: R x 6
+// row-major (JointRowsTable::Rows).
 template <int R> inline bool factorNode(double* block, const double* J, double* edgePivot)
 {
     if (!choleskyInPlace<6>(block))
@@ -379,13 +379,13 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
                 prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
                 if (ahead.parent >= 0)
                 {
-                    // Only the rows in use of both sides (the node reads one, its edge the
-                    // other): a whole JointRows is 632 bytes, a ball joint uses 288 of them.
+                    // The rows of both sides (the node reads one, its edge the other).
                     const BlockInfo& edge = blocks[ahead.parent];
-                    const std::size_t joint = static_cast<std::size_t>(edge.index);
+                    const JointRowsTable::Rows rows =
+                        system.joints.rows(static_cast<std::size_t>(edge.index));
                     const std::size_t used = static_cast<std::size_t>(edge.dim) * 6 * sizeof(double);
-                    prefetchRange(system.joints[joint].J_a.data(), used);
-                    prefetchRange(system.joints[joint].J_b.data(), used);
+                    prefetchRange(rows.J_a, used);
+                    prefetchRange(rows.J_b, used);
                 }
             }
             if (rhs != nullptr)
@@ -442,9 +442,9 @@ void TreeSolver::eliminate(std::size_t b)
         {
             // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
             const BlockInfo& edge = blocks[info.parent];
-            const JointRows& rows = system.joints[static_cast<std::size_t>(edge.index)];
+            const JointRowsTable::Rows rows = system.joints.rows(static_cast<std::size_t>(edge.index));
             const bool jointChild = edge.flags & cChildIsJointChild;
-            const double* J = (jointChild ? rows.J_b : rows.J_a).data();
+            const double* J = jointChild ? rows.J_b : rows.J_a;
             double* edgePivot = arena + info.parentOffset;
             withRows(info.parentDim, [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
         }
@@ -461,10 +461,10 @@ void TreeSolver::eliminate(std::size_t b)
     {
         // Drive rows (core/joints/drive.h): J u + E lambda = c puts -E on the KKT diagonal, so the
         // pivot -D_e = J D_child^-1 J^T that the child node left gains +E.
-        const JointRows& rows = system.joints[index];
+        const JointRowsTable::Rows rows = system.joints.rows(index);
         for (int r = rows.constraintRows; r < rows.count; ++r)
         {
-            own[tri(info.dim, r, r)] += rows.compliance(r);
+            own[tri(info.dim, r, r)] += rows.compliance[r - rows.firstDrive];
         }
     }
     // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
@@ -480,8 +480,8 @@ void TreeSolver::eliminate(std::size_t b)
         {
             throw std::logic_error("tree solver: malformed frontier layout");
         }
-        const JointRows& rows = system.joints[index];
-        const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
+        const JointRowsTable::Rows rows = system.joints.rows(index);
+        const double* J = (info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b;
         double* parentPivot = arena + info.parentOffset;
         const bool first = info.flags & cFirstChild;
         withRows(info.dim,
