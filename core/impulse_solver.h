@@ -70,7 +70,9 @@ inline Mat3 factoredInertia(const RowSystem& system, std::size_t i)
                : Mat3(system.inertia_W[i] + system.geometricInertia[i] * Mat3::Identity());
 }
 
-// Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
+// Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused). The
+// linear solver (core/tree_solver.h) also takes a right-hand side whose body part is empty: zero
+// momenta.
 struct BlockVector
 {
     LargeVector<Vec6> body;  // per body index: p (N s, N m s) in, u (m/s, rad/s) out

@@ -247,6 +247,18 @@ template <int N, int P> inline void backwardBlock(const double* block, double* x
 // How many blocks ahead the sweeps prefetch.
 constexpr std::size_t cAhead = 8;
 
+// A right-hand side may leave its body part empty for zero momenta (the drift correction's,
+// core/step/drift_correction.h): body i's part, and the bodies of the solution.
+const Vec6 cNoMomentum = Vec6::Zero();
+inline const Vec6& bodyRhs(const BlockVector& rhs, std::size_t i)
+{
+    return rhs.body.empty() ? cNoMomentum : rhs.body[i];
+}
+inline std::size_t solutionBodies(const BlockVector& rhs, const RowSystem& system)
+{
+    return rhs.body.empty() ? system.model->bodies.size() : rhs.body.size();
+}
+
 } // namespace
 
 void TreeSolver::factor(const RowSystem& system)
@@ -257,7 +269,7 @@ void TreeSolver::factor(const RowSystem& system)
 void TreeSolver::factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution)
 {
     eliminateAll(system, &rhs); // the forward sweep rides along with the elimination
-    solution.resize(rhs.body.size(), rhs.joint.size());
+    solution.resize(solutionBodies(rhs, system), rhs.joint.size());
     backwardSweep(solution);
 }
 
@@ -391,7 +403,7 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
             if (rhs != nullptr)
             {
                 prefetchRange((ahead.flags & cEdge) ? &rhs->joint[static_cast<std::size_t>(ahead.index)]
-                                                    : &rhs->body[static_cast<std::size_t>(ahead.index)],
+                                                    : &bodyRhs(*rhs, static_cast<std::size_t>(ahead.index)),
                               sizeof(Vec6));
                 if (ahead.parent >= 0)
                 {
@@ -509,7 +521,7 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
         {
             const BlockInfo& ahead = blocks[b + cAhead];
             prefetchRange((ahead.flags & cEdge) ? &rhs.joint[static_cast<std::size_t>(ahead.index)]
-                                                : &rhs.body[static_cast<std::size_t>(ahead.index)],
+                                                : &bodyRhs(rhs, static_cast<std::size_t>(ahead.index)),
                           sizeof(Vec6));
             if (ahead.parent >= 0)
             {
@@ -519,7 +531,7 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
         }
         forwardStep(b, rhs);
     }
-    solution.resize(rhs.body.size(), rhs.joint.size());
+    solution.resize(solutionBodies(rhs, *mSystem), rhs.joint.size());
     backwardSweep(solution);
 }
 
@@ -533,7 +545,7 @@ void TreeSolver::forwardStep(std::size_t b, const BlockVector& rhs)
     Vec6* z = mZ.data();
     double* zb = z[b].data();
     const Vec6& rb = (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
-                                          : rhs.body[static_cast<std::size_t>(info.index)];
+                                          : bodyRhs(rhs, static_cast<std::size_t>(info.index));
     if (info.flags & cHasChildren)
     {
         z[b] += rb;

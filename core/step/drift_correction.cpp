@@ -5,6 +5,7 @@
 #include "core/step/contact_problem.h"
 #include "core/step/geometric_stiffness.h"
 #include "core/step/positions.h"
+#include "core/tree_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +41,10 @@ DriftCorrection::DriftCorrection(const Model& model, const StepOptions& options,
                                  ImpulseSolver& solver)
     : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
 {
-    mRhs.resize(model.bodies.size(), model.joints.size());
+    // The correction's right-hand side has no momenta, -C / h on the joint rows alone: the linear
+    // solver takes an empty body part for that (core/tree_solver.cpp), the others get the zeros.
+    const bool momentaImplied = dynamic_cast<const TreeSolver*>(&solver) != nullptr;
+    mRhs.resize(momentaImplied ? 0 : model.bodies.size(), model.joints.size());
     mRhs.setZero();
     mCorrection.resize(model.bodies.size(), model.joints.size());
 }
