@@ -101,7 +101,8 @@ bool YamlNode::itemByItem() const
 
 YAML::EmitterStyle::value YamlNode::style() const
 {
-    return mTree != nullptr ? mTree->node(mIndex).style : YAML::EmitterStyle::Default;
+    return mTree != nullptr ? static_cast<YAML::EmitterStyle::value>(mTree->node(mIndex).style)
+                            : YAML::EmitterStyle::Default;
 }
 
 // Builds YamlDocuments::first from the parser's events. Children are collected on one stack
@@ -289,7 +290,7 @@ class YamlTreeBuilder final : public YAML::EventHandler
         open.node = add(mark, kind, tag, anchor);
         open.pending = mPending.size();
         open.rootMap = kind == YamlTree::Kind::Map && mOpen.empty();
-        mTree.mNodes[open.node].style = style;
+        mTree.mNodes[open.node].style = static_cast<std::uint8_t>(style);
         if (kind == YamlTree::Kind::Sequence && open.context.rootValue && mLists != nullptr &&
             mLists->takeItems(open.context.key))
         {

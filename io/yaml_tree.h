@@ -98,10 +98,11 @@ class YamlTree
         std::uint32_t first = 0; // collections: first child in mChildren (maps: key, value, key, ...)
         std::uint32_t count = 0; // collections: children in mChildren; a list read item by item: items
         Kind kind = Kind::Null;
-        YAML::EmitterStyle::value style = YAML::EmitterStyle::Default;
+        std::uint8_t style = YAML::EmitterStyle::Default; // a YAML::EmitterStyle::value
         bool itemByItem = false; // a list whose items went to a YamlListHandler: none kept
         std::string scalar;
     };
+    static_assert(sizeof(Node) <= 64);
     const Node& node(std::uint32_t index) const { return mNodes[index]; }
 
     std::vector<Node> mNodes;
