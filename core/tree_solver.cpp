@@ -391,13 +391,12 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
                 prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
                 if (ahead.parent >= 0)
                 {
-                    // The rows of both sides (the node reads one, its edge the other).
+                    // The rows of both sides (the node reads one, its edge the other): J_a and
+                    // J_b one after the other (JointRowsTable::rows).
                     const BlockInfo& edge = blocks[ahead.parent];
                     const JointRowsTable::Rows rows =
                         system.joints.rows(static_cast<std::size_t>(edge.index));
-                    const std::size_t used = static_cast<std::size_t>(edge.dim) * 6 * sizeof(double);
-                    prefetchRange(rows.J_a, used);
-                    prefetchRange(rows.J_b, used);
+                    prefetchRange(rows.J_a, static_cast<std::size_t>(rows.capacity) * 12 * sizeof(double));
                 }
             }
             if (rhs != nullptr)

@@ -178,7 +178,7 @@ void JointRowsTable::layOut(std::span<const std::uint8_t> capacity, std::span<co
         mEntries[k].offset = static_cast<std::uint32_t>(offset);
         mEntries[k].capacity = capacity[k];
         mEntries[k].driveRows = driveRows[k];
-        offset += 13 * std::size_t{capacity[k]} + driveRows[k]; // J_a, J_b, errors, compliances
+        offset += 13 * std::size_t{capacity[k]} + driveRows[k]; // errors, J_a, J_b, compliances
         if (offset > std::numeric_limits<std::uint32_t>::max())
         {
             throw std::length_error("joint rows: system too large");

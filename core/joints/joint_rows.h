@@ -128,15 +128,8 @@ class JointRowsTable
         const Entry& e = mEntries[k];
         const double* base = mData.data() + e.offset;
         const int cap = e.capacity;
-        return {base,
-                base + 6 * cap,
-                base + 12 * cap,
-                base + 13 * cap,
-                e.count,
-                e.constraintRows,
-                e.positionRows,
-                cap,
-                cap - e.driveRows};
+        return {base + cap,       base + 7 * cap, base, base + 13 * cap,  e.count,
+                e.constraintRows, e.positionRows, cap,  cap - e.driveRows};
     }
     JointRowsView operator[](std::size_t k) const
     {
@@ -177,9 +170,9 @@ class JointRowsTable
         return {e.count,
                 e.constraintRows,
                 e.positionRows,
-                JointRowsSlot::RowsMap(base, cap, 6),
-                JointRowsSlot::RowsMap(base + 6 * cap, cap, 6),
-                Eigen::Map<Eigen::VectorXd>(base + 12 * cap, cap),
+                JointRowsSlot::RowsMap(base + cap, cap, 6),
+                JointRowsSlot::RowsMap(base + 7 * cap, cap, 6),
+                Eigen::Map<Eigen::VectorXd>(base, cap),
                 {base + 13 * cap, cap - e.driveRows}};
     }
     void finish(std::size_t k, const JointRowsSlot& slot)
@@ -197,7 +190,7 @@ class JointRowsTable
   private:
     struct Entry
     {
-        std::uint32_t offset = 0; // first double in mData: J_a, J_b, errors, compliances
+        std::uint32_t offset = 0; // first double in mData: errors, J_a, J_b, compliances
         std::uint8_t capacity = 0;
         std::uint8_t driveRows = 0;
         std::uint8_t count = 0;
