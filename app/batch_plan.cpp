@@ -1,4 +1,4 @@
-// app/batch_plan.cpp: reading a batch plan (yaml-cpp, located errors of io/yaml_util.h) and
+// app/batch_plan.cpp: reading a batch plan (io/yaml_tree.h, located errors of io/yaml_util.h) and
 // expanding it into jobs.
 #include "app/batch_plan.h"
 
@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <glob.h>
 #include <map>
+#include <yaml-cpp/yaml.h>
 
 namespace frontier::app
 {
@@ -21,6 +22,7 @@ namespace
 namespace fs = std::filesystem;
 using io::detail::failAt;
 using io::detail::MapNode;
+using io::detail::YamlNode;
 using io::detail::YamlSource;
 
 const std::vector<std::string> cPlanKeys = {
@@ -30,18 +32,61 @@ const std::vector<std::string> cRunSettings = {"dt",         "duration",       "
                                                "integrator", "pgs_iterations", "seed"};
 const std::vector<std::string> cOutputs = {"stats", "trajectory", "frames", "joints", "contacts"};
 
+// The node as yaml-cpp's tree, for its emitter and for the scene paths (app/batch_scene.h): the
+// same kinds, scalars, tags, collection styles and shared nodes (an alias) as the text gave.
+YAML::Node yamlCppNode(const YamlNode& node, std::map<std::uint32_t, YAML::Node>& made)
+{
+    if (const auto it = made.find(node.id()); it != made.end())
+    {
+        return it->second;
+    }
+    YAML::Node out(node.isMap()        ? YAML::NodeType::Map
+                   : node.isSequence() ? YAML::NodeType::Sequence
+                   : node.isScalar()   ? YAML::NodeType::Scalar
+                                       : YAML::NodeType::Null);
+    made.emplace(node.id(), out);
+    if (node.isScalar())
+    {
+        out = node.scalar();
+        out.SetTag(node.tag());
+    }
+    else if (node.isSequence() || node.isMap())
+    {
+        out.SetTag(node.tag());
+        out.SetStyle(node.style());
+        for (std::size_t i = 0; i < node.size(); ++i)
+        {
+            if (node.isSequence())
+            {
+                out.push_back(yamlCppNode(node[i], made));
+            }
+            else
+            {
+                out.force_insert(yamlCppNode(node.key(i), made), yamlCppNode(node.value(i), made));
+            }
+        }
+    }
+    return out;
+}
+
+YAML::Node yamlCppNode(const YamlNode& node)
+{
+    std::map<std::uint32_t, YAML::Node> made;
+    return yamlCppNode(node, made);
+}
+
 // One value's YAML text on one line: "0.001", "pgs", "[0, 0, 2]".
-std::string flowText(const YAML::Node& node)
+std::string flowText(const YamlNode& node)
 {
     YAML::Emitter out;
     out.SetSeqFormat(YAML::Flow);
     out.SetMapFormat(YAML::Flow);
-    out << node;
+    out << yamlCppNode(node);
     return out.c_str();
 }
 
 // Checks one value of a run setting (the same ranges as the flags of `frontier run`).
-void checkRunValue(const YamlSource& source, const std::string& key, const YAML::Node& value)
+void checkRunValue(const YamlSource& source, const std::string& key, const YamlNode& value)
 {
     const std::string what = "'" + key + "'";
     if (key == "dt" || key == "duration")
@@ -75,22 +120,21 @@ void checkRunValue(const YamlSource& source, const std::string& key, const YAML:
 
 // The scene files of `scenes:`: each entry a file or a glob (*, ?, [...]) relative to the plan's
 // folder; labels are the paths as the plan spells them, globs expanded in sorted order.
-std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& source,
-                                                              const YAML::Node& node)
+std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& source, const YamlNode& node)
 {
     std::vector<std::pair<std::string, std::string>> scenes; // label, path
-    if (!node.IsSequence() && !node.IsScalar())
+    if (!node.isSequence() && !node.isScalar())
     {
         failAt(source, node,
                "expected a scene file, a glob or a list of them for 'scenes', got " +
                    io::detail::describeNode(node));
     }
-    std::vector<YAML::Node> entries;
-    if (node.IsSequence())
+    std::vector<YamlNode> entries;
+    if (node.isSequence())
     {
-        for (const YAML::Node& entry : node)
+        for (std::size_t i = 0; i < node.size(); ++i)
         {
-            entries.push_back(entry);
+            entries.push_back(node[i]);
         }
     }
     else
@@ -101,7 +145,7 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
     {
         failAt(source, node, "expected at least one scene in 'scenes'");
     }
-    for (const YAML::Node& entry : entries)
+    for (const YamlNode& entry : entries)
     {
         const std::string pattern = io::detail::toString(source, entry, "an entry of 'scenes'");
         const bool isGlob = pattern.find_first_of("*?[") != std::string::npos;
@@ -153,7 +197,7 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
 struct Axis
 {
     std::string key;
-    std::vector<YAML::Node> values;
+    std::vector<YamlNode> values;
 };
 
 // A key of `vary:` or `set:`: a run setting, or a scene path (at least two parts joined by '.').
@@ -235,16 +279,17 @@ BatchPlan readBatchPlan(const std::string& path)
     BatchPlan plan;
     plan.file = path;
     const std::string text = io::detail::readTextFile(path, "batch plan");
-    YAML::Node root;
+    io::detail::YamlDocuments documents; // the first document (more are ignored)
     try
     {
-        root = YAML::Load(text);
+        io::detail::parseYaml(text, path, documents);
     }
     catch (const YAML::ParserException& e)
     {
         failAt(source, e.mark, "invalid YAML: " + e.msg);
     }
-    if (!root.IsMap())
+    const YamlNode root = documents.first.root();
+    if (!root.isMap())
     {
         failAt(source, root,
                "expected a map with 'scenes' (and 'vary') for the batch plan, got " +
@@ -256,7 +301,7 @@ BatchPlan readBatchPlan(const std::string& path)
 
     // Fixed settings: run settings at the top level, scene paths under `set:`.
     std::vector<BatchSetting> fixed;
-    std::vector<YAML::Node> fixedNodes;
+    std::vector<YamlNode> fixedNodes;
     for (const std::string& key : cRunSettings)
     {
         if (map.has(key))
@@ -274,50 +319,54 @@ BatchPlan readBatchPlan(const std::string& path)
     if (map.has("set"))
     {
         const MapNode set(source, map.get("set"), "'set'");
-        for (const auto& kv : set.node())
+        for (std::size_t i = 0; i < set.node().size(); ++i)
         {
-            const std::string key = kv.first.Scalar();
-            checkSettingKey(source, kv.first.Mark(), key, "'set'");
+            const YamlNode keyNode = set.node().key(i);
+            const std::string key = keyNode.scalar();
+            checkSettingKey(source, keyNode.mark(), key, "'set'");
             if (isRunSetting(key))
             {
-                failAt(source, kv.first,
+                failAt(source, keyNode,
                        "'" + key + "' is a run setting: give it at the top level of the plan");
             }
-            if (!seen.emplace(key, kv.first.Mark()).second)
+            if (!seen.emplace(key, keyNode.mark()).second)
             {
-                failAt(source, kv.first, "'" + key + "' is given twice");
+                failAt(source, keyNode, "'" + key + "' is given twice");
             }
-            fixed.push_back({key, flowText(kv.second)});
-            fixedNodes.push_back(kv.second);
+            fixed.push_back({key, flowText(set.node().value(i))});
+            fixedNodes.push_back(set.node().value(i));
         }
     }
 
     std::vector<Axis> axes;
     if (map.has("vary"))
     {
-        const YAML::Node vary = map.get("vary");
+        const YamlNode vary = map.get("vary");
         MapNode(source, vary, "'vary'"); // a map
-        for (const auto& kv : vary)
+        for (std::size_t i = 0; i < vary.size(); ++i)
         {
-            const std::string key = kv.first.Scalar();
-            checkSettingKey(source, kv.first.Mark(), key, "'vary'");
+            const YamlNode keyNode = vary.key(i);
+            const YamlNode values = vary.value(i);
+            const std::string key = keyNode.scalar();
+            checkSettingKey(source, keyNode.mark(), key, "'vary'");
             if (const auto at = seen.find(key); at != seen.end())
             {
-                failAt(source, kv.first,
+                failAt(source, keyNode,
                        "'" + key + "' is also given at line " + std::to_string(at->second.line + 1) +
                            "; a setting is either fixed or varied");
             }
-            seen.emplace(key, kv.first.Mark());
+            seen.emplace(key, keyNode.mark());
             const std::string what = "'" + key + "' in 'vary'";
-            io::detail::requireSequence(source, kv.second, what);
-            if (kv.second.size() == 0)
+            io::detail::requireSequence(source, values, what);
+            if (values.size() == 0)
             {
-                failAt(source, kv.second, "expected a non-empty list of values for " + what);
+                failAt(source, values, "expected a non-empty list of values for " + what);
             }
             Axis axis{key, {}};
             std::vector<std::string> texts;
-            for (const YAML::Node& value : kv.second)
+            for (std::size_t v = 0; v < values.size(); ++v)
             {
+                const YamlNode value = values[v];
                 if (isRunSetting(key))
                 {
                     checkRunValue(source, key, value);
@@ -337,10 +386,11 @@ BatchPlan readBatchPlan(const std::string& path)
 
     if (map.has("outputs"))
     {
-        const YAML::Node outputs = map.get("outputs");
+        const YamlNode outputs = map.get("outputs");
         io::detail::requireSequence(source, outputs, "'outputs'");
-        for (const YAML::Node& entry : outputs)
+        for (std::size_t i = 0; i < outputs.size(); ++i)
         {
+            const YamlNode entry = outputs[i];
             const std::string name = io::detail::toString(source, entry, "an entry of 'outputs'");
             if (std::find(cOutputs.begin(), cOutputs.end(), name) == cOutputs.end())
             {
@@ -387,7 +437,7 @@ BatchPlan readBatchPlan(const std::string& path)
         const std::string& label = scene.first; // named copies: a lambda below uses them (clang 14
         const std::string& file = scene.second; // cannot capture structured bindings)
         std::optional<YAML::Node> sceneRoot;
-        auto checkPath = [&](const std::string& key, const YAML::Node& value)
+        auto checkPath = [&](const std::string& key, const YamlNode& value)
         {
             if (isRunSetting(key))
             {
@@ -409,7 +459,7 @@ BatchPlan readBatchPlan(const std::string& path)
                     failAt(source, value, label + " is not valid YAML: " + e.msg);
                 }
             }
-            const std::string problem = applySceneSetting(YAML::Clone(*sceneRoot), key, value);
+            const std::string problem = applySceneSetting(YAML::Clone(*sceneRoot), key, yamlCppNode(value));
             if (!problem.empty())
             {
                 failAt(source, value, "'" + key + "' does not fit " + label + ": " + problem);
@@ -421,7 +471,7 @@ BatchPlan readBatchPlan(const std::string& path)
         }
         for (const Axis& axis : axes)
         {
-            for (const YAML::Node& value : axis.values)
+            for (const YamlNode& value : axis.values)
             {
                 checkPath(axis.key, value);
             }

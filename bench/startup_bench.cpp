@@ -12,7 +12,11 @@
 // the heap each part holds, KB per body (glibc's mallinfo2, mmapped blocks included, measured as
 // the increase over the part before): the model, the contact detector, the state, and the
 // simulator after the 10 steps (its solver's rows, factor blocks and vectors; the detector's
-// per-step buffers are small) and at its set-up.
+// per-step buffers are small) and at its set-up; then the same parts as resident memory (Linux
+// /proc/self/statm). The two differ: an array of 2 MiB or more (core/large_vector.h) is mapped
+// with up to 2 MiB of alignment slack that mallinfo2 counts and no page backs, and memory the
+// scene loader freed is resident already when a later part reuses it (--scene: the later parts'
+// resident figures are low, the model's includes the loader's).
 #include "collision/contacts.h"
 #include "core/model.h"
 #include "core/simulator.h"
@@ -25,6 +29,7 @@
 #include <malloc.h>
 #include <string>
 #include <sys/resource.h>
+#include <unistd.h>
 
 namespace
 {
@@ -87,6 +92,29 @@ double heapBytes()
     return static_cast<double>(info.uordblks + info.hblkhd);
 }
 
+// Bytes of the process resident now (pages in memory, shared libraries included).
+double residentBytes()
+{
+    long pages = 0;
+    if (std::FILE* statm = std::fopen("/proc/self/statm", "r"))
+    {
+        long total = 0;
+        if (std::fscanf(statm, "%ld %ld", &total, &pages) != 2)
+        {
+            pages = 0;
+        }
+        std::fclose(statm);
+    }
+    return static_cast<double>(pages) * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+// Heap and resident bytes at one moment.
+struct Memory
+{
+    double heap = heapBytes();
+    double resident = residentBytes();
+};
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -96,28 +124,28 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "usage: startup_bench N | startup_bench --scene FILE\n");
         return 2;
     }
-    const double heapAtStart = heapBytes();
+    const Memory atStart;
     double start = cpuSeconds();
     const core::Model model = argc == 3 ? io::loadScene(argv[2]) : makeChain(std::atoi(argv[1]));
     const double loadS = cpuSeconds() - start;
-    const double heapModel = heapBytes();
+    const Memory withModel;
 
     start = cpuSeconds();
     collision::ContactDetector detector(model, collision::contactMargin(model.simulation.dt));
     const double detectorS = cpuSeconds() - start;
-    const double heapDetector = heapBytes();
+    const Memory withDetector;
     start = cpuSeconds();
     core::Simulator simulator(model, {}, &detector);
-    const double heapSimulator = heapBytes();
+    const Memory withSimulator;
     core::State state = core::initialState(model);
-    const double heapState = heapBytes();
+    const Memory withState;
     const double simulatorS = cpuSeconds() - start;
 
     start = cpuSeconds();
     for (int k = 0; k < cSteps; ++k)
         simulator.step(state);
     const double stepsS = cpuSeconds() - start;
-    const double heapSteps = heapBytes();
+    const Memory afterSteps;
 
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -129,10 +157,17 @@ int main(int argc, char** argv)
         model.bodies.size(), loadS, detectorS, simulatorS, cSteps, stepsS, rssMB,
         bodies > 0 ? static_cast<double>(usage.ru_maxrss) / bodies : 0.0);
     const double perBodyKB = bodies > 0 ? 1.0 / (1024.0 * bodies) : 0.0;
-    std::printf("heap KB/body  model %.2f  detector %.2f  state %.2f  simulator %.2f (%.2f at set-up)\n",
-                (heapModel - heapAtStart) * perBodyKB, (heapDetector - heapModel) * perBodyKB,
-                (heapState - heapSimulator) * perBodyKB,
-                (heapSteps - heapDetector - (heapState - heapSimulator)) * perBodyKB,
-                (heapSimulator - heapDetector) * perBodyKB);
+    auto parts = [&](const char* label, double Memory::*bytes)
+    {
+        std::printf("%s KB/body  model %.2f  detector %.2f  state %.2f  simulator %.2f (%.2f at set-up)\n",
+                    label, (withModel.*bytes - atStart.*bytes) * perBodyKB,
+                    (withDetector.*bytes - withModel.*bytes) * perBodyKB,
+                    (withState.*bytes - withSimulator.*bytes) * perBodyKB,
+                    (afterSteps.*bytes - withDetector.*bytes - (withState.*bytes - withSimulator.*bytes)) *
+                        perBodyKB,
+                    (withSimulator.*bytes - withDetector.*bytes) * perBodyKB);
+    };
+    parts("heap", &Memory::heap);
+    parts("resident", &Memory::resident);
     return 0;
 }

@@ -268,7 +268,7 @@ bool Actuation::acceptSolve(const RowSystem& rows, const BlockVector& solution,
         // The row's impulse less the joint damping's share of it, -d h (J u').
         const std::size_t k = static_cast<std::size_t>(actuator.joint);
         const Joint& joint = mModel.joints[k];
-        const JointRows& r = rows.joints[k];
+        const JointRowsView r = rows.joints[k];
         double speed = r.J_b.row(mRow[a]).dot(solution.body[static_cast<std::size_t>(joint.child)]);
         if (isMovingBody(mModel, joint.parent))
         {

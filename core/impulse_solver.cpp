@@ -55,20 +55,44 @@ detail::JointGeometry jointGeometryAt(const Joint& joint, const JointPose& pose,
     return detail::jointGeometry(joint, pose, R_a, system.rotation_WB[static_cast<std::size_t>(joint.child)]);
 }
 
+// The drive rows of joint k's block. A loop joint's actuators are extra rows (core/actuation.h):
+// its drive rows damp only.
+int jointDriveRows(const Model& model, const FrontierLayout& layout, std::size_t k)
+{
+    const int block = layout.jointBlock[k];
+    return block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows
+                      : blockDriveRows(model.joints[k]);
+}
+
+template <class Rows>
 void evaluateJointBlock(const Model& model, const FrontierLayout& layout, const JointPose& pose,
                         const detail::JointGeometry& g, int jointIndex, double driveStep,
-                        std::span<const JointDriveGains> gains, JointRows& out)
+                        std::span<const JointDriveGains> gains, Rows& out)
 {
     const std::size_t k = static_cast<std::size_t>(jointIndex);
     const Joint& joint = model.joints[k];
     const bool parentMoves = !jointToWorld(model, joint);
     evaluateJoint(joint, pose, g, parentMoves, out);
-    // A loop joint's actuators are extra rows (core/actuation.h): its drive rows damp only.
-    const int block = layout.jointBlock[k];
-    const int driveRows =
-        block >= 0 ? layout.blocks[static_cast<std::size_t>(block)].driveRows : blockDriveRows(joint);
-    writeDriveRows(joint, driveRows, gains.empty() ? dampingGains(joint) : gains[k], g, parentMoves,
-                   driveStep, out);
+    writeDriveRows(joint, jointDriveRows(model, layout, k), gains.empty() ? dampingGains(joint) : gains[k], g,
+                   parentMoves, driveStep, out);
+}
+
+// Room in `table` for every joint's block (its conditions and drive rows), unless laid out for this
+// layout already.
+void layOutJointRows(const Model& model, const FrontierLayout* layout, JointRowsTable& table)
+{
+    if (layout != nullptr && table.laidOutFor(layout->id, model.joints.size()))
+    {
+        return;
+    }
+    std::vector<std::uint8_t> capacity(model.joints.size());
+    std::vector<std::uint8_t> driveRows(model.joints.size());
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        driveRows[k] = static_cast<std::uint8_t>(layout != nullptr ? jointDriveRows(model, *layout, k) : 0);
+        capacity[k] = static_cast<std::uint8_t>(jointRowCount(model.joints[k].type) + driveRows[k]);
+    }
+    table.layOut(capacity, driveRows, layout != nullptr ? layout->id : 0);
 }
 } // namespace
 
@@ -88,17 +112,19 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
         system.mass[i] = body.isStatic ? 0.0 : body.mass;
         system.inertia_W[i] = body.isStatic ? Mat3::Zero() : worldInertia(body, system.rotation_WB[i]);
     }
-    system.joints.resize(model.joints.size());
+    layOutJointRows(model, &layout, system.joints);
     system.rowCount = 0;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
         const JointPose pose = jointPose(state, joint);
+        JointRowsSlot rows = system.joints.slot(k);
         evaluateJointBlock(model, layout, pose, jointGeometryAt(joint, pose, system), static_cast<int>(k),
-                           driveStep, gains, system.joints[k]);
+                           driveStep, gains, rows);
+        system.joints.finish(k, rows);
         if (layout.jointBlock[k] >= 0)
         {
-            system.rowCount += system.joints[k].count;
+            system.rowCount += rows.count;
         }
     }
 }
@@ -106,16 +132,19 @@ void assembleRows(const Model& model, const FrontierLayout& layout, const State&
 void assembleJointConditions(const Model& model, const State& state, RowSystem& system)
 {
     bodyRotations(model, state, system);
-    system.joints.resize(model.joints.size());
+    if (system.joints.size() != model.joints.size())
+    {
+        layOutJointRows(model, nullptr, system.joints); // room for the conditions alone
+    }
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
         const JointPose pose = jointPose(state, joint);
-        JointRows& rows = system.joints[k];
         detail::JointGeometry g = jointGeometryAt(joint, pose, system);
         g.conditionsOnly = true;
+        JointRowsSlot rows = system.joints.slot(k);
         evaluateJoint(joint, pose, g, !jointToWorld(model, joint), rows);
-        rows.error.tail(6 - rows.count).setZero(); // drive rows (and unused ones) have none
+        system.joints.finish(k, rows); // count = the conditions: the drive rows have no error
     }
 }
 

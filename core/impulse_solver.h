@@ -36,7 +36,7 @@ struct RowSystem
     LargeVector<double> mass;      // kg, per body index (0 for static bodies)
     LargeVector<Mat3> inertia_W;   // kg m^2, per body index, world frame
     LargeVector<Mat3> rotation_WB; // per body index: R_WB at the state the rows were evaluated at
-    LargeVector<JointRows> joints; // per joint index (loop joints evaluated too, used by later stages)
+    JointRowsTable joints;         // per joint index (loop joints evaluated too, used by later stages)
     int rowCount = 0;              // tree joint rows in all
     // Per body index, kg m^2: geometric stiffness h^2 k added to each diagonal entry of the
     // rotational inertia in the factorization only (docs/method.md §7a; momenta use inertia_W).
@@ -71,7 +71,9 @@ inline Mat3 factoredInertia(const RowSystem& system, std::size_t i)
                : Mat3(system.inertia_W[i] + system.geometricInertia[i] * Mat3::Identity());
 }
 
-// Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused).
+// Right-hand side or solution, by body and by joint (joint rows beyond JointRows::count unused). The
+// linear solver (core/tree_solver.h) also takes a right-hand side whose body part is empty: zero
+// momenta.
 struct BlockVector
 {
     LargeVector<Vec6> body;  // per body index: p (N s, N m s) in, u (m/s, rad/s) out

@@ -28,7 +28,7 @@ void PgsSolver::factor(const RowSystem& system)
             continue; // loop joints are not in the tree problem
         }
         const Joint& joint = model.joints[j];
-        const JointRows& rows = system.joints[j];
+        const JointRowsView rows = system.joints[j];
         const bool parentMoves = !jointToWorld(model, joint);
         for (int k = 0; k < rows.count; ++k)
         {

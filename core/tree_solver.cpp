@@ -105,8 +105,8 @@ inline void addMassMatrix(double* pivot, double mass, const Mat3& inertia)
 
 // §3 step 2 for node b (6 rows) whose edge e has R rows (R = 0: no edge, a free root). `block`
 // holds D_b on entry; on exit its Cholesky factor, then L_b = D_b^-1 J^T (6 x R). The edge's
-// pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: 6 x 6
-// row-major (JointRows), rows 0..R-1 used.
+// pivot gets its only contribution: -D_e = J D_b^-1 J^T (R x R at edgePivot). J: R x 6
+// row-major (JointRowsTable::Rows).
 template <int R> inline bool factorNode(double* block, const double* J, double* edgePivot)
 {
     if (!choleskyInPlace<6>(block))
@@ -247,6 +247,18 @@ template <int N, int P> inline void backwardBlock(const double* block, double* x
 // How many blocks ahead the sweeps prefetch.
 constexpr std::size_t cAhead = 8;
 
+// A right-hand side may leave its body part empty for zero momenta (the drift correction's,
+// core/step/drift_correction.h): body i's part, and the bodies of the solution.
+const Vec6 cNoMomentum = Vec6::Zero();
+inline const Vec6& bodyRhs(const BlockVector& rhs, std::size_t i)
+{
+    return rhs.body.empty() ? cNoMomentum : rhs.body[i];
+}
+inline std::size_t solutionBodies(const BlockVector& rhs, const RowSystem& system)
+{
+    return rhs.body.empty() ? system.model->bodies.size() : rhs.body.size();
+}
+
 } // namespace
 
 void TreeSolver::factor(const RowSystem& system)
@@ -257,7 +269,7 @@ void TreeSolver::factor(const RowSystem& system)
 void TreeSolver::factorAndSolve(const RowSystem& system, const BlockVector& rhs, BlockVector& solution)
 {
     eliminateAll(system, &rhs); // the forward sweep rides along with the elimination
-    solution.resize(rhs.body.size(), rhs.joint.size());
+    solution.resize(solutionBodies(rhs, system), rhs.joint.size());
     backwardSweep(solution);
 }
 
@@ -379,19 +391,18 @@ void TreeSolver::eliminateAll(const RowSystem& system, const BlockVector* rhs)
                 prefetchRange(&system.inertia_W[static_cast<std::size_t>(ahead.index)], sizeof(Mat3));
                 if (ahead.parent >= 0)
                 {
-                    // Only the rows in use of both sides (the node reads one, its edge the
-                    // other): a whole JointRows is 632 bytes, a ball joint uses 288 of them.
+                    // The rows of both sides (the node reads one, its edge the other): J_a and
+                    // J_b one after the other (JointRowsTable::rows).
                     const BlockInfo& edge = blocks[ahead.parent];
-                    const std::size_t joint = static_cast<std::size_t>(edge.index);
-                    const std::size_t used = static_cast<std::size_t>(edge.dim) * 6 * sizeof(double);
-                    prefetchRange(system.joints[joint].J_a.data(), used);
-                    prefetchRange(system.joints[joint].J_b.data(), used);
+                    const JointRowsTable::Rows rows =
+                        system.joints.rows(static_cast<std::size_t>(edge.index));
+                    prefetchRange(rows.J_a, static_cast<std::size_t>(rows.capacity) * 12 * sizeof(double));
                 }
             }
             if (rhs != nullptr)
             {
                 prefetchRange((ahead.flags & cEdge) ? &rhs->joint[static_cast<std::size_t>(ahead.index)]
-                                                    : &rhs->body[static_cast<std::size_t>(ahead.index)],
+                                                    : &bodyRhs(*rhs, static_cast<std::size_t>(ahead.index)),
                               sizeof(Vec6));
                 if (ahead.parent >= 0)
                 {
@@ -442,9 +453,9 @@ void TreeSolver::eliminate(std::size_t b)
         {
             // Node i -> its edge e: H_ie = J_ei^T (6 x r); -D_e = J D_i^-1 J^T.
             const BlockInfo& edge = blocks[info.parent];
-            const JointRows& rows = system.joints[static_cast<std::size_t>(edge.index)];
+            const JointRowsTable::Rows rows = system.joints.rows(static_cast<std::size_t>(edge.index));
             const bool jointChild = edge.flags & cChildIsJointChild;
-            const double* J = (jointChild ? rows.J_b : rows.J_a).data();
+            const double* J = jointChild ? rows.J_b : rows.J_a;
             double* edgePivot = arena + info.parentOffset;
             withRows(info.parentDim, [&](auto r) { ok = factorNode<decltype(r)::value>(own, J, edgePivot); });
         }
@@ -461,10 +472,10 @@ void TreeSolver::eliminate(std::size_t b)
     {
         // Drive rows (core/joints/drive.h): J u + E lambda = c puts -E on the KKT diagonal, so the
         // pivot -D_e = J D_child^-1 J^T that the child node left gains +E.
-        const JointRows& rows = system.joints[index];
+        const JointRowsTable::Rows rows = system.joints.rows(index);
         for (int r = rows.constraintRows; r < rows.count; ++r)
         {
-            own[tri(info.dim, r, r)] += rows.compliance(r);
+            own[tri(info.dim, r, r)] += rows.compliance[r - rows.firstDrive];
         }
     }
     // Edge e -> its parent node n: H_en = J_en (r x 6); D_n -= J^T D_e^-1 J. The node's side of
@@ -480,8 +491,8 @@ void TreeSolver::eliminate(std::size_t b)
         {
             throw std::logic_error("tree solver: malformed frontier layout");
         }
-        const JointRows& rows = system.joints[index];
-        const double* J = ((info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b).data();
+        const JointRowsTable::Rows rows = system.joints.rows(index);
+        const double* J = (info.flags & cChildIsJointChild) ? rows.J_a : rows.J_b;
         double* parentPivot = arena + info.parentOffset;
         const bool first = info.flags & cFirstChild;
         withRows(info.dim,
@@ -509,7 +520,7 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
         {
             const BlockInfo& ahead = blocks[b + cAhead];
             prefetchRange((ahead.flags & cEdge) ? &rhs.joint[static_cast<std::size_t>(ahead.index)]
-                                                : &rhs.body[static_cast<std::size_t>(ahead.index)],
+                                                : &bodyRhs(rhs, static_cast<std::size_t>(ahead.index)),
                           sizeof(Vec6));
             if (ahead.parent >= 0)
             {
@@ -519,7 +530,7 @@ void TreeSolver::solve(const BlockVector& rhs, BlockVector& solution)
         }
         forwardStep(b, rhs);
     }
-    solution.resize(rhs.body.size(), rhs.joint.size());
+    solution.resize(solutionBodies(rhs, *mSystem), rhs.joint.size());
     backwardSweep(solution);
 }
 
@@ -533,7 +544,7 @@ void TreeSolver::forwardStep(std::size_t b, const BlockVector& rhs)
     Vec6* z = mZ.data();
     double* zb = z[b].data();
     const Vec6& rb = (info.flags & cEdge) ? rhs.joint[static_cast<std::size_t>(info.index)]
-                                          : rhs.body[static_cast<std::size_t>(info.index)];
+                                          : bodyRhs(rhs, static_cast<std::size_t>(info.index));
     if (info.flags & cHasChildren)
     {
         z[b] += rb;

@@ -25,7 +25,7 @@ const char* coordinateName(core::JointCoordinate coordinate)
 
 core::ActuatorKind readKind(const MapNode& map)
 {
-    const YAML::Node node = map.require("type");
+    const YamlNode node = map.require("type");
     const std::string name = toString(map.source(), node, map.what("type"));
     if (name == "position")
     {
@@ -88,13 +88,13 @@ void checkGainKeys(const MapNode& map, core::ActuatorKind kind)
     }
 }
 
-void readActuator(SceneBuilder& builder, const YAML::Node& node, std::size_t index,
+void readActuator(SceneBuilder& builder, const YamlNode& node, std::size_t index,
                   std::map<std::pair<int, int>, YAML::Mark>& taken)
 {
     const YamlSource& source = builder.source;
     MapNode map(source, node, "actuator #" + std::to_string(index + 1));
     map.checkKeys(cActuatorKeys);
-    const YAML::Node jointNode = map.require("joint");
+    const YamlNode jointNode = map.require("joint");
     core::Actuator actuator;
     actuator.joint = resolveJointName(builder, jointNode, map.what("joint"));
     const core::Joint& joint = builder.model.joints[static_cast<std::size_t>(actuator.joint)];
@@ -126,13 +126,13 @@ void readActuator(SceneBuilder& builder, const YAML::Node& node, std::size_t ind
                    " of joint '" + joint.name + "' (the first is on line " +
                    std::to_string(first->second.line + 1) + "); one actuator per joint coordinate");
     }
-    taken[coordinate] = jointNode.Mark();
+    taken[coordinate] = jointNode.mark();
     builder.model.actuators.push_back(std::move(actuator));
 }
 
 } // namespace
 
-int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what)
+int resolveJointName(const SceneBuilder& builder, const YamlNode& node, const std::string& what)
 {
     const std::string name = toString(builder.source, node, what);
     if (const auto it = builder.jointIndex.find(name); it != builder.jointIndex.end())
@@ -148,7 +148,7 @@ int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const 
            "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));
 }
 
-void readActuators(SceneBuilder& builder, const YAML::Node& actuators)
+void readActuators(SceneBuilder& builder, const YamlNode& actuators)
 {
     requireSequence(builder.source, actuators, "'actuators'");
     std::map<std::pair<int, int>, YAML::Mark> taken; // (joint, coordinate) -> where

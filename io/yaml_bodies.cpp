@@ -56,19 +56,19 @@ std::vector<std::string> shapeKeys(core::ShapeType type)
 struct ShapeEntry
 {
     core::Shape shape;
-    YAML::Node typeNode; // for messages about the shape as a whole
-    YAML::Node fileNode; // meshes
+    YamlNode typeNode; // for messages about the shape as a whole
+    YamlNode fileNode; // meshes
 };
 
 core::Shape readMesh(const MapNode& map)
 {
-    const YAML::Node fileNode = map.require("file");
+    const YamlNode fileNode = map.require("file");
     const std::string file = toString(map.source(), fileNode, map.what("file"));
     core::Vec3 scale = core::Vec3::Ones();
     if (map.has("scale"))
     {
-        const YAML::Node scaleNode = map.get("scale");
-        if (scaleNode.IsSequence())
+        const YamlNode scaleNode = map.get("scale");
+        if (scaleNode.isSequence())
         {
             scale = toVec3(map.source(), scaleNode, map.what("scale"));
             if (!(scale.minCoeff() > 0.0))
@@ -96,7 +96,7 @@ core::Shape readMesh(const MapNode& map)
     }
 }
 
-ShapeEntry readShape(const YamlSource& source, const YAML::Node& node, const std::string& context)
+ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::string& context)
 {
     MapNode map(source, node, context);
     if (!map.has("type"))
@@ -124,7 +124,7 @@ ShapeEntry readShape(const YamlSource& source, const YAML::Node& node, const std
     {
     case core::ShapeType::Box:
     {
-        const YAML::Node size = map.require("size");
+        const YamlNode size = map.require("size");
         shape.size = toVec3(source, size, map.what("size"));
         if (!(shape.size.minCoeff() > 0.0))
         {
@@ -168,7 +168,7 @@ std::vector<ShapeEntry> readShapes(const MapNode& body)
     }
     if (body.has("shapes"))
     {
-        const YAML::Node list = requireSequence(body.source(), body.get("shapes"), body.what("shapes"));
+        const YamlNode list = requireSequence(body.source(), body.get("shapes"), body.what("shapes"));
         for (std::size_t i = 0; i < list.size(); ++i)
         {
             out.push_back(
@@ -181,10 +181,10 @@ std::vector<ShapeEntry> readShapes(const MapNode& body)
 // [ixx, iyy, izz], [ixx, iyy, izz, ixy, ixz, iyz] or a 3x3 matrix (kg m^2); positive-definite.
 core::Mat3 readInertia(const MapNode& body)
 {
-    const YAML::Node node = body.get("inertia");
+    const YamlNode node = body.get("inertia");
     const std::string what = body.what("inertia");
     core::Mat3 inertia = core::Mat3::Zero();
-    if (node.IsSequence() && node.size() == 3 && node[0].IsSequence())
+    if (node.isSequence() && node.size() == 3 && node[0].isSequence())
     {
         for (std::size_t r = 0; r < 3; ++r)
         {
@@ -200,12 +200,12 @@ core::Mat3 readInertia(const MapNode& body)
             failAt(body.source(), node, "expected a symmetric matrix for " + what);
         }
     }
-    else if (node.IsSequence() && node.size() == 6)
+    else if (node.isSequence() && node.size() == 6)
     {
         const std::vector<double> v = toNumbers(body.source(), node, what, 6);
         inertia << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
     }
-    else if (node.IsSequence() && node.size() == 3)
+    else if (node.isSequence() && node.size() == 3)
     {
         const std::vector<double> v = toNumbers(body.source(), node, what, 3);
         inertia.diagonal() = core::Vec3(v[0], v[1], v[2]);
@@ -285,7 +285,7 @@ void readMassProperties(const MapNode& map, std::vector<ShapeEntry>& shapes, cor
 
 core::Vec3 readColor(const MapNode& map)
 {
-    const YAML::Node node = map.get("color");
+    const YamlNode node = map.get("color");
     const std::vector<double> v = toNumbers(map.source(), node, map.what("color") + " (r, g, b)", 3);
     for (std::size_t i = 0; i < 3; ++i)
     {
@@ -298,18 +298,20 @@ core::Vec3 readColor(const MapNode& map)
     return {v[0], v[1], v[2]};
 }
 
-void readBody(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+} // namespace
+
+void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
 {
     const YamlSource& source = builder.source;
     MapNode map(source, node, "body #" + std::to_string(index + 1));
-    if (map.get("name").IsScalar())
+    if (map.get("name").isScalar())
     {
-        map.setContext("body '" + map.get("name").Scalar() + "'");
+        map.setContext("body '" + map.get("name").scalar() + "'");
     }
     map.checkKeys(cBodyKeys);
     const std::string& context = map.context();
     core::Body body;
-    const YAML::Node nameNode = map.require("name");
+    const YamlNode nameNode = map.require("name");
     body.name = toString(source, nameNode, map.what("name"));
     checkNewName(builder, nameNode, "body");
     body.isStatic = map.optBool("static").value_or(false);
@@ -372,13 +374,11 @@ void readBody(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
         }
         body.shapes.push_back(std::move(shape));
     }
-    builder.bodyMarks[body.name] = nameNode.Mark();
+    builder.bodyMarks[body.name] = nameNode.mark();
     builder.addBody(std::move(body));
 }
 
-} // namespace
-
-void readBodies(SceneBuilder& builder, const YAML::Node& bodies)
+void readBodies(SceneBuilder& builder, const YamlNode& bodies)
 {
     requireSequence(builder.source, bodies, "'bodies'");
     for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -387,9 +387,9 @@ void readBodies(SceneBuilder& builder, const YAML::Node& bodies)
     }
 }
 
-void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const std::string& kind)
+void checkNewName(const SceneBuilder& builder, const YamlNode& nameNode, const std::string& kind)
 {
-    const std::string name = nameNode.Scalar();
+    const std::string name = nameNode.scalar();
     const std::string reason = invalidNameReason(name);
     if (!reason.empty())
     {
@@ -407,7 +407,7 @@ void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const
     }
 }
 
-int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
+int resolveBodyName(const SceneBuilder& builder, const YamlNode& node, const std::string& what,
                     bool allowWorld)
 {
     const std::string name = toString(builder.source, node, what);

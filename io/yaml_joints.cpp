@@ -45,23 +45,25 @@ void readJointForces(const MapNode& map, const std::string& typeName, core::Join
     joint.friction = map.optNonNegative("friction", turns ? "(N m)" : "(N)").value_or(0.0);
 }
 
-void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+} // namespace
+
+void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
 {
     const YamlSource& source = builder.source;
     core::Model& model = builder.model;
     MapNode map(source, node, "joint #" + std::to_string(index + 1));
-    if (map.get("name").IsScalar())
+    if (map.get("name").isScalar())
     {
-        map.setContext("joint '" + map.get("name").Scalar() + "'");
+        map.setContext("joint '" + map.get("name").scalar() + "'");
     }
     map.checkKeys(cJointKeys);
     const std::string& context = map.context();
     core::Joint joint;
-    const YAML::Node nameNode = map.require("name");
+    const YamlNode nameNode = map.require("name");
     joint.name = toString(source, nameNode, map.what("name"));
     checkNewName(builder, nameNode, "joint");
 
-    const YAML::Node typeNode = map.require("type");
+    const YamlNode typeNode = map.require("type");
     const std::string typeName = toString(source, typeNode, map.what("type"));
     const std::optional<core::JointType> type = core::jointTypeFromName(typeName);
     if (!type)
@@ -74,8 +76,8 @@ void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
     }
     joint.type = *type;
 
-    const YAML::Node parentNode = map.require("parent");
-    const YAML::Node childNode = map.require("child");
+    const YamlNode parentNode = map.require("parent");
+    const YamlNode childNode = map.require("child");
     joint.parent = resolveBodyName(builder, parentNode, "the parent of " + context, true);
     joint.child = resolveBodyName(builder, childNode, "the child of " + context, false);
     const core::Body& child = model.bodies[static_cast<std::size_t>(joint.child)];
@@ -122,27 +124,25 @@ void readJoint(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
             map.failAtKey("limits", context + " of type " + typeName +
                                         " takes no 'limits' (only revolute and prismatic joints do)");
         }
-        const YAML::Node limitsNode = map.get("limits");
+        const YamlNode limitsNode = map.get("limits");
         const std::vector<double> limits =
             toNumbers(source, limitsNode, map.what("limits") + " [lower, upper]", 2);
         if (limits[0] > limits[1])
         {
             failAt(source, limitsNode,
-                   "expected lower <= upper for " + map.what("limits") + ", got [" + limitsNode[0].Scalar() +
-                       ", " + limitsNode[1].Scalar() + "]");
+                   "expected lower <= upper for " + map.what("limits") + ", got [" + limitsNode[0].scalar() +
+                       ", " + limitsNode[1].scalar() + "]");
         }
         joint.limits = std::array<double, 2>{limits[0], limits[1]};
     }
     readJointForces(map, typeName, joint);
     joint.collideConnected = map.optBool("collide").value_or(false);
     core::setJointFrames(model, joint, anchor, axis);
-    builder.jointMarks[joint.name] = nameNode.Mark();
+    builder.jointMarks[joint.name] = nameNode.mark();
     builder.addJoint(std::move(joint));
 }
 
-} // namespace
-
-void readJoints(SceneBuilder& builder, const YAML::Node& joints)
+void readJoints(SceneBuilder& builder, const YamlNode& joints)
 {
     requireSequence(builder.source, joints, "'joints'");
     for (std::size_t i = 0; i < joints.size(); ++i)

@@ -14,12 +14,12 @@ namespace
 const std::vector<std::string> cLoadKeys = {"body",  "force", "torque", "impulse", "at",
                                             "frame", "from",  "to",     "time"};
 
-void readLoad(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
 {
     const YamlSource& source = builder.source;
     MapNode map(source, node, "load #" + std::to_string(index + 1));
     map.checkKeys(cLoadKeys);
-    const YAML::Node bodyNode = map.require("body");
+    const YamlNode bodyNode = map.require("body");
     core::Load load;
     load.body = resolveBodyName(builder, bodyNode, map.what("body"), false);
     const core::Body& body = builder.model.bodies[static_cast<std::size_t>(load.body)];
@@ -80,7 +80,7 @@ void readLoad(SceneBuilder& builder, const YAML::Node& node, std::size_t index)
 
 } // namespace
 
-void readLoads(SceneBuilder& builder, const YAML::Node& loads)
+void readLoads(SceneBuilder& builder, const YamlNode& loads)
 {
     requireSequence(builder.source, loads, "'loads'");
     for (std::size_t i = 0; i < loads.size(); ++i)

@@ -7,9 +7,10 @@
 #include "io/suggest.h"
 #include "io/urdf_model.h"
 
+#include <algorithm>
+#include <exception>
 #include <filesystem>
-#include <sstream>
-#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/exceptions.h>
 
 namespace frontier::io::detail
 {
@@ -31,7 +32,7 @@ const std::vector<std::string> cModelKeys = {
     "prefix", "self_collision", "fixed",       "free_base", "hold"};
 
 // `reference: {csv: FILE, body: NAME}`, after all bodies exist; the CSV is read by `sweep` alone.
-SceneReference readReference(const SceneBuilder& builder, const YAML::Node& node)
+SceneReference readReference(const SceneBuilder& builder, const YamlNode& node)
 {
     const MapNode map(builder.source, node, "'reference'");
     map.checkKeys(cReferenceKeys);
@@ -42,7 +43,7 @@ SceneReference readReference(const SceneBuilder& builder, const YAML::Node& node
     return reference;
 }
 
-void readSimulation(const YamlSource& source, const YAML::Node& node, core::SimulationSettings& sim)
+void readSimulation(const YamlSource& source, const YamlNode& node, core::SimulationSettings& sim)
 {
     const MapNode map(source, node, "'simulation'");
     map.checkKeys(cSimulationKeys);
@@ -84,7 +85,7 @@ void readSimulation(const YamlSource& source, const YAML::Node& node, core::Simu
 }
 
 // Friction, restitution and the solve's tolerances now; the ignore pairs once every body exists.
-YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::ContactSettings& contact)
+YamlNode readContact(const YamlSource& source, const YamlNode& node, core::ContactSettings& contact)
 {
     const MapNode map(source, node, "'contact'");
     map.checkKeys(cContactKeys);
@@ -126,14 +127,14 @@ YAML::Node readContact(const YamlSource& source, const YAML::Node& node, core::C
     return map.get("ignore");
 }
 
-void readIgnorePairs(const SceneBuilder& builder, const YAML::Node& node, core::ContactSettings& contact)
+void readIgnorePairs(const SceneBuilder& builder, const YamlNode& node, core::ContactSettings& contact)
 {
     const std::string what = "'ignore' in 'contact'";
     requireSequence(builder.source, node, what);
     for (std::size_t i = 0; i < node.size(); ++i)
     {
-        const YAML::Node pair = node[i];
-        if (!pair.IsSequence() || pair.size() != 2)
+        const YamlNode pair = node[i];
+        if (!pair.isSequence() || pair.size() != 2)
         {
             failAt(builder.source, pair,
                    "expected a pair of body names [a, b] for entry " + std::to_string(i + 1) + " of " + what +
@@ -145,13 +146,13 @@ void readIgnorePairs(const SceneBuilder& builder, const YAML::Node& node, core::
         if (a == b)
         {
             failAt(builder.source, pair,
-                   "a body never collides with itself: " + entry + " names '" + pair[0].Scalar() + "' twice");
+                   "a body never collides with itself: " + entry + " names '" + pair[0].scalar() + "' twice");
         }
         contact.ignore.push_back({a, b});
     }
 }
 
-void readCamera(const YamlSource& source, const YAML::Node& node, core::Camera& camera)
+void readCamera(const YamlSource& source, const YamlNode& node, core::Camera& camera)
 {
     const MapNode map(source, node, "'camera'");
     map.checkKeys(cCameraKeys);
@@ -200,7 +201,7 @@ void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fra
     }
 }
 
-void readModels(SceneBuilder& builder, const YAML::Node& node)
+void readModels(SceneBuilder& builder, const YamlNode& node)
 {
     const YamlSource& source = builder.source;
     requireSequence(source, node, "'models'");
@@ -208,7 +209,7 @@ void readModels(SceneBuilder& builder, const YAML::Node& node)
     {
         MapNode map(source, node[i], "model #" + std::to_string(i + 1));
         map.checkKeys(cModelKeys);
-        const YAML::Node urdfNode = map.require("urdf");
+        const YamlNode urdfNode = map.require("urdf");
         const std::string file = toString(source, urdfNode, map.what("urdf"));
         map.setContext("model '" + file + "'");
         UrdfPlacement placement;
@@ -310,13 +311,10 @@ std::string tabHint(const std::string& text, const YAML::Mark& mark)
 }
 
 // Line breaks as '\n' only: yaml-cpp counts lines at '\n', so a file with old Mac line endings
-// (a lone '\r') would read as one line and every message would name line 1.
+// (a lone '\r') would read as one line and every message would name line 1. (Called on text that
+// has a '\r'.)
 std::string withUnixLineBreaks(const std::string& text)
 {
-    if (text.find('\r') == std::string::npos)
-    {
-        return text;
-    }
     std::string out;
     out.reserve(text.size());
     for (std::size_t i = 0; i < text.size(); ++i)
@@ -333,70 +331,197 @@ std::string withUnixLineBreaks(const std::string& text)
     return out;
 }
 
-// Walks the documents of a text without building them (yaml-cpp's events), so that LoadAll is only
-// called on text it can finish: on a stray flow token outside any flow collection (a line that
-// starts with ',' at the top level) yaml-cpp 0.7 returns the same empty document forever, each
-// one kept, until memory runs out.
-class DocumentScan final : public YAML::EventHandler
-{
-  public:
-    void OnDocumentStart(const YAML::Mark& mark) override
-    {
-        stuck = documents > 0 && mark.pos == lastStart.pos;
-        lastStart = mark;
-        ++documents;
-    }
-    void OnDocumentEnd() override {}
-    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
-    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                         YAML::EmitterStyle::value) override
-    {
-    }
-    void OnSequenceEnd() override {}
-    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override
-    {
-    }
-    void OnMapEnd() override {}
-
-    int documents = 0;
-    bool stuck = false; // a document started where the one before started: no progress
-    YAML::Mark lastStart;
-};
-
-// Throws InputError at a token yaml-cpp cannot move past (see DocumentScan); YAML::ParserException
-// for other malformed text.
-void checkYamlTerminates(const YamlSource& source, const std::string& text)
-{
-    std::istringstream in(text);
-    YAML::Parser parser(in);
-    DocumentScan scan;
-    while (parser.HandleNextDocument(scan))
-    {
-        if (scan.stuck)
-        {
-            const std::size_t at = static_cast<std::size_t>(scan.lastStart.pos);
-            const std::string token = at < text.size() ? std::string(1, text[at]) : std::string();
-            failAt(source, scan.lastStart,
-                   "invalid YAML: unexpected '" + token +
-                       "' here (outside any [...] or {...}, and not the start of a value)");
-        }
-    }
-}
-
 std::string defaultName(const std::string& sourceName)
 {
     const std::string stem = std::filesystem::path(sourceName).stem().string();
     return stem.empty() ? sourceName : stem;
 }
 
+// The scene's `bodies:` and `joints:` lists read item by item while the text is parsed, so that
+// neither is ever held whole (a scene of 10^5 bodies is mostly these two lists). What is read keeps
+// the order of the scene's rules (loadYamlScene): YAML bodies, then the `models:` (their bodies
+// after the YAML ones, their joints before the YAML ones), then the YAML joints. So the joints are
+// read during the parse only once the bodies are in and the models either read or absent so far;
+// a `models:` that follows them takes them back out (their items are gone), and joints that could
+// not be read in the first parse are read in a second parse of the text. An error is kept, not
+// thrown, until loadYamlScene reaches the part it belongs to: the error the scene's rules meet
+// first is the one reported, whatever the order of the keys in the file (and a YAML syntax error
+// anywhere before any of them, as the whole text is parsed first).
+class SceneLists final : public YamlListHandler
+{
+  public:
+    enum class Part
+    {
+        Bodies,
+        Models,
+        Joints,
+    };
+
+    // jointsOnly: the second parse, for joints that the first could not read.
+    SceneLists(SceneBuilder& builder, bool jointsOnly) : mBuilder(builder), mJointsOnly(jointsOnly) {}
+
+    void onRootValueBegin(const std::string& key) override
+    {
+        mFirst = std::find(mSeen.begin(), mSeen.end(), key) == mSeen.end();
+        if (!mFirst)
+        {
+            return;
+        }
+        mSeen.push_back(key);
+        if (mJointsOnly)
+        {
+            return;
+        }
+        if (key == "models" && mJoints == Reading::Now)
+        {
+            // The joints read so far would come before the models' joints: take them out again.
+            mJoints = Reading::Later;
+            forgetJoints();
+        }
+        if (key == "joints")
+        {
+            mJoints = readJointsNow() ? Reading::Now : Reading::Later;
+            mJointsBefore = mBuilder.model.joints.size();
+        }
+    }
+
+    // The first `bodies` and `joints`, when lists (another value, or a second one of these keys,
+    // an error of the scene, stays in the tree). The second parse takes the bodies only to drop them.
+    bool takeItems(const std::string& key) override
+    {
+        if (!mFirst || (key != "bodies" && key != "joints"))
+        {
+            return false;
+        }
+        (key == "bodies" ? mBodiesTaken : mJointsTaken) = true;
+        return true;
+    }
+
+    void onItem(const std::string& key, std::size_t index, const YamlNode& item) override
+    {
+        const bool bodies = key == "bodies";
+        if (mError || (bodies && mJointsOnly) || (!bodies && !mJointsOnly && mJoints != Reading::Now))
+        {
+            return;
+        }
+        try
+        {
+            if (bodies)
+            {
+                readBody(mBuilder, item, index);
+            }
+            else
+            {
+                readJoint(mBuilder, item, index);
+            }
+        }
+        catch (...)
+        {
+            keepError(bodies ? Part::Bodies : Part::Joints);
+        }
+    }
+
+    void onRootValueEnd(const std::string& key, const YamlNode& value) override
+    {
+        if (key == "bodies" && mBodiesTaken && !mBodiesDone)
+        {
+            mBodiesDone = true;
+        }
+        if (key == "models" && !mModels.isDefined())
+        {
+            mModels = value; // read once the bodies are in (readJointsNow, or loadYamlScene)
+        }
+    }
+
+    // Whether the first parse read the bodies (the first `bodies:`, a list), the models, the joints.
+    bool bodiesRead() const { return mBodiesTaken; }
+    bool modelsRead() const { return mModelsRead; }
+    bool jointsRead() const { return mJoints == Reading::Now; }
+    bool tookJoints() const { return mJointsTaken; }
+    // The error kept for that part, thrown now.
+    void throwErrorOf(Part part) const
+    {
+        if (mError && mErrorPart == part)
+        {
+            std::rethrow_exception(mError);
+        }
+    }
+
+  private:
+    enum class Reading
+    {
+        NotYet,
+        Now,   // joints read as they are parsed
+        Later, // by the second parse
+    };
+
+    bool readJointsNow()
+    {
+        if (mError || !mBodiesDone)
+        {
+            return false;
+        }
+        if (mModels.isDefined() && !mModelsRead)
+        {
+            mModelsRead = true;
+            try
+            {
+                readModels(mBuilder, mModels);
+            }
+            catch (...)
+            {
+                keepError(Part::Models);
+                return false;
+            }
+        }
+        // No bodies yet: perhaps a later `models:` brings some; else an error before any joint.
+        return !mBuilder.model.bodies.empty();
+    }
+
+    void forgetJoints()
+    {
+        for (std::size_t k = mJointsBefore; k < mBuilder.model.joints.size(); ++k)
+        {
+            const std::string& name = mBuilder.model.joints[k].name;
+            mBuilder.jointIndex.erase(name);
+            mBuilder.jointMarks.erase(name);
+        }
+        mBuilder.model.joints.resize(mJointsBefore);
+        if (mError && mErrorPart == Part::Joints)
+        {
+            mError = nullptr;
+        }
+    }
+
+    void keepError(Part part)
+    {
+        mError = std::current_exception();
+        mErrorPart = part;
+    }
+
+    SceneBuilder& mBuilder;
+    bool mJointsOnly;
+    std::vector<std::string> mSeen; // root keys whose (first) value began
+    bool mFirst = false;            // the value beginning is its key's first
+    bool mBodiesTaken = false;
+    bool mBodiesDone = false;
+    bool mJointsTaken = false;
+    YamlNode mModels; // the first `models:` value, in the tree
+    bool mModelsRead = false;
+    Reading mJoints = Reading::NotYet;
+    std::size_t mJointsBefore = 0; // joints before the YAML ones (the models')
+    std::exception_ptr mError;
+    Part mErrorPart = Part::Bodies;
+};
+
 } // namespace
 
 core::Model loadYamlScene(const std::string& rawText, const std::string& sourceName, const UrdfOptions& urdf,
                           LoadReport* report)
 {
-    const std::string text = withUnixLineBreaks(rawText);
+    std::string converted;
+    const std::string& text =
+        rawText.find('\r') == std::string::npos ? rawText : (converted = withUnixLineBreaks(rawText));
     SceneBuilder builder;
     builder.urdf = urdf;
     builder.report = report;
@@ -407,15 +532,16 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
     model.name = defaultName(sourceName);
     try
     {
-        checkYamlTerminates(source, text);
-        const std::vector<YAML::Node> documents = YAML::LoadAll(text);
-        if (documents.size() > 1)
+        SceneLists lists(builder, false);
+        YamlDocuments documents;
+        parseYaml(text, sourceName, documents, &lists);
+        if (documents.count > 1)
         {
-            failAt(source, documents[1],
-                   "the file holds " + std::to_string(documents.size()) +
+            failAt(source, documents.second,
+                   "the file holds " + std::to_string(documents.count) +
                        " YAML documents; expected one scene");
         }
-        if (documents.empty() || documents[0].IsNull())
+        if (documents.first.root().isNull())
         {
             throw InputError(sourceName, 1, 1,
                              std::string(text.find_first_not_of(" \t\n") == std::string::npos
@@ -424,7 +550,7 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
                                                "empty document)") +
                                  "; expected a scene: a map with 'bodies' (and 'joints', ...)");
         }
-        const MapNode root(source, documents[0], "the scene");
+        const MapNode root(source, documents.first.root(), "the scene");
         root.checkKeys(cSceneKeys);
         if (root.has("name"))
         {
@@ -434,20 +560,22 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
         {
             readSimulation(source, root.get("simulation"), model.simulation);
         }
-        YAML::Node ignore;
+        YamlNode ignore;
         if (root.has("contact"))
         {
-            ignore.reset(readContact(source, root.get("contact"), model.contact));
+            ignore = readContact(source, root.get("contact"), model.contact);
         }
         if (root.has("camera"))
         {
             readCamera(source, root.get("camera"), model.camera);
         }
-        if (root.has("bodies"))
+        lists.throwErrorOf(SceneLists::Part::Bodies);
+        if (root.has("bodies") && !lists.bodiesRead())
         {
             readBodies(builder, root.get("bodies"));
         }
-        if (root.has("models"))
+        lists.throwErrorOf(SceneLists::Part::Models);
+        if (root.has("models") && !lists.modelsRead())
         {
             readModels(builder, root.get("models"));
         }
@@ -455,11 +583,23 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
         {
             root.fail("the scene has no bodies; expected 'bodies' or 'models'");
         }
-        if (root.has("joints"))
+        lists.throwErrorOf(SceneLists::Part::Joints);
+        if (root.has("joints") && !lists.jointsRead())
         {
-            readJoints(builder, root.get("joints"));
+            if (lists.tookJoints())
+            {
+                // Its items were not kept: read them in a second parse, bodies and models now in.
+                SceneLists second(builder, true);
+                YamlDocuments again;
+                parseYaml(text, sourceName, again, &second);
+                second.throwErrorOf(SceneLists::Part::Joints);
+            }
+            else
+            {
+                readJoints(builder, root.get("joints")); // not a list: the error
+            }
         }
-        if (ignore.IsDefined() && !ignore.IsNull())
+        if (ignore.isDefined() && !ignore.isNull())
         {
             readIgnorePairs(builder, ignore, model.contact);
         }
@@ -509,6 +649,9 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
             "has none, so it changes nothing (its bodies' collisions are set by 'group', 'contact: "
             "ignore' and the joints' 'collide')"));
     }
+    // The lists grew one item at a time: give back their spare capacity (up to half of them).
+    model.bodies.shrink_to_fit();
+    model.joints.shrink_to_fit();
     return std::move(builder.model);
 }
 

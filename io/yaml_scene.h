@@ -52,32 +52,34 @@ struct SceneBuilder
 core::Model loadYamlScene(const std::string& text, const std::string& sourceName,
                           const UrdfOptions& urdf = {}, LoadReport* report = nullptr);
 
-// `bodies:` list (each body appended to builder.model.bodies).
-void readBodies(SceneBuilder& builder, const YAML::Node& bodies);
-// `joints:` list, after all bodies (YAML and URDF) exist.
-void readJoints(SceneBuilder& builder, const YAML::Node& joints);
+// `bodies:` list (each body appended to builder.model.bodies), or its item `index` (0-based) alone.
+void readBodies(SceneBuilder& builder, const YamlNode& bodies);
+void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index);
+// `joints:` list, after all bodies (YAML and URDF) exist, or its item `index` (0-based) alone.
+void readJoints(SceneBuilder& builder, const YamlNode& joints);
+void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index);
 
 // A body named by `node` (a string): its index, or core::cWorld for "world" when allowWorld. A
 // URDF link welded into a body names that body.
 // Errors name `what` and suggest the closest body name.
-int resolveBodyName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what,
+int resolveBodyName(const SceneBuilder& builder, const YamlNode& node, const std::string& what,
                     bool allowWorld);
 
 // A joint named by `node` (a string): its index. Errors name `what` and suggest the closest joint name.
-int resolveJointName(const SceneBuilder& builder, const YAML::Node& node, const std::string& what);
+int resolveJointName(const SceneBuilder& builder, const YamlNode& node, const std::string& what);
 
 // `actuators:` list, after all joints exist (core::Actuator).
-void readActuators(SceneBuilder& builder, const YAML::Node& actuators);
+void readActuators(SceneBuilder& builder, const YamlNode& actuators);
 // `loads:` list, after all bodies exist (core::Load).
-void readLoads(SceneBuilder& builder, const YAML::Node& loads);
+void readLoads(SceneBuilder& builder, const YamlNode& loads);
 // `stability:` (the stability suite's criteria), after all joints and actuators exist.
-SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const YAML::Node& node);
+SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const YamlNode& node);
 // An actuator's target (a number, or a map with sine, keyframes or csv), `what` naming it in
 // messages; a csv target's column defaults to defaultColumn.
-core::TimeFunction readTarget(const YamlSource& source, const YAML::Node& node, const std::string& what,
+core::TimeFunction readTarget(const YamlSource& source, const YamlNode& node, const std::string& what,
                               const std::string& defaultColumn);
 
 // Checks a new body or joint name: valid, and not taken.
-void checkNewName(const SceneBuilder& builder, const YAML::Node& nameNode, const std::string& kind);
+void checkNewName(const SceneBuilder& builder, const YamlNode& nameNode, const std::string& kind);
 
 } // namespace frontier::io::detail

@@ -12,11 +12,11 @@ namespace
 const std::vector<std::string> cStabilityKeys = {"max_speed", "max_energy_rise", "joints"};
 const std::vector<std::string> cJointCheckKeys = {"joint", "max_tracking_error", "range", "reach"};
 
-StabilityJointCheck readJointCheck(const SceneBuilder& builder, const YAML::Node& node, std::size_t index)
+StabilityJointCheck readJointCheck(const SceneBuilder& builder, const YamlNode& node, std::size_t index)
 {
     MapNode map(builder.source, node, "stability joint check #" + std::to_string(index + 1));
     map.checkKeys(cJointCheckKeys);
-    const YAML::Node jointNode = map.require("joint");
+    const YamlNode jointNode = map.require("joint");
     StabilityJointCheck check;
     check.joint = resolveJointName(builder, jointNode, map.what("joint"));
     const core::Joint& joint = builder.model.joints[static_cast<std::size_t>(check.joint)];
@@ -44,14 +44,14 @@ StabilityJointCheck readJointCheck(const SceneBuilder& builder, const YAML::Node
     }
     if (map.has("range"))
     {
-        const YAML::Node rangeNode = map.get("range");
+        const YamlNode rangeNode = map.get("range");
         const std::vector<double> range =
             toNumbers(builder.source, rangeNode, map.what("range") + " [lower, upper]", 2);
         if (range[0] > range[1])
         {
             failAt(builder.source, rangeNode,
-                   "expected lower <= upper for " + map.what("range") + ", got [" + rangeNode[0].Scalar() +
-                       ", " + rangeNode[1].Scalar() + "]");
+                   "expected lower <= upper for " + map.what("range") + ", got [" + rangeNode[0].scalar() +
+                       ", " + rangeNode[1].scalar() + "]");
         }
         check.range = std::array<double, 2>{range[0], range[1]};
     }
@@ -65,7 +65,7 @@ StabilityJointCheck readJointCheck(const SceneBuilder& builder, const YAML::Node
 
 } // namespace
 
-SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const YAML::Node& node)
+SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const YamlNode& node)
 {
     const MapNode map(builder.source, node, "'stability'");
     map.checkKeys(cStabilityKeys);
@@ -74,7 +74,7 @@ SceneStabilityCriteria readStabilityCriteria(const SceneBuilder& builder, const 
     criteria.maxEnergyRise = map.optNonNegative("max_energy_rise", "(J)");
     if (map.has("joints"))
     {
-        const YAML::Node joints = map.get("joints");
+        const YamlNode joints = map.get("joints");
         requireSequence(builder.source, joints, map.what("joints"));
         for (std::size_t i = 0; i < joints.size(); ++i)
         {

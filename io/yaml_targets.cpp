@@ -17,7 +17,7 @@ const std::vector<std::string> cTargetKeys = {"sine", "keyframes", "csv", "smoot
 const std::vector<std::string> cSineKeys = {"amplitude", "frequency", "phase", "offset"};
 const std::vector<std::string> cCsvKeys = {"file", "column"};
 
-core::TimeFunction readSine(const YamlSource& source, const YAML::Node& node, const std::string& what)
+core::TimeFunction readSine(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     const MapNode map(source, node, "'sine' of " + what);
     map.checkKeys(cSineKeys);
@@ -28,7 +28,7 @@ core::TimeFunction readSine(const YamlSource& source, const YAML::Node& node, co
                               map.optNumber("offset").value_or(0.0));
 }
 
-core::TimeFunction readKeyframes(const YamlSource& source, const YAML::Node& node, const std::string& what,
+core::TimeFunction readKeyframes(const YamlSource& source, const YamlNode& node, const std::string& what,
                                  bool smooth)
 {
     const std::string list = "'keyframes' of " + what;
@@ -41,7 +41,7 @@ core::TimeFunction readKeyframes(const YamlSource& source, const YAML::Node& nod
     std::vector<double> values;
     for (std::size_t k = 0; k < node.size(); ++k)
     {
-        const YAML::Node pair = node[k];
+        const YamlNode pair = node[k];
         const std::vector<double> tv = toNumbers(
             source, pair, "keyframe " + std::to_string(k + 1) + " of " + list + " [time, value]", 2);
         if (!times.empty() && !(tv[0] > times.back()))
@@ -57,12 +57,12 @@ core::TimeFunction readKeyframes(const YamlSource& source, const YAML::Node& nod
     return core::keyframeFunction(std::move(times), std::move(values), smooth);
 }
 
-core::TimeFunction readCsv(const YamlSource& source, const YAML::Node& node, const std::string& what,
+core::TimeFunction readCsv(const YamlSource& source, const YamlNode& node, const std::string& what,
                            const std::string& defaultColumn, bool smooth)
 {
     const MapNode map(source, node, "'csv' of " + what);
     map.checkKeys(cCsvKeys);
-    const YAML::Node fileNode = map.require("file");
+    const YamlNode fileNode = map.require("file");
     const std::string path = resolvePath(source.baseDir, toString(source, fileNode, map.what("file")));
     const std::string column = map.optString("column").value_or(defaultColumn);
     TargetColumn table;
@@ -83,14 +83,14 @@ core::TimeFunction readCsv(const YamlSource& source, const YAML::Node& node, con
 
 } // namespace
 
-core::TimeFunction readTarget(const YamlSource& source, const YAML::Node& node, const std::string& what,
+core::TimeFunction readTarget(const YamlSource& source, const YamlNode& node, const std::string& what,
                               const std::string& defaultColumn)
 {
-    if (node.IsScalar())
+    if (node.isScalar())
     {
         return core::constantFunction(toNumber(source, node, what));
     }
-    if (!node.IsMap())
+    if (!node.isMap())
     {
         failAt(source, node,
                "expected a number or a map with 'sine', 'keyframes' or 'csv' for " + what + ", got " +

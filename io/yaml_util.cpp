@@ -1,4 +1,4 @@
-// io/yaml_util.cpp: typed, located reading of yaml-cpp nodes.
+// io/yaml_util.cpp: typed, located reading of YAML nodes.
 #include "io/yaml_util.h"
 
 #include "io/file_util.h"
@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <yaml-cpp/yaml.h>
 
 namespace frontier::io::detail
 {
@@ -21,35 +22,35 @@ void failAt(const YamlSource& source, const YAML::Mark& mark, const std::string&
     throw InputError(source.file, mark.line + 1, mark.column + 1, message);
 }
 
-void failAt(const YamlSource& source, const YAML::Node& node, const std::string& message)
+void failAt(const YamlSource& source, const YamlNode& node, const std::string& message)
 {
-    failAt(source, node.IsDefined() ? node.Mark() : YAML::Mark::null_mark(), message);
+    failAt(source, node.isDefined() ? node.mark() : YAML::Mark::null_mark(), message);
 }
 
-std::string describeNode(const YAML::Node& node)
+std::string describeNode(const YamlNode& node)
 {
-    if (!node.IsDefined() || node.IsNull())
+    if (!node.isDefined() || node.isNull())
     {
         return "null";
     }
-    if (node.IsSequence())
+    if (node.isSequence())
     {
         return node.size() == 1 ? "a list of 1 item" : "a list of " + std::to_string(node.size()) + " items";
     }
-    if (node.IsMap())
+    if (node.isMap())
     {
         return "a map";
     }
-    return "'" + node.Scalar() + "'";
+    return "'" + node.scalar() + "'";
 }
 
 namespace
 {
 // A number may carry no tag, or the standard !!int / !!float: a local tag ("!units 3") means
 // something this reader does not know, so it is refused rather than silently dropped.
-void checkNumberTag(const YamlSource& source, const YAML::Node& node, const std::string& what)
+void checkNumberTag(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    const std::string& tag = node.Tag();
+    const std::string& tag = node.tag();
     if (tag.empty() || tag == "?" || tag == "!" || tag == "tag:yaml.org,2002:int" ||
         tag == "tag:yaml.org,2002:float")
     {
@@ -61,22 +62,22 @@ void checkNumberTag(const YamlSource& source, const YAML::Node& node, const std:
 }
 } // namespace
 
-double toNumber(const YamlSource& source, const YAML::Node& node, const std::string& what)
+double toNumber(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    if (!node.IsScalar())
+    if (!node.isScalar())
     {
         failAt(source, node, "expected a number for " + what + ", got " + describeNode(node));
     }
     checkNumberTag(source, node, what);
     // The rule of every text input file (io/file_util.h), so that a scene and a trajectory agree on
     // what a number is.
-    const std::optional<double> value = parseFiniteNumber(node.Scalar());
+    const std::optional<double> value = parseFiniteNumber(node.scalar());
     if (!value)
     {
         bool nonFinite = false; // YAML's .inf and .nan: say why they are refused
         try
         {
-            nonFinite = !std::isfinite(node.as<double>());
+            nonFinite = !std::isfinite(YAML::Node(node.scalar()).as<double>()); // yaml-cpp's reading
         }
         catch (const YAML::Exception&)
         {
@@ -88,7 +89,7 @@ double toNumber(const YamlSource& source, const YAML::Node& node, const std::str
     return *value;
 }
 
-double toPositive(const YamlSource& source, const YAML::Node& node, const std::string& what)
+double toPositive(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     const double value = toNumber(source, node, what);
     if (!(value > 0.0))
@@ -98,15 +99,15 @@ double toPositive(const YamlSource& source, const YAML::Node& node, const std::s
     return value;
 }
 
-int toInteger(const YamlSource& source, const YAML::Node& node, const std::string& what)
+int toInteger(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    if (!node.IsScalar())
+    if (!node.isScalar())
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
     }
     checkNumberTag(source, node, what);
     const std::optional<long long> value =
-        parseWholeNumber(node.Scalar(), std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
+        parseWholeNumber(node.scalar(), std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
     if (!value)
     {
         failAt(source, node, "expected an integer for " + what + ", got " + describeNode(node));
@@ -114,15 +115,15 @@ int toInteger(const YamlSource& source, const YAML::Node& node, const std::strin
     return static_cast<int>(*value);
 }
 
-bool toBool(const YamlSource& source, const YAML::Node& node, const std::string& what)
+bool toBool(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    if (!node.IsScalar())
+    if (!node.isScalar())
     {
         failAt(source, node, "expected true or false for " + what + ", got " + describeNode(node));
     }
     try
     {
-        return node.as<bool>();
+        return YAML::Node(node.scalar()).as<bool>(); // yaml-cpp's words: true/false, yes/no, on/off, ...
     }
     catch (const YAML::Exception&)
     {
@@ -130,19 +131,19 @@ bool toBool(const YamlSource& source, const YAML::Node& node, const std::string&
     }
 }
 
-std::string toString(const YamlSource& source, const YAML::Node& node, const std::string& what)
+std::string toString(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    if (!node.IsScalar())
+    if (!node.isScalar())
     {
         failAt(source, node, "expected a string for " + what + ", got " + describeNode(node));
     }
-    return node.Scalar();
+    return node.scalar();
 }
 
-std::vector<double> toNumbers(const YamlSource& source, const YAML::Node& node, const std::string& what,
+std::vector<double> toNumbers(const YamlSource& source, const YamlNode& node, const std::string& what,
                               std::size_t count)
 {
-    if (!node.IsSequence() || node.size() != count)
+    if (!node.isSequence() || node.size() != count)
     {
         failAt(source, node,
                "expected a list of " + std::to_string(count) + " numbers for " + what + ", got " +
@@ -157,13 +158,13 @@ std::vector<double> toNumbers(const YamlSource& source, const YAML::Node& node, 
     return out;
 }
 
-core::Vec3 toVec3(const YamlSource& source, const YAML::Node& node, const std::string& what)
+core::Vec3 toVec3(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     const std::vector<double> v = toNumbers(source, node, what, 3);
     return {v[0], v[1], v[2]};
 }
 
-core::Vec3 toDirection(const YamlSource& source, const YAML::Node& node, const std::string& what)
+core::Vec3 toDirection(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     const core::Vec3 v = toVec3(source, node, what);
     const double length = v.norm();
@@ -174,7 +175,7 @@ core::Vec3 toDirection(const YamlSource& source, const YAML::Node& node, const s
     return v / length;
 }
 
-core::Quat toQuaternion(const YamlSource& source, const YAML::Node& node, const std::string& what)
+core::Quat toQuaternion(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     const std::vector<double> v = toNumbers(source, node, what + " (quaternion w, x, y, z)", 4);
     core::Quat q(v[0], v[1], v[2], v[3]);
@@ -187,31 +188,32 @@ core::Quat toQuaternion(const YamlSource& source, const YAML::Node& node, const 
     return q;
 }
 
-const YAML::Node& requireSequence(const YamlSource& source, const YAML::Node& node, const std::string& what)
+const YamlNode& requireSequence(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
-    if (!node.IsSequence())
+    if (!node.isSequence())
     {
         failAt(source, node, "expected a list for " + what + ", got " + describeNode(node));
     }
     return node;
 }
 
-MapNode::MapNode(const YamlSource& source, const YAML::Node& node, std::string context)
-    : mSource(&source), mNode(node), mMark(node.IsDefined() ? node.Mark() : YAML::Mark::null_mark()),
+MapNode::MapNode(const YamlSource& source, const YamlNode& node, std::string context)
+    : mSource(&source), mNode(node), mMark(node.isDefined() ? node.mark() : YAML::Mark::null_mark()),
       mContext(std::move(context))
 {
-    if (!node.IsMap())
+    if (!node.isMap())
     {
         failAt(source, node, "expected a map for " + mContext + ", got " + describeNode(node));
     }
-    for (const auto& kv : node)
+    mEntries.reserve(node.size());
+    for (std::size_t i = 0; i < node.size(); ++i)
     {
-        if (!kv.first.IsScalar())
+        const YamlNode key = node.key(i);
+        if (!key.isScalar())
         {
-            failAt(source, kv.first,
-                   "expected a key name in " + mContext + ", got " + describeNode(kv.first));
+            failAt(source, key, "expected a key name in " + mContext + ", got " + describeNode(key));
         }
-        mEntries.push_back(Entry{kv.first.Scalar(), kv.first.Mark(), kv.second});
+        mEntries.push_back(Entry{key.scalar(), key.mark(), node.value(i)});
     }
 }
 
@@ -260,13 +262,13 @@ bool MapNode::has(const std::string& key) const
     return find(key) != nullptr;
 }
 
-YAML::Node MapNode::get(const std::string& key) const
+YamlNode MapNode::get(const std::string& key) const
 {
     const Entry* entry = find(key);
-    return entry != nullptr ? entry->value : YAML::Node();
+    return entry != nullptr ? entry->value : YamlNode();
 }
 
-YAML::Node MapNode::require(const std::string& key) const
+YamlNode MapNode::require(const std::string& key) const
 {
     const Entry* entry = find(key);
     if (entry == nullptr)

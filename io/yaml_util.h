@@ -1,18 +1,19 @@
-// io/yaml_util.h: typed, located reading of yaml-cpp nodes, for io/'s readers and the batch plan reader
-// (app/batch_plan.cpp); not part of the installed API.
+// io/yaml_util.h: typed, located reading of YAML nodes (io/yaml_tree.h), for io/'s readers and the
+// batch plan reader (app/batch_plan.cpp); not part of the installed API.
 //
 // Every error is an InputError with the file and the 1-based line:column of the offending node
-// (yaml-cpp marks are 0-based). Missing keys have no node, so they are reported at the parent
+// (yaml-cpp's marks are 0-based). Missing keys have no node, so they are reported at the parent
 // map. Maps are checked for duplicate and unknown keys (with a "did you mean" suggestion).
 #pragma once
 
 #include "core/model.h"
+#include "io/yaml_tree.h"
 
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
-#include <yaml-cpp/yaml.h>
+#include <yaml-cpp/mark.h>
 
 namespace frontier::io::detail
 {
@@ -25,36 +26,36 @@ struct YamlSource
 };
 
 [[noreturn]] void failAt(const YamlSource& source, const YAML::Mark& mark, const std::string& message);
-[[noreturn]] void failAt(const YamlSource& source, const YAML::Node& node, const std::string& message);
+[[noreturn]] void failAt(const YamlSource& source, const YamlNode& node, const std::string& message);
 
 // How a node looks in a message: "'heavy'", "a list", "a map", "null".
-std::string describeNode(const YAML::Node& node);
+std::string describeNode(const YamlNode& node);
 
 // Conversions of one node; `what` names it in messages ("'mass' in body 'pelvis'").
-double toNumber(const YamlSource& source, const YAML::Node& node, const std::string& what);
-double toPositive(const YamlSource& source, const YAML::Node& node, const std::string& what);
-int toInteger(const YamlSource& source, const YAML::Node& node, const std::string& what);
-bool toBool(const YamlSource& source, const YAML::Node& node, const std::string& what);
-std::string toString(const YamlSource& source, const YAML::Node& node, const std::string& what);
+double toNumber(const YamlSource& source, const YamlNode& node, const std::string& what);
+double toPositive(const YamlSource& source, const YamlNode& node, const std::string& what);
+int toInteger(const YamlSource& source, const YamlNode& node, const std::string& what);
+bool toBool(const YamlSource& source, const YamlNode& node, const std::string& what);
+std::string toString(const YamlSource& source, const YamlNode& node, const std::string& what);
 // A list of exactly `count` finite numbers.
-std::vector<double> toNumbers(const YamlSource& source, const YAML::Node& node, const std::string& what,
+std::vector<double> toNumbers(const YamlSource& source, const YamlNode& node, const std::string& what,
                               std::size_t count);
-core::Vec3 toVec3(const YamlSource& source, const YAML::Node& node, const std::string& what);
+core::Vec3 toVec3(const YamlSource& source, const YamlNode& node, const std::string& what);
 // Non-zero 3-vector, normalised.
-core::Vec3 toDirection(const YamlSource& source, const YAML::Node& node, const std::string& what);
+core::Vec3 toDirection(const YamlSource& source, const YamlNode& node, const std::string& what);
 // Quaternion [w, x, y, z], non-zero, normalised.
-core::Quat toQuaternion(const YamlSource& source, const YAML::Node& node, const std::string& what);
-const YAML::Node& requireSequence(const YamlSource& source, const YAML::Node& node, const std::string& what);
+core::Quat toQuaternion(const YamlSource& source, const YamlNode& node, const std::string& what);
+const YamlNode& requireSequence(const YamlSource& source, const YamlNode& node, const std::string& what);
 
 // A YAML map with a context for messages ("body 'pelvis'").
 class MapNode
 {
   public:
     // Throws unless `node` is a map.
-    MapNode(const YamlSource& source, const YAML::Node& node, std::string context);
+    MapNode(const YamlSource& source, const YamlNode& node, std::string context);
 
     const YamlSource& source() const { return *mSource; }
-    const YAML::Node& node() const { return mNode; }
+    const YamlNode& node() const { return mNode; }
     const YAML::Mark& mark() const { return mMark; }
     const std::string& context() const { return mContext; }
     void setContext(std::string context) { mContext = std::move(context); }
@@ -63,10 +64,10 @@ class MapNode
     void checkKeys(const std::vector<std::string>& known) const;
 
     bool has(const std::string& key) const;
-    // The value of `key` (the first one when duplicated), or a null YAML::Node() when absent.
-    YAML::Node get(const std::string& key) const;
+    // The value of `key` (the first one when duplicated), or no node (YamlNode()) when absent.
+    YamlNode get(const std::string& key) const;
     // The value; "missing key 'key' in <context>" at the map's mark when absent.
-    YAML::Node require(const std::string& key) const;
+    YamlNode require(const std::string& key) const;
     // Mark of the key itself (the map's mark when absent).
     YAML::Mark keyMark(const std::string& key) const;
     // "'key' in <context>"
@@ -94,12 +95,12 @@ class MapNode
     {
         std::string key;
         YAML::Mark keyMark;
-        YAML::Node value;
+        YamlNode value;
     };
     const Entry* find(const std::string& key) const;
 
     const YamlSource* mSource;
-    YAML::Node mNode;
+    YamlNode mNode;
     YAML::Mark mMark;
     std::string mContext;
     std::vector<Entry> mEntries;

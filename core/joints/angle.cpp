@@ -7,11 +7,14 @@
 namespace frontier::core::detail
 {
 
-void writeAngleJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, JointRows& out)
+template <class Rows>
+void writeAngleJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, Rows& out)
 {
     const int row = writeBallRows(g, out, 0);
     out.positionRows = 3;
     out.count = writeTwistRow(joint, g, out, row);
 }
 
+template void writeAngleJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writeAngleJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

@@ -6,10 +6,13 @@
 namespace frontier::core::detail
 {
 
-void writeBallJoint(const Joint& /*joint*/, const JointPose& /*pose*/, const JointGeometry& g, JointRows& out)
+template <class Rows>
+void writeBallJoint(const Joint& /*joint*/, const JointPose& /*pose*/, const JointGeometry& g, Rows& out)
 {
     out.positionRows = 3;
     out.count = writeBallRows(g, out, 0);
 }
 
+template void writeBallJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writeBallJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

@@ -7,12 +7,14 @@
 namespace frontier::core::detail
 {
 
-void writeCylindricalJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g,
-                           JointRows& out)
+template <class Rows>
+void writeCylindricalJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, Rows& out)
 {
     const int row = writeSlidingRows(joint, g, out, 0);
     out.positionRows = 2;
     out.count = writeAxisAlignmentRows(joint, g, out, row);
 }
 
+template void writeCylindricalJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writeCylindricalJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

@@ -55,8 +55,9 @@ int jointBlockRows(const Joint& joint, bool actuated)
     return jointRowCount(joint.type) + blockDriveRows(joint, actuated);
 }
 
+template <class Rows>
 void writeDriveRows(const Joint& joint, int driveRows, const JointDriveGains& gains,
-                    const detail::JointGeometry& g, bool parentMoves, double h, JointRows& out)
+                    const detail::JointGeometry& g, bool parentMoves, double h, Rows& out)
 {
     if (driveRows == 0)
     {
@@ -82,5 +83,10 @@ void writeDriveRows(const Joint& joint, int driveRows, const JointDriveGains& ga
         out.error(row) = 0.0;
     }
 }
+
+template void writeDriveRows(const Joint&, int, const JointDriveGains&, const detail::JointGeometry&, bool,
+                             double, JointRows&);
+template void writeDriveRows(const Joint&, int, const JointDriveGains&, const detail::JointGeometry&, bool,
+                             double, JointRowsSlot&);
 
 } // namespace frontier::core

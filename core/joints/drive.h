@@ -77,7 +77,9 @@ int jointBlockRows(const Joint& joint, bool actuated = false);
 // Appends the joint's drive rows to `out`, which evaluateJoint filled at the pose of g, for a solve
 // of duration h (s), with the gains of each coordinate. parentMoves as for evaluateJoint. A joint
 // with no drive rows in its block (blockDriveRows) gets none.
+// `Rows`: JointRows or JointRowsSlot.
+template <class Rows>
 void writeDriveRows(const Joint& joint, int driveRows, const JointDriveGains& gains,
-                    const detail::JointGeometry& g, bool parentMoves, double h, JointRows& out);
+                    const detail::JointGeometry& g, bool parentMoves, double h, Rows& out);
 
 } // namespace frontier::core

@@ -5,11 +5,14 @@
 namespace frontier::core::detail
 {
 
-void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out)
+template <class Rows>
+void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, Rows& out)
 {
     const int row = writeBallRows(g, out, 0);
     out.positionRows = 3;
     out.count = writeWeldRotationRows(joint, pose, out, row);
 }
 
+template void writeFixedJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writeFixedJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

@@ -1,6 +1,12 @@
 // core/joints/joint_rows.cpp: dispatch by joint type and the row pieces the types share.
 #include "core/joints/joint_rows.h"
 
+#include "core/fixed_rows.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
 namespace frontier::core
 {
 namespace detail
@@ -16,12 +22,12 @@ Mat3 skew(const Vec3& v)
 }
 
 // One angular row: (w_b - w_a) . g.
-void setAngularRow(JointRows& out, int row, const Vec3& g)
+template <class Rows> void setAngularRow(Rows& out, int row, const Vec3& g)
 {
     out.J_a.row(row).setZero();
     out.J_b.row(row).setZero();
-    out.J_a.block<1, 3>(row, 3) = -g.transpose();
-    out.J_b.block<1, 3>(row, 3) = g.transpose();
+    out.J_a.template block<1, 3>(row, 3) = -g.transpose();
+    out.J_b.template block<1, 3>(row, 3) = g.transpose();
 }
 } // namespace
 
@@ -45,22 +51,23 @@ JointGeometry jointGeometry(const Joint& joint, const JointPose& pose, const Mat
 
 // Point-to-point, docs/method.md §2 (l_ji on the right):
 //   C = p_b - p_a,  J_a = [-1, [r_a]x],  J_b = [1, -[r_b]x]   (w x r = -[r]x w)
-int writeBallRows(const JointGeometry& g, JointRows& out, int row)
+template <class Rows> int writeBallRows(const JointGeometry& g, Rows& out, int row)
 {
     if (!g.conditionsOnly)
     {
-        out.J_a.block<3, 3>(row, 0) = -Mat3::Identity();
-        out.J_a.block<3, 3>(row, 3) = skew(g.r_a);
-        out.J_b.block<3, 3>(row, 0) = Mat3::Identity();
-        out.J_b.block<3, 3>(row, 3) = -skew(g.r_b);
+        out.J_a.template block<3, 3>(row, 0) = -Mat3::Identity();
+        out.J_a.template block<3, 3>(row, 3) = skew(g.r_a);
+        out.J_b.template block<3, 3>(row, 0) = Mat3::Identity();
+        out.J_b.template block<3, 3>(row, 3) = -skew(g.r_b);
     }
-    out.error.segment<3>(row) = g.p_b - g.p_a;
+    out.error.template segment<3>(row) = g.p_b - g.p_a;
     return row + 3;
 }
 
 // Keeps the child's axis k_b on the parent's axis: C = [d_i . k_b, d_j . k_b] (docs/method.md §2
 // in holonomic form). d/dt (d_i . k_b) = (w_b - w_a) . (k_b x d_i), exactly.
-int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
+template <class Rows>
+int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, Rows& out, int row)
 {
     const Vec3 k_b = g.R_b * joint.axisChild;
     const Vec3 d_i = g.R_a * joint.perpParent1;
@@ -75,7 +82,7 @@ int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, JointRows
 // Child anchor stays on the parent's axis line: C = [d_i . (p_b - p_a), d_j . (p_b - p_a)]
 // (docs/method.md §2). The exact derivative puts the lever arm of body a at p_b - x_a,
 // the material point of a that coincides with p_b (docs/method.md §2).
-int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
+template <class Rows> int writeSlidingRows(const Joint& joint, const JointGeometry& g, Rows& out, int row)
 {
     const Vec3 gap = g.p_b - g.p_a;
     const Vec3 lever_a = g.p_b - g.x_a;
@@ -84,10 +91,10 @@ int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out,
         const Vec3 d = g.R_a * local;
         out.J_a.row(row).setZero();
         out.J_b.row(row).setZero();
-        out.J_a.block<1, 3>(row, 0) = -d.transpose();
-        out.J_a.block<1, 3>(row, 3) = -lever_a.cross(d).transpose();
-        out.J_b.block<1, 3>(row, 0) = d.transpose();
-        out.J_b.block<1, 3>(row, 3) = g.r_b.cross(d).transpose();
+        out.J_a.template block<1, 3>(row, 0) = -d.transpose();
+        out.J_a.template block<1, 3>(row, 3) = -lever_a.cross(d).transpose();
+        out.J_b.template block<1, 3>(row, 0) = d.transpose();
+        out.J_b.template block<1, 3>(row, 3) = g.r_b.cross(d).transpose();
         out.error(row) = d.dot(gap);
         ++row;
     }
@@ -96,7 +103,7 @@ int writeSlidingRows(const Joint& joint, const JointGeometry& g, JointRows& out,
 
 // No relative rotation: C = rotation vector of q_b (q_a q_rest)^-1, rows w_b - w_a
 // (exact derivative at C = 0).
-int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& out, int row)
+template <class Rows> int writeWeldRotationRows(const Joint& joint, const JointPose& pose, Rows& out, int row)
 {
     Quat e = pose.q_b * (pose.q_a * joint.restRotation_AB).conjugate();
     if (e.w() < 0.0)
@@ -107,13 +114,13 @@ int writeWeldRotationRows(const Joint& joint, const JointPose& pose, JointRows& 
     {
         setAngularRow(out, row + k, Vec3::Unit(k));
     }
-    out.error.segment<3>(row) = 2.0 * e.vec();
+    out.error.template segment<3>(row) = 2.0 * e.vec();
     return row + 3;
 }
 
 // Universal (Hooke) joint, docs/method.md §2, in holonomic form: a1 fixed in a, b2 fixed in b stay
 // perpendicular, C = a1 . b2, d/dt C = (w_b - w_a) . (b2 x a1).
-int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, int row)
+template <class Rows> int writeTwistRow(const Joint& joint, const JointGeometry& g, Rows& out, int row)
 {
     const Vec3 a1 = g.R_a * joint.perpParent1;
     const Vec3 b2 = g.R_b * joint.angleChildAxis;
@@ -122,15 +129,72 @@ int writeTwistRow(const Joint& joint, const JointGeometry& g, JointRows& out, in
     return row + 1;
 }
 
+#define FRONTIER_ROW_WRITERS(Rows)                                                                           \
+    template int writeBallRows(const JointGeometry&, Rows&, int);                                            \
+    template int writeAxisAlignmentRows(const Joint&, const JointGeometry&, Rows&, int);                     \
+    template int writeSlidingRows(const Joint&, const JointGeometry&, Rows&, int);                           \
+    template int writeWeldRotationRows(const Joint&, const JointPose&, Rows&, int);                          \
+    template int writeTwistRow(const Joint&, const JointGeometry&, Rows&, int);
+FRONTIER_ROW_WRITERS(JointRows)
+FRONTIER_ROW_WRITERS(JointRowsSlot)
+#undef FRONTIER_ROW_WRITERS
+
 } // namespace detail
+
+JointRowsView::operator JointRows() const
+{
+    JointRows rows;
+    rows.count = count;
+    rows.constraintRows = constraintRows;
+    rows.positionRows = positionRows;
+    rows.J_a.topRows(J_a.rows()) = J_a.topRows(J_a.rows());
+    rows.J_b.topRows(J_b.rows()) = J_b.topRows(J_b.rows());
+    rows.error = error;
+    rows.compliance = compliance;
+    return rows;
+}
+
+void JointRowsTable::layOut(std::span<const std::uint8_t> capacity, std::span<const std::uint8_t> driveRows,
+                            std::uint64_t layoutId)
+{
+    mLayoutId = layoutId;
+    bool same = mEntries.size() == capacity.size();
+    for (std::size_t k = 0; same && k < capacity.size(); ++k)
+    {
+        same = mEntries[k].capacity == capacity[k] && mEntries[k].driveRows == driveRows[k];
+    }
+    if (same)
+    {
+        return;
+    }
+    mEntries.assign(capacity.size(), Entry{});
+    std::size_t offset = 0;
+    for (std::size_t k = 0; k < capacity.size(); ++k)
+    {
+        if (capacity[k] > 6 || driveRows[k] > capacity[k])
+        {
+            throw std::logic_error("joint rows: a joint's block has at most 6 rows");
+        }
+        mEntries[k].offset = static_cast<std::uint32_t>(offset);
+        mEntries[k].capacity = capacity[k];
+        mEntries[k].driveRows = driveRows[k];
+        offset += 13 * std::size_t{capacity[k]} + driveRows[k]; // errors, J_a, J_b, compliances
+        if (offset > std::numeric_limits<std::uint32_t>::max())
+        {
+            throw std::length_error("joint rows: system too large");
+        }
+    }
+    mData.assign(offset, 0.0);
+}
 
 void evaluateJoint(const Joint& joint, const JointPose& pose, bool parentMoves, JointRows& out)
 {
     evaluateJoint(joint, pose, detail::jointGeometry(joint, pose), parentMoves, out);
 }
 
+template <class Rows>
 void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
-                   bool parentMoves, JointRows& out)
+                   bool parentMoves, Rows& out)
 {
     using namespace detail;
     switch (joint.type)
@@ -161,5 +225,9 @@ void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::Join
         out.J_a.setZero();
     }
 }
+
+template void evaluateJoint(const Joint&, const JointPose&, const detail::JointGeometry&, bool, JointRows&);
+template void evaluateJoint(const Joint&, const JointPose&, const detail::JointGeometry&, bool,
+                            JointRowsSlot&);
 
 } // namespace frontier::core

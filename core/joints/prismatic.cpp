@@ -6,11 +6,14 @@
 namespace frontier::core::detail
 {
 
-void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, JointRows& out)
+template <class Rows>
+void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, Rows& out)
 {
     const int row = writeSlidingRows(joint, g, out, 0);
     out.positionRows = 2;
     out.count = writeWeldRotationRows(joint, pose, out, row);
 }
 
+template void writePrismaticJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writePrismaticJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

@@ -7,11 +7,14 @@
 namespace frontier::core::detail
 {
 
-void writeRevoluteJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, JointRows& out)
+template <class Rows>
+void writeRevoluteJoint(const Joint& joint, const JointPose& /*pose*/, const JointGeometry& g, Rows& out)
 {
     const int row = writeBallRows(g, out, 0);
     out.positionRows = 3;
     out.count = writeAxisAlignmentRows(joint, g, out, row);
 }
 
+template void writeRevoluteJoint(const Joint&, const JointPose&, const JointGeometry&, JointRows&);
+template void writeRevoluteJoint(const Joint&, const JointPose&, const JointGeometry&, JointRowsSlot&);
 } // namespace frontier::core::detail

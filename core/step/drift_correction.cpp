@@ -1,9 +1,11 @@
 // core/step/drift_correction.cpp: the SHAKE-type drift correction of the joints (docs/method.md §7).
 #include "core/step/drift_correction.h"
 
+#include "core/fixed_rows.h"
 #include "core/step/contact_problem.h"
 #include "core/step/geometric_stiffness.h"
 #include "core/step/positions.h"
+#include "core/tree_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -19,10 +21,10 @@ JointErrors measureJointErrors(const RowSystem& rows, int worstBefore)
     double worst = -1.0;
     for (std::size_t k = 0; k < rows.joints.size(); ++k)
     {
-        const JointRows& r = rows.joints[k];
+        const JointRowsTable::Rows r = rows.joints.rows(k);
         for (int row = 0; row < r.count; ++row)
         {
-            const double error = std::abs(r.error(row));
+            const double error = std::abs(r.error[row]);
             double& slot = row < r.positionRows ? errors.maxM : errors.maxRad;
             slot = std::max(slot, error);
             if (error > worst)
@@ -39,7 +41,10 @@ DriftCorrection::DriftCorrection(const Model& model, const StepOptions& options,
                                  ImpulseSolver& solver)
     : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
 {
-    mRhs.resize(model.bodies.size(), model.joints.size());
+    // The correction's right-hand side has no momenta, -C / h on the joint rows alone: the linear
+    // solver takes an empty body part for that (core/tree_solver.cpp), the others get the zeros.
+    const bool momentaImplied = dynamic_cast<const TreeSolver*>(&solver) != nullptr;
+    mRhs.resize(momentaImplied ? 0 : model.bodies.size(), model.joints.size());
     mRhs.setZero();
     mCorrection.resize(model.bodies.size(), model.joints.size());
 }
@@ -109,9 +114,12 @@ void DriftCorrection::updatePredictedDrift(const RowSystem& rowsAfter, State& st
     double predicted = 0.0; // m or rad
     for (std::size_t k = 0; k < state.jointDrift.size(); ++k)
     {
-        const JointRows& r = rowsAfter.joints[k];
+        const JointRowsTable::Rows r = rowsAfter.joints.rows(k);
         Vec6 miss = Vec6::Zero(); // condition rows only
-        miss.head(r.constraintRows) = r.error.head(r.constraintRows);
+        for (int row = 0; row < r.constraintRows; ++row)
+        {
+            miss(row) = r.error[row];
+        }
         const double missedHere = miss.cwiseAbs().maxCoeff();
         const double predictedHere = state.jointDrift[k].cwiseAbs().maxCoeff();
         missed = std::max(missed, missedHere);
@@ -268,13 +276,18 @@ DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<Bo
         }
         previous = error;
         mIterations = iteration + 1;
-        for (Vec6& p : mRhs.body)
-        {
-            p.setZero();
-        }
+        // mRhs.body stays zero: the correction's right-hand side is -C / h on the joint rows alone.
         for (std::size_t k = 0; k < mModel.joints.size(); ++k)
         {
-            mRhs.joint[k] = -rowsAfter.joints[k].error / dt;
+            const JointRowsTable::Rows r = rowsAfter.joints.rows(k);
+            Vec6 condition = Vec6::Zero(); // C as the 6 rows of a JointRows hold it
+            withRows(r.count,
+                     [&](auto n)
+                     {
+                         constexpr int R = decltype(n)::value;
+                         condition.head<R>() = Eigen::Map<const Eigen::Matrix<double, R, 1>>(r.error);
+                     });
+            mRhs.joint[k] = -condition / dt;
         }
         mSolver.solve(mRhs, mCorrection);
         if (!loopBlocks.empty())

@@ -95,7 +95,7 @@ class DriftCorrection
     bool mPredictionApplied = false; // addPredictedDrift was called for this step
     LargeVector<double> mTension;    // per body: 1 where h^2 k / I > cTenseRatio (§7a)
     RowSystem mRowsRefactored;       // rows of a re-factorization when the quasi-Newton iteration is slow
-    BlockVector mRhs, mCorrection;
+    BlockVector mRhs, mCorrection;   // mRhs: no body part for the linear solver (zero momenta)
     Eigen::MatrixXd mLoopG;
     Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
     Eigen::VectorXd mLoopError;      // C of the loop rows (m, rad)

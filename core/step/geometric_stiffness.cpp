@@ -14,12 +14,12 @@ void measureJointLoads(const Model& model, const RowSystem& rows, const BlockVec
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
-        const JointRows& r = rows.joints[k];
+        const JointRowsTable::Rows r = rows.joints.rows(k);
         const int n = r.constraintRows;
         Vec3 onChild = Vec3::Zero(); // N s: J_b^T lambda, linear part, row by row (no dynamic-size product)
         for (int row = 0; row < n; ++row)
         {
-            onChild += r.J_b.row(row).head<3>().transpose() * solution.joint[k](row);
+            onChild += Eigen::Map<const Vec3>(r.J_b + 6 * row) * solution.joint[k](row);
         }
         const Vec3 leverChild = rows.rotation_WB[static_cast<std::size_t>(joint.child)] * joint.anchorChild;
         double parentEnd = 0.0;

@@ -10,7 +10,6 @@ RattleProjection::RattleProjection(const Model& model, const StepOptions& option
                                    const FrontierLayout& layout, ImpulseSolver& solver)
     : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
 {
-    mCorrection.resize(model.bodies.size(), model.joints.size());
 }
 
 void RattleProjection::factorAtStart(const State& state, RowSystem& rows, double driveStep,
@@ -29,6 +28,7 @@ void RattleProjection::project(State& state, RowSystem& rows, RowSystem& rowsAft
                                BlockVector& solution, double dt, double driveStep, Actuation& actuation)
 {
     std::swap(rows, rowsAfter);
+    mCorrection.resize(mModel.bodies.size(), mModel.joints.size()); // sized at first use: euler never uses it
     for (;;)
     {
         mSolver.factor(rows);

@@ -51,7 +51,7 @@ class RattleProjection
     // The pose at which the rows were factored by the last projection.
     std::vector<BodyState> mFactoredPose;
     bool mFactoredPoseValid = false;
-    BlockVector mCorrection; // the projected velocities and joint impulses
+    BlockVector mCorrection; // the projected velocities and joint impulses (empty until the first projection)
     std::vector<ExtraBlock> mEndBlocks;
     DelassusMatrix mEndG;
     Eigen::VectorXd mEndVelocity, mEndLambda;

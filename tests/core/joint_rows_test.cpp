@@ -1,6 +1,8 @@
 // tests/core/joint_rows_test.cpp: each joint type's rows are the exact time derivative of its
 // position error (docs/method.md §2), checked by central finite differences of C along a random motion;
-// row counts, satisfaction at the initial pose, world parents.
+// row counts, satisfaction at the initial pose, world parents; a RowSystem keeps each block as
+// evaluated, at its size (JointRowsTable).
+#include "core/joints/coordinates.h"
 #include "core/joints/joint_rows.h"
 #include "core/state.h"
 #include "random_model.h"
@@ -272,6 +274,80 @@ TEST(JointRows, FiniteDifferenceCheckDetectsAWrongLeverArm)
     const double wrong = -g.r_a.cross(d).dot(wa);
     EXPECT_NEAR(fd, right, 1e-7 * std::abs(right));
     EXPECT_GT(std::abs(fd - wrong), 1e-2 * std::abs(right));
+}
+
+// A RowSystem keeps every joint's block (random forests of every joint type, damped joints with
+// drive rows) exactly as evaluateJointBlock writes it into a JointRows, bit for bit, at the size
+// the block needs; the conditions alone (assembleJointConditions) update the counts and errors and
+// leave the Jacobians and compliances of the last full assembly.
+TEST(JointRowsTable, KeepsEachBlockAsEvaluatedAtItsSize)
+{
+    for (unsigned seed = 1; seed <= 6; ++seed)
+    {
+        Model model = randomForest(seed, 3, 8);
+        Rng rng(seed);
+        for (core::Joint& joint : model.joints)
+        {
+            joint.damping =
+                rng.coin() ? rng.logUniform(1e-2, 1e2) : 0.0; // drive rows where it has a coordinate
+        }
+        const auto problem = makeProblem(model);
+        const core::RowSystem& system = problem->system;
+        ASSERT_EQ(system.joints.size(), model.joints.size());
+        std::size_t neededValues = 0;
+        std::vector<JointRows> full;
+        for (std::size_t k = 0; k < model.joints.size(); ++k)
+        {
+            SCOPED_TRACE("seed " + std::to_string(seed) + ", joint " + std::to_string(k));
+            JointRows expected;
+            core::evaluateJointBlock(model, problem->layout, problem->state, static_cast<int>(k),
+                                     model.simulation.dt, {}, expected);
+            const JointRows got = system.joints[k];
+            EXPECT_EQ(got.count, expected.count);
+            EXPECT_EQ(got.constraintRows, expected.constraintRows);
+            EXPECT_EQ(got.positionRows, expected.positionRows);
+            EXPECT_TRUE(got.J_a == expected.J_a);
+            EXPECT_TRUE(got.J_b == expected.J_b);
+            EXPECT_TRUE(got.error == expected.error);
+            for (int r = expected.constraintRows; r < expected.count; ++r)
+            {
+                EXPECT_EQ(got.compliance(r), expected.compliance(r));
+            }
+            neededValues += 13 * static_cast<std::size_t>(expected.count) +
+                            static_cast<std::size_t>(expected.count - expected.constraintRows);
+            full.push_back(got);
+        }
+        EXPECT_EQ(system.joints.storedValues(), neededValues); // J_a, J_b, errors; compliances of drive rows
+
+        // The conditions at another pose: new errors, the rest as the full assembly left it.
+        core::State moved = problem->state;
+        for (core::BodyState& body : moved.bodies)
+        {
+            body.position_W += 0.01 * rng.gaussianVec();
+            body.orientation_WB =
+                (Quat(Eigen::AngleAxisd(0.02, rng.unitVec())) * body.orientation_WB).normalized();
+        }
+        core::RowSystem conditions = system;
+        core::assembleJointConditions(model, moved, conditions);
+        for (std::size_t k = 0; k < model.joints.size(); ++k)
+        {
+            JointRows expected;
+            core::evaluateJoint(model.joints[k], core::jointPose(moved, model.joints[k]),
+                                !core::jointToWorld(model, model.joints[k]), expected);
+            const JointRows got = conditions.joints[k];
+            EXPECT_EQ(got.count, expected.constraintRows);
+            for (int r = 0; r < 6; ++r)
+            {
+                EXPECT_EQ(got.error(r), r < got.count ? expected.error(r) : 0.0)
+                    << "joint " << k << " row " << r;
+            }
+            for (int r = full[k].constraintRows; r < full[k].count; ++r)
+            {
+                EXPECT_EQ(got.compliance(r), full[k].compliance(r));
+                EXPECT_TRUE(got.J_b.row(r) == full[k].J_b.row(r));
+            }
+        }
+    }
 }
 
 } // namespace
