@@ -135,15 +135,16 @@ void addContactToleranceOptions(CLI::App& command, frontier::core::ContactTolera
                     "velocity (m/s) to which each contact, limit and loop row is solved " + which +
                         " (default: the scene's contact.tolerance, else 3e-5); larger is faster and "
                         "lets bodies sink and creep more")
-        ->check(numberIn(0.0, 1.0, false, false))
-        ->check(inRange(frontier::core::isContactTolerance, "a velocity from 0 to 1 m/s"));
+        ->check(numberIn(0.0, frontier::core::cMaxContactTolerance, false, false))
+        ->check(inRange(frontier::core::isContactTolerance, frontier::core::cContactToleranceRange));
     command
         .add_option("--contact-relative-tolerance", o.relativeTolerance,
                     "fraction of a contact island's starting residual to which it is solved " + which +
                         ", if larger than --contact-tolerance (default: the scene's "
                         "contact.relative_tolerance, else 0)")
         ->check(numberIn(0.0, 1.0, false, false))
-        ->check(inRange(frontier::core::isRelativeContactTolerance, "a fraction from 0 to below 1"));
+        ->check(inRange(frontier::core::isRelativeContactTolerance,
+                        frontier::core::cRelativeContactToleranceRange));
 }
 
 void addRunOptions(CLI::App& run, RunOptions& o)

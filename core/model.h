@@ -194,6 +194,8 @@ struct ContactSettings
 // variants): tolerance in [0, cMaxContactTolerance] m/s (more would let resting bodies slide),
 // relativeTolerance a fraction in [0, 1). NaN is neither.
 inline constexpr double cMaxContactTolerance = 1.0; // m/s
+inline constexpr const char* cContactToleranceRange = "a velocity in [0, 1] m/s";
+inline constexpr const char* cRelativeContactToleranceRange = "a fraction in [0, 1)";
 inline bool isContactTolerance(double mPerS)
 {
     return mPerS >= 0.0 && mPerS <= cMaxContactTolerance;

@@ -472,9 +472,9 @@ TrajectorySettings readTrajectorySettings(const Trajectory& trajectory, const st
         return value;
     };
     out.contact.tolerance =
-        contactValue(cContactTolerance, core::isContactTolerance, "a velocity from 0 to 1 m/s");
+        contactValue(cContactTolerance, core::isContactTolerance, core::cContactToleranceRange);
     out.contact.relativeTolerance = contactValue(cContactRelativeTolerance, core::isRelativeContactTolerance,
-                                                 "a fraction from 0 to below 1");
+                                                 core::cRelativeContactToleranceRange);
     return out;
 }
 

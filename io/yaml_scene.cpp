@@ -110,8 +110,9 @@ YamlNode readContact(const YamlSource& source, const YamlNode& node, core::Conta
         contact.tolerance = map.number("tolerance");
         if (!core::isContactTolerance(contact.tolerance))
         {
-            map.failAtValue("tolerance", "expected a velocity in [0, 1] m/s for " + map.what("tolerance") +
-                                             ", got " + describeNode(map.get("tolerance")));
+            map.failAtValue("tolerance", std::string("expected ") + core::cContactToleranceRange + " for " +
+                                             map.what("tolerance") + ", got " +
+                                             describeNode(map.get("tolerance")));
         }
     }
     if (map.has("relative_tolerance"))
@@ -119,7 +120,8 @@ YamlNode readContact(const YamlSource& source, const YamlNode& node, core::Conta
         contact.relativeTolerance = map.number("relative_tolerance");
         if (!core::isRelativeContactTolerance(contact.relativeTolerance))
         {
-            map.failAtValue("relative_tolerance", "expected a fraction in [0, 1) for " +
+            map.failAtValue("relative_tolerance", std::string("expected ") +
+                                                      core::cRelativeContactToleranceRange + " for " +
                                                       map.what("relative_tolerance") + ", got " +
                                                       describeNode(map.get("relative_tolerance")));
         }
