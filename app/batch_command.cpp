@@ -5,11 +5,11 @@
 #include "app/batch_scene.h"
 #include "app/commands.h"
 #include "app/job_board.h"
-#include "app/run_loop.h"
 #include "app/run_one.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "io/stats.h"
+#include "run/run_loop.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -184,7 +184,7 @@ int batchCommand(const BatchOptions& options)
         return cExitBadInput;
     }
 
-    installInterruptHandlers();
+    run::installInterruptHandlers();
     std::vector<Outcome> outcomes(selected.size(), Outcome::NotStarted);
     std::vector<std::string> messages(selected.size());
     std::mutex printing;
@@ -192,7 +192,7 @@ int batchCommand(const BatchOptions& options)
     runJobs(selected.size(), options.jobs,
             [&](std::size_t k)
             {
-                if (interruptSignal() != 0)
+                if (run::interruptSignal() != 0)
                 {
                     return 0;
                 }
@@ -238,7 +238,7 @@ int batchCommand(const BatchOptions& options)
                             writeFailedStats(job, files, message);
                         }
                         outcome = code == cExitOk ? Outcome::Done : Outcome::Failed;
-                        if (code != cExitOk && interruptSignal() != 0)
+                        if (code != cExitOk && run::interruptSignal() != 0)
                         {
                             outcome = Outcome::NotStarted; // stopped by the signal: redone next time
                         }
@@ -290,10 +290,11 @@ int batchCommand(const BatchOptions& options)
                       << describeVariation(*selected[k]) << ") failed: " << messages[k] << "\n";
         }
     }
-    if (const int signal = interruptSignal(); signal != 0)
+    if (const int signal = run::interruptSignal(); signal != 0)
     {
-        std::cerr << "frontier: " << signalName(signal) << ": the batch stopped; run it again to finish it\n";
-        return interruptedExitCode(signal);
+        std::cerr << "frontier: " << run::signalName(signal)
+                  << ": the batch stopped; run it again to finish it\n";
+        return run::interruptedExitCode(signal);
     }
     return counts[static_cast<int>(Outcome::Failed)] > 0 ? cExitFailed : cExitOk;
 }

@@ -179,17 +179,17 @@ void perturbInitialState(core::Model& model, std::uint64_t seed, double position
     }
 }
 
-LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
+run::LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
 {
     bool scenePaths = false;
     for (const BatchSetting& s : job.settings)
     {
         scenePaths = scenePaths || !isRunSetting(s.key);
     }
-    LoadedScene loaded;
+    run::LoadedScene loaded;
     if (!scenePaths)
     {
-        loaded = loadSceneWithRobots(job.scenePath, urdf);
+        loaded = run::loadScene(job.scenePath, urdf);
     }
     else
     {
@@ -207,12 +207,12 @@ LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::
         }
         YAML::Emitter text;
         text << root;
-        loaded = loadSceneTextWithRobots(text.c_str(), job.scenePath, urdf);
+        loaded = run::loadSceneText(text.c_str(), job.scenePath, urdf);
     }
     if (const std::string* seed = findSetting(job, "seed"))
     {
         perturbInitialState(loaded.model, std::stoull(*seed), plan.perturbPositionM, plan.perturbVelocityMps);
-        checkFiniteEnergy(loaded.model, job.scenePath);
+        run::checkFiniteEnergy(loaded.model, job.scenePath);
     }
     return loaded;
 }

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "app/batch_plan.h"
-#include "app/scene_loading.h"
+#include "run/scene_loading.h"
 #include "core/model.h"
 
 #include <cstdint>
@@ -28,6 +28,6 @@ void perturbInitialState(core::Model& model, std::uint64_t seed, double position
 
 // The job's scene as `frontier run` loads it, with its scene paths and seed applied. Throws
 // io::InputError.
-LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf);
+run::LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf);
 
 } // namespace frontier::app

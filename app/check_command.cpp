@@ -1,13 +1,13 @@
 // app/check_command.cpp: `frontier check`: re-simulate a scene with the settings its reference
 // trajectory was recorded with (the header line of the CSV) and compare, quantity by quantity.
 #include "app/commands.h"
-#include "app/method.h"
 #include "app/progress.h"
-#include "app/run_loop.h"
-#include "app/scene_loading.h"
 #include "core/impulse_solver.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
+#include "run/method.h"
+#include "run/run_loop.h"
+#include "run/scene_loading.h"
 
 #include <array>
 #include <cmath>
@@ -145,10 +145,10 @@ CheckedReference loadReference(const CheckOptions& options)
     io::UrdfOptions urdf = io::urdfOptionsFrom(out.trajectory.metadata, ref);
     urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
                              options.packagePaths.end());
-    out.model = loadSceneWithRobots(options.scene, urdf).model;
+    out.model = run::loadScene(options.scene, urdf).model;
     const io::TrajectorySettings header = io::readTrajectorySettings(out.trajectory, ref);
     out.model.simulation.dt = header.simulation.dt;
-    Method::of(header.simulation).applyTo(out.model.simulation);
+    run::Method::of(header.simulation).applyTo(out.model.simulation);
     header.contact.applyTo(out.model.contact);
     out.steps = header.steps;
     out.recordEvery = header.recordEvery;
@@ -290,7 +290,7 @@ std::function<void(long)> checkProgress(bool terminal, long steps, double dt)
 }
 
 // The largest error per quantity, then the verdict; the exit code.
-int reportCheck(const CheckOptions& options, const Comparison& comparison, const RunSummary& summary)
+int reportCheck(const CheckOptions& options, const Comparison& comparison, const run::RunSummary& summary)
 {
     for (const Quantity& q : comparison.quantities())
     {
@@ -327,17 +327,17 @@ int checkCommand(const CheckOptions& options)
     }
 
     Comparison comparison(reference, options);
-    const Recorder compare = [&](const core::State& state, const core::Simulator*)
+    const run::Recorder compare = [&](const core::State& state, const core::Simulator*)
     { comparison.compare(state); };
-    RunSettings settings;
+    run::RunSettings settings;
     settings.steps = reference.steps;
     const bool terminal = !options.quiet && stderrIsTerminal();
     settings.progress = checkProgress(terminal, reference.steps, reference.model.simulation.dt);
-    RunSummary summary;
-    installInterruptHandlers();
+    run::RunSummary summary;
+    run::installInterruptHandlers();
     try
     {
-        summary = runSimulation(reference.model, settings, compare);
+        summary = run::runSimulation(reference.model, settings, compare);
     }
     catch (const core::SingularJointError& e) // singular at the start: the run fails, as in `run`
     {
@@ -356,7 +356,7 @@ int checkCommand(const CheckOptions& options)
             std::fprintf(stderr, "\r\033[K");
         }
         std::cerr << "frontier: " << summary.failure << "; the check did not finish\n";
-        return interruptedExitCode(summary.interruptedBy);
+        return run::interruptedExitCode(summary.interruptedBy);
     }
     if (terminal)
     {

@@ -12,7 +12,7 @@ namespace frontier::app
 {
 
 // Exit codes (README, "Exit codes"): 0 success, 1 the run failed on its own terms, 2 bad input or
-// usage; 128 + the signal when SIGINT, SIGTERM or SIGHUP stopped it (app/run_loop.h).
+// usage; 128 + the signal when SIGINT, SIGTERM or SIGHUP stopped it (run/run_loop.h).
 inline constexpr int cExitOk = 0;
 inline constexpr int cExitFailed = 1;
 inline constexpr int cExitBadInput = 2;

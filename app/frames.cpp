@@ -2,10 +2,10 @@
 #include "app/frames.h"
 
 #include "app/commands.h"
-#include "app/run_loop.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "render/renderer.h"
+#include "run/run_loop.h"
 
 #include <algorithm>
 #include <atomic>
@@ -146,7 +146,7 @@ std::size_t renderFrames(const core::Model& model, const std::vector<core::State
         {
             render::Renderer renderer(model, options);
             renderer.frameRun(frames); // every frame's bodies in view
-            for (std::size_t k = next++; k < frames.size() && interruptSignal() == 0; k = next++)
+            for (std::size_t k = next++; k < frames.size() && run::interruptSignal() == 0; k = next++)
             {
                 render::writePng(framePath(settings.folder, k), renderer.render(frames[k]));
                 ++done;
@@ -260,7 +260,7 @@ void assembleVideo(const std::string& folder, double fps, const std::string& vid
 std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
                                      const std::string& folder)
 {
-    return "interrupted by " + signalName(signal) + " after " + std::to_string(rendered) + " of " +
+    return "interrupted by " + run::signalName(signal) + " after " + std::to_string(rendered) + " of " +
            std::to_string(total) + " frames; " + folder + "/" + cIncompleteMarker +
            " marks the folder as incomplete";
 }
@@ -273,10 +273,10 @@ int writeFrames(const core::Model& model, const std::vector<core::State>& frames
         model, frames, settings,
         [&](std::size_t done)
         { status("rendering " + std::to_string(done) + " / " + std::to_string(frames.size()) + " frames"); });
-    if (const int signal = interruptSignal(); signal != 0)
+    if (const int signal = run::interruptSignal(); signal != 0)
     {
         error = interruptedFramesMessage(signal, rendered, frames.size(), settings.folder);
-        return interruptedExitCode(signal);
+        return run::interruptedExitCode(signal);
     }
     if (!video.empty())
     {

@@ -57,7 +57,7 @@ void prepareFrameFolder(const std::string& folder, const std::string& video);
 // Renders frames[k] to folder/frame_%05d.png, k = 0.., with `threads` renderers whose camera is
 // framed once over all the frames (Renderer::frameRun): the bodies stay in view for the whole run,
 // and the camera does not move. progress(done) is called from the calling thread. Stops early when
-// a signal arrives (interruptSignal, app/run_loop.h), leaving cIncompleteMarker; removes the marker
+// a signal arrives (interruptSignal, run/run_loop.h), leaving cIncompleteMarker; removes the marker
 // after the last frame. Returns the frames written. Throws io::OutputError.
 std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                          const FrameSettings& settings, const std::function<void(std::size_t)>& progress);
@@ -74,7 +74,7 @@ void assembleVideo(const std::string& folder, double fps, const std::string& vid
 // What `run --frames` and `render` do with their frames: renderFrames, with "rendering D / N
 // frames" to `status` as they go, then the video at `fps` when `video` is not empty
 // (assembleVideo). Returns cExitOk (app/commands.h); when a signal stopped the rendering, its
-// interruptedExitCode (app/run_loop.h), with `error` set to interruptedFramesMessage. Throws
+// interruptedExitCode (run/run_loop.h), with `error` set to interruptedFramesMessage. Throws
 // io::OutputError.
 int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
                 const FrameSettings& settings, double fps, const std::string& video,

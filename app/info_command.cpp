@@ -1,9 +1,9 @@
 // app/info_command.cpp: `frontier info`: what the solver will see for a scene.
 #include "app/commands.h"
-#include "app/scene_loading.h"
 #include "collision/contacts.h"
 #include "core/frontier_order.h"
 #include "io/scene.h"
+#include "run/scene_loading.h"
 
 #include <cmath>
 #include <iostream>
@@ -288,8 +288,8 @@ int infoCommand(const InfoOptions& options)
 {
     try
     {
-        const LoadedScene loaded = loadSceneWithRobots(options.scene, options.urdf);
-        printLoadWarnings(loaded.report);
+        const run::LoadedScene loaded = run::loadScene(options.scene, options.urdf);
+        run::printLoadWarnings(loaded.report);
         const nlohmann::json info = describe(loaded.model, loaded.report, options.scene);
         if (options.json)
         {

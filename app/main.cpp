@@ -186,7 +186,9 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     run.add_flag("--quiet", o.quiet, "no summary, no progress");
     run.add_flag("--strict", o.strict,
                  "a warning of the run fails it (exit 1): a passive scene (no actuators, no loads) whose "
-                 "energy rose by more than 1% of its scale, or a load that starts after the run's end");
+                 "energy rose by more than 1% of its scale, or a load that starts after the run's end; "
+                 "bodies that start inside each other deeper than contact.start_penetration refuse to start "
+                 "(exit 2)");
     addRobotOptions(run, o.urdf);
 }
 void addSweepOptions(CLI::App& sweep, SweepOptions& o)

@@ -1,9 +1,9 @@
 // app/model_overrides.cpp: flags over scene settings.
 #include "app/model_overrides.h"
 
-#include "app/method.h"
-#include "app/run_loop.h"
 #include "io/scene.h"
+#include "run/method.h"
+#include "run/run_loop.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,7 +24,7 @@ long checkedStepCount(double duration, double dt, const std::string& source)
                       duration, dt, count, cMaxSteps);
         throw io::InputError(source, 0, 0, text);
     }
-    return std::max(1L, stepsFor(duration, dt));
+    return std::max(1L, run::stepsFor(duration, dt));
 }
 
 long applyOverrides(const RunOptions& options, core::Model& model)
@@ -34,7 +34,7 @@ long applyOverrides(const RunOptions& options, core::Model& model)
     {
         sim.dt = *options.dt;
     }
-    Method method = Method::of(sim);
+    run::Method method = run::Method::of(sim);
     if (options.solver)
     {
         method.solver = *core::solverFromName(*options.solver);

@@ -4,11 +4,11 @@
 #include "app/job_board.h"
 #include "app/outputs.h"
 #include "app/progress.h"
-#include "app/run_loop.h"
-#include "app/scene_loading.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
+#include "run/run_loop.h"
+#include "run/scene_loading.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -108,7 +108,7 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
         io::UrdfOptions urdf = io::urdfOptionsFrom(trajectory.metadata, path);
         urdf.packagePaths.insert(urdf.packagePaths.begin(), options.packagePaths.begin(),
                                  options.packagePaths.end());
-        const core::Model model = loadSceneWithRobots(scenePath, urdf).model;
+        const core::Model model = run::loadScene(scenePath, urdf).model;
         const std::vector<core::State> states = statesOf(model, trajectory, path);
         std::vector<core::State> frames;
         FrameSampler sampler(options.fps);
@@ -164,7 +164,7 @@ int renderCommand(const RenderCommandOptions& options)
         names.push_back(jobName(path));
     }
     // One trajectory: its frames on all render threads; several: one job per trajectory.
-    installInterruptHandlers();
+    run::installInterruptHandlers();
     const bool batch = options.trajectories.size() > 1;
     return runBatch(names, batch ? options.jobs : 1, options.quiet,
                     [&](std::size_t job, const std::function<void(const std::string&)>& status,

@@ -3,9 +3,9 @@
 #include "app/job_board.h"
 #include "app/outputs.h"
 #include "app/progress.h"
-#include "app/run_loop.h"
 #include "app/run_one.h"
 #include "io/scene.h"
+#include "run/run_loop.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -36,7 +36,7 @@ int runCommand(const RunOptions& options)
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
     }
-    installInterruptHandlers();
+    run::installInterruptHandlers();
     const bool terminal = !options.quiet && stderrIsTerminal();
     if (options.scenes.size() == 1)
     {

@@ -5,13 +5,13 @@
 #include "app/frames.h"
 #include "app/model_overrides.h"
 #include "app/progress.h"
-#include "app/run_loop.h"
 #include "app/step_outputs.h"
 #include "core/impulse_solver.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 #include "io/stats.h"
 #include "io/trajectory.h"
+#include "run/run_loop.h"
 
 #include <cmath>
 #include <cstdio>
@@ -43,7 +43,7 @@ int constraintRows(const core::Model& model)
     return rows;
 }
 
-std::string formatSummary(const core::Model& model, const RunSummary& s)
+std::string formatSummary(const core::Model& model, const run::RunSummary& s)
 {
     const double simulated = static_cast<double>(s.steps) * model.simulation.dt;
     const double perStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
@@ -72,7 +72,7 @@ std::string formatSummary(const core::Model& model, const RunSummary& s)
     return text;
 }
 
-io::RunStats makeStats(const std::string& scene, const core::Model& model, const RunSummary& s)
+io::RunStats makeStats(const std::string& scene, const core::Model& model, const run::RunSummary& s)
 {
     io::RunStats stats;
     io::fillModelCounts(stats, model);
@@ -149,10 +149,14 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     std::unique_ptr<StepOutputs> stepOutputs; // --joints, --contacts
     try
     {
-        LoadedScene loaded = load ? load() : loadSceneWithRobots(scene, options.urdf);
+        run::LoadedScene loaded = load ? load() : run::loadScene(scene, options.urdf);
+        if (options.strict && loaded.startPenetration)
+        {
+            throw io::InputError(scene, 0, 0, "--strict: " + run::startPenetrationText(loaded));
+        }
         if (!options.quiet)
         {
-            printLoadWarnings(loaded.report);
+            run::printLoadWarnings(loaded.report);
         }
         model = std::move(loaded.model);
         const double asked = options.duration.value_or(model.simulation.duration); // s
@@ -213,7 +217,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
 
     std::vector<core::State> frames;
     FrameSampler sampler(options.fps);
-    const Recorder record = [&](const core::State& state, const core::Simulator* lastStep)
+    const run::Recorder record = [&](const core::State& state, const core::Simulator* lastStep)
     {
         const bool due = state.step % options.recordEvery == 0;
         if (trajectory && due)
@@ -229,7 +233,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             frames.push_back(state);
         }
     };
-    RunSettings settings;
+    run::RunSettings settings;
     settings.steps = steps;
     const double dt = model.simulation.dt;
     long lastShown = -1;
@@ -246,10 +250,10 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
     };
 
-    RunSummary summary;
+    run::RunSummary summary;
     try
     {
-        summary = runSimulation(model, settings, record);
+        summary = run::runSimulation(model, settings, record);
     }
     catch (const core::UnsupportedModelError& e)
     {
@@ -268,10 +272,10 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     }
 
     // A passive scene cannot gain energy; when it does, the step was too large for it (or worse).
-    const double rise = passiveEnergyRise(model, summary);
+    const double rise = run::passiveEnergyRise(model, summary);
     std::vector<std::string> warnings =
         loadsAfterTheEnd(model, static_cast<double>(steps) * model.simulation.dt);
-    if (rise > cEnergyGainTolerance)
+    if (rise > run::cEnergyGainTolerance)
     {
         char text[256];
         std::snprintf(
@@ -279,7 +283,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             "the energy of this passive scene (no actuators, no loads) rose by %.3g J, %.3g%% of its "
             "scale %.3g J (tolerance %g%%): a smaller dt or --integrator rattle may hold it",
             summary.energyMaxJ - summary.energyInitialJ, 100.0 * rise, summary.energyScaleJ,
-            100.0 * cEnergyGainTolerance);
+            100.0 * run::cEnergyGainTolerance);
         warnings.push_back(text);
     }
     std::string failure = summary.failure;
@@ -317,7 +321,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             stats.completed = ok;
             stats.failure = failure;
             stats.warnings = warnings;
-            if (isPassive(model))
+            if (run::isPassive(model))
             {
                 stats.extra["energy_rise_fraction"] = rise; // of energy_scale_j
                 stats.extra["energy_scale_j"] = summary.energyScaleJ;
@@ -362,7 +366,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         {
             error += "; nothing written";
         }
-        return summary.interruptedBy != 0 ? interruptedExitCode(summary.interruptedBy) : cExitFailed;
+        return summary.interruptedBy != 0 ? run::interruptedExitCode(summary.interruptedBy) : cExitFailed;
     }
     return cExitOk;
 }

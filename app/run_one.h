@@ -4,7 +4,7 @@
 
 #include "app/commands.h"
 #include "app/outputs.h"
-#include "app/scene_loading.h"
+#include "run/scene_loading.h"
 
 #include <functional>
 #include <string>
@@ -12,8 +12,8 @@
 namespace frontier::app
 {
 
-// Loads the scene of a run; empty: loadSceneWithRobots(scene, options.urdf).
-using SceneLoader = std::function<LoadedScene()>;
+// Loads the scene of a run; empty: loadScene(scene, options.urdf).
+using SceneLoader = std::function<run::LoadedScene()>;
 
 // Runs `scene` with the flags of `options` into `out`; returns its exit code (cExitOk, cExitFailed,
 // cExitBadInput, or interruptedExitCode). Progress goes to `status`, the one-line summary to

@@ -2,9 +2,9 @@
 #include "app/commands.h"
 #include "app/model_overrides.h"
 #include "app/outputs.h"
-#include "app/scene_loading.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
+#include "run/scene_loading.h"
 #include "study/study.h"
 
 #include <cstdio>
@@ -16,10 +16,10 @@ namespace frontier::app
 
 int stabilityCommand(const StabilityOptions& options)
 {
-    std::vector<Method> methods;
+    std::vector<run::Method> methods;
     for (const std::string& text : options.methods)
     {
-        const auto method = parseMethod(text);
+        const auto method = run::parseMethod(text);
         if (!method)
         {
             std::cerr << "frontier: bad method '" << text
@@ -45,8 +45,8 @@ int stabilityCommand(const StabilityOptions& options)
         for (const std::string& path : options.scenes)
         {
             // As `frontier run` loads it: the links of a robot that overlap at the start never collide.
-            LoadedScene loaded = loadSceneWithRobots(path, {});
-            printLoadWarnings(loaded.report);
+            run::LoadedScene loaded = run::loadScene(path, {});
+            run::printLoadWarnings(loaded.report);
             scenes.push_back(std::move(loaded.model));
             extras.criteria.push_back(loaded.report.stability.value_or(io::SceneStabilityCriteria{}));
             names.push_back(std::filesystem::path(path).stem().string());
@@ -67,7 +67,7 @@ int stabilityCommand(const StabilityOptions& options)
     std::vector<study::StabilityCell> cells;
     for (std::size_t s = 0; s < scenes.size(); ++s)
     {
-        for (const Method& method : methods)
+        for (const run::Method& method : methods)
         {
             if (!options.quiet)
             {
@@ -89,7 +89,7 @@ int stabilityCommand(const StabilityOptions& options)
     {
         for (std::size_t s = 0; s < scenes.size(); ++s)
         {
-            for (const Method& method : methods)
+            for (const run::Method& method : methods)
             {
                 if (!options.quiet)
                 {

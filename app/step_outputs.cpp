@@ -30,8 +30,8 @@ void StepOutputs::record(const core::Model& model, const core::State& state, con
             // Forces are the step's impulses over its duration: the mean force of the step.
             const double dt = model.simulation.dt;
             lastStep->jointChildImpulses(state, mChildImpulses);
-            lastActuatorEfforts(model, *lastStep, mEfforts);
-            effortsByCoordinate(model, mEfforts, mEffortsByCoordinate);
+            run::lastActuatorEfforts(model, *lastStep, mEfforts);
+            run::effortsByCoordinate(model, mEfforts, mEffortsByCoordinate);
             mLoads.resize(model.joints.size());
             for (std::size_t k = 0; k < model.joints.size(); ++k)
             {

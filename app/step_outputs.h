@@ -2,7 +2,7 @@
 // io/joints_file.h, io/contacts_file.h), filled from the simulator after each recorded step.
 #pragma once
 
-#include "app/actuator_efforts.h"
+#include "run/actuator_efforts.h"
 #include "core/simulator.h"
 #include "io/contacts_file.h"
 #include "io/joints_file.h"
@@ -38,7 +38,7 @@ class StepOutputs
     std::unique_ptr<io::ContactsWriter> mContacts;
     // Scratch, kept between steps.
     std::vector<core::Vec6> mChildImpulses;
-    std::vector<CoordinateEffort> mEfforts;
+    std::vector<run::CoordinateEffort> mEfforts;
     std::vector<std::array<double, 2>> mEffortsByCoordinate;
     std::vector<io::JointStepLoad> mLoads;
     std::vector<core::ContactImpulse> mContactImpulses;

@@ -3,11 +3,11 @@
 #include "app/commands.h"
 #include "app/model_overrides.h"
 #include "app/progress.h"
-#include "app/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "core/simulator.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
+#include "run/scene_loading.h"
 #include "study/study.h"
 
 #include <algorithm>
@@ -40,8 +40,8 @@ int sweepCommand(const SweepOptions& options)
     const fs::path folder(options.out);
     try
     {
-        LoadedScene loaded = loadSceneWithRobots(options.scene, options.urdf);
-        printLoadWarnings(loaded.report);
+        run::LoadedScene loaded = run::loadScene(options.scene, options.urdf);
+        run::printLoadWarnings(loaded.report);
         model = std::move(loaded.model);
         grid = study::makeSweepGrid(model, options.dts, options.solvers, options.integrators);
         grid.contact = options.contact;

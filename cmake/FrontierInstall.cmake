@@ -1,12 +1,12 @@
 # cmake/FrontierInstall.cmake: `cmake --install build --prefix P` (docs/library.md).
 #
 #   P/bin/frontier                      the command-line program
-#   P/lib/libfrontier_{core,collision,io,render}.a (or .so with -DBUILD_SHARED_LIBS=ON)
+#   P/lib/libfrontier_{core,collision,io,render,run}.a (or .so with -DBUILD_SHARED_LIBS=ON)
 #   P/include/frontier/<folder>/*.h     the public headers and every project header they include
 #   P/lib/cmake/Frontier/               FrontierConfig.cmake, FrontierConfigVersion.cmake and the
-#                                       exported targets Frontier::frontier (all four libraries),
+#                                       exported targets Frontier::frontier (all five libraries),
 #                                       Frontier::core, Frontier::collision, Frontier::io,
-#                                       Frontier::render
+#                                       Frontier::render, Frontier::run
 #
 # The include directory of the installed targets is P/include/frontier, so a program spells the
 # headers as the project does ("core/simulator.h").
@@ -29,14 +29,18 @@ set(FRONTIER_PUBLIC_HEADERS
   io/scene.h
   io/trajectory.h
   io/atomic_file.h
-  render/renderer.h)
+  render/renderer.h
+  run/scene_loading.h
+  run/simulation.h
+  run/names.h)
 
-# Frontier::frontier: the four libraries together (the `frontier` executable's name is taken in
+# Frontier::frontier: the five libraries together (the `frontier` executable's name is taken in
 # this tree, hence frontier_library).
 add_library(frontier_library INTERFACE)
 set_target_properties(frontier_library PROPERTIES EXPORT_NAME frontier)
-target_link_libraries(frontier_library INTERFACE frontier_core frontier_collision frontier_io frontier_render)
-foreach(part core collision io render)
+target_link_libraries(frontier_library INTERFACE frontier_core frontier_collision frontier_io frontier_render
+  frontier_run)
+foreach(part core collision io render run)
   set_target_properties(frontier_${part} PROPERTIES EXPORT_NAME ${part})
 endforeach()
 # The public headers are C++20 (std::span).
@@ -47,7 +51,7 @@ if(FRONTIER_SANITIZE)
 endif()
 
 install(TARGETS frontier RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS frontier_core frontier_collision frontier_io frontier_render frontier_library
+install(TARGETS frontier_core frontier_collision frontier_io frontier_render frontier_run frontier_library
   EXPORT FrontierTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -185,8 +185,10 @@ struct ContactSettings
     // max(tolerance, relativeTolerance x the largest residual when the step's solve starts), in m/s
     // (rad/s for angular rows). The absolute part holds resting contact; the relative part lets an
     // impact stop at a fraction of its own speeds.
-    double tolerance = 3e-5;                // m/s: 30 nm of motion in a 1 ms step
-    double relativeTolerance = 0.0;         // of the starting residual, in [0, 1)
+    double tolerance = 3e-5;        // m/s: 30 nm of motion in a 1 ms step
+    double relativeTolerance = 0.0; // of the starting residual, in [0, 1)
+    // m: a start with a deeper penetration is warned about (an error under --strict).
+    double startPenetration = 0.01;
     std::vector<std::array<int, 2>> ignore; // body index pairs that never collide
 };
 

@@ -48,8 +48,7 @@ void JointsWriter::writeState(const core::Model& model, const core::State& state
                 const int index = static_cast<int>(k);
                 line += coordinateName(coordinates[c]);
                 line += ',';
-                appendNumber(line, joint.initialPosition +
-                                       core::jointCoordinate(model, state, index, coordinates[c]));
+                appendNumber(line, core::fileCoordinate(model, state, index, coordinates[c]));
                 line += ',';
                 appendNumber(line, core::jointCoordinateVelocity(model, state, index, coordinates[c]));
             }

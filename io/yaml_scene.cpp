@@ -24,8 +24,8 @@ const std::vector<std::string> cSceneKeys = {"name",   "simulation", "contact", 
 const std::vector<std::string> cReferenceKeys = {"csv", "body"};
 const std::vector<std::string> cSimulationKeys = {"dt",     "duration",       "gravity",
                                                   "solver", "pgs_iterations", "integrator"};
-const std::vector<std::string> cContactKeys = {"friction", "restitution", "tolerance", "relative_tolerance",
-                                               "ignore"};
+const std::vector<std::string> cContactKeys = {"friction",           "restitution",       "tolerance",
+                                               "relative_tolerance", "start_penetration", "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
     "urdf",   "position",       "orientation", "velocity",  "angular_velocity",
@@ -113,6 +113,15 @@ YamlNode readContact(const YamlSource& source, const YamlNode& node, core::Conta
             map.failAtValue("tolerance", std::string("expected ") + core::cContactToleranceRange + " for " +
                                              map.what("tolerance") + ", got " +
                                              describeNode(map.get("tolerance")));
+        }
+    }
+    if (map.has("start_penetration"))
+    {
+        contact.startPenetration = map.number("start_penetration");
+        if (!(contact.startPenetration >= 0.0 && contact.startPenetration <= 1e6))
+        {
+            map.failAtValue("start_penetration",
+                            "expected a depth in [0, 1e6] m for " + map.what("start_penetration"));
         }
     }
     if (map.has("relative_tolerance"))

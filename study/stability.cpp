@@ -1,7 +1,7 @@
 // study/stability.cpp: the stability suite's runs and its markdown report.
 #include "study/stability.h"
 
-#include "app/run_loop.h"
+#include "run/run_loop.h"
 #include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
@@ -21,14 +21,14 @@
 namespace frontier::study
 {
 
-// The run loop of `frontier run` (app/run_loop.h).
-using app::Recorder;
-using app::RunSettings;
-using app::runSimulation;
-using app::RunSummary;
-using app::stepsFor;
+// The run loop of `frontier run` (run/run_loop.h).
+using run::Recorder;
+using run::RunSettings;
+using run::runSimulation;
+using run::RunSummary;
+using run::stepsFor;
 
-std::vector<Method> defaultStabilityMethods()
+std::vector<run::Method> defaultStabilityMethods()
 {
     using core::IntegratorKind;
     using core::SolverKind;
@@ -307,7 +307,7 @@ struct ConservationTrack
 };
 
 // The scene with the method's solver and integrator, and limits.dt and limits.duration when given.
-core::Model cellModel(const core::Model& scene, const Method& method, const StabilityLimits& limits)
+core::Model cellModel(const core::Model& scene, const run::Method& method, const StabilityLimits& limits)
 {
     core::Model model = scene;
     method.applyTo(model.simulation);
@@ -344,7 +344,7 @@ void judgeSurvivor(const StabilityLimits& limits, StabilityCell& cell)
 }
 } // namespace
 
-StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const Method& method,
+StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const run::Method& method,
                                const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria)
 {
     const core::Model model = cellModel(scene, method, limits);
@@ -352,9 +352,9 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     cell.scene = sceneName;
     cell.method = method.label();
     cell.dt = model.simulation.dt;
-    cell.steps = std::max(1L, stepsFor(model.simulation.duration, model.simulation.dt));
+    cell.steps = std::max(1L, run::stepsFor(model.simulation.duration, model.simulation.dt));
     cell.energyScaleJ = stabilityEnergyScale(model);
-    cell.passive = app::isPassive(model);
+    cell.passive = run::isPassive(model);
     if (method.solver == core::SolverKind::Dense && denseRows(model) > limits.maxDenseRows)
     {
         cell.outcome = StabilityOutcome::Skipped;
@@ -368,7 +368,7 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
     TunnelWatch tunnels(model);
     ConservationTrack conservation;
     CriteriaWatch watch(model, criteria);
-    const Recorder record = [&](const core::State& state, const core::Simulator*)
+    const run::Recorder record = [&](const core::State& state, const core::Simulator*)
     {
         conservation.observe(model, state, cell);
         cell.stepsRun = state.step;
@@ -376,11 +376,11 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         watch.observe(state, cell);
     };
 
-    RunSettings settings;
+    run::RunSettings settings;
     settings.steps = cell.steps;
     try
     {
-        const RunSummary summary = runSimulation(model, settings, record);
+        const run::RunSummary summary = run::runSimulation(model, settings, record);
         cell.wallSeconds = summary.wallSeconds;
         cell.maxJointGapM = summary.maxJointErrorM;
         cell.maxJointGapRad = summary.maxJointErrorRad;
@@ -512,12 +512,12 @@ std::map<std::pair<std::string, std::string>, const Cell*> cellsByKey(const std:
 // no cell.
 template <class Cell>
 void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNames,
-                      const std::vector<Method>& methods,
+                      const std::vector<run::Method>& methods,
                       const std::map<std::pair<std::string, std::string>, const Cell*>& byKey,
                       std::string (*text)(const Cell&))
 {
     out << "| scene |";
-    for (const Method& method : methods)
+    for (const run::Method& method : methods)
     {
         out << " " << method.label() << " |";
     }
@@ -530,7 +530,7 @@ void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNa
     for (const std::string& scene : sceneNames)
     {
         out << "| " << scene << " |";
-        for (const Method& method : methods)
+        for (const run::Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
             out << " " << (it == byKey.end() ? std::string("") : text(*it->second)) << " |";
@@ -542,7 +542,7 @@ void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNa
 } // namespace
 
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
+                              const std::vector<std::string>& sceneNames, const std::vector<run::Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine, const StabilityReportExtras& extras)
 {
@@ -602,7 +602,7 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
            "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const std::string& scene : sceneNames)
     {
-        for (const Method& method : methods)
+        for (const run::Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
             if (it == byKey.end())

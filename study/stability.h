@@ -3,7 +3,7 @@
 // drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
 #pragma once
 
-#include "app/method.h"
+#include "run/method.h"
 #include "core/model.h"
 #include "io/scene.h"
 
@@ -14,10 +14,10 @@
 namespace frontier::study
 {
 
-using app::Method; // solver, its options and integrator (app/method.h)
+using run::Method; // solver, its options and integrator (run/method.h)
 
 // linear/euler, linear/rattle, dense/euler, pgs:20/euler, pgs:100/euler.
-std::vector<Method> defaultStabilityMethods();
+std::vector<run::Method> defaultStabilityMethods();
 
 struct StabilityLimits
 {
@@ -40,7 +40,7 @@ enum class StabilityOutcome
 struct StabilityCell
 {
     std::string scene;  // file name without folder and extension
-    std::string method; // Method::label()
+    std::string method; // run::Method::label()
     StabilityOutcome outcome = StabilityOutcome::Survived;
     std::string note;    // why it failed, was skipped or is unavailable (empty when it survived)
     std::string failure; // the simulator's message when the run stopped
@@ -60,7 +60,7 @@ struct StabilityCell
     // "'body' through 'static' at t = ... s" when a centre of mass passed right through a static
     // box within one step or ended below a static plane (empty: never).
     std::string tunnelled;
-    bool passive = true;      // no actuators, no loads (app::isPassive): nothing may add energy
+    bool passive = true;      // no actuators, no loads (run::isPassive): nothing may add energy
     double maxSpeedMps = 0.0; // largest speed of a moving body's centre of mass (m/s)
     std::string fastestBody;  // whose
     // The scene's watched joints (its `stability: joints`): the angle's extremes over the run (rad,
@@ -87,7 +87,7 @@ int denseRows(const core::Model& model);
 // limits.duration when given). Never throws for a failed run: the cell says what happened. A run
 // that survived still fails when it broke one of the scene's own `criteria`
 // (study/stability_criteria.h).
-StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName, const Method& method,
+StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName, const run::Method& method,
                                const StabilityLimits& limits,
                                const io::SceneStabilityCriteria& criteria = {});
 
@@ -112,7 +112,7 @@ struct LargestDtCell
     int runs = 0;
     double wallSeconds = 0.0; // all its runs
 };
-LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName, const Method& method,
+LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName, const run::Method& method,
                                const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria,
                                const LargestDtOptions& options = {});
 
@@ -129,7 +129,7 @@ struct StabilityReportExtras
 // largest time steps that hold (when searched) and the details, one row per cell; `machine`
 // names the computer the wall times were measured on.
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames, const std::vector<Method>& methods,
+                              const std::vector<std::string>& sceneNames, const std::vector<run::Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine, const StabilityReportExtras& extras = {});
 

@@ -1,6 +1,6 @@
 // study/study.h: the public API of the studies, the engines behind `frontier sweep` and `frontier
 // stability` (library frontier_study). They run a scene many times with the run loop of `frontier
-// run` (app/run_loop.h), each run named by its app::Method, and return plain results; the
+// run` (run/run_loop.h), each run named by its app::Method, and return plain results; the
 // commands in app/ parse the flags, call them and print.
 //
 // study/sweep.h         the grid of time steps x solvers x integrators against a reference run:

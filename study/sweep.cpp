@@ -1,7 +1,7 @@
 // study/sweep.cpp: the sweep grid, its schedule, the reference run, one run per cell and the metrics.
 #include "study/sweep.h"
 
-#include "app/run_loop.h"
+#include "run/run_loop.h"
 #include "core/simulator.h"
 #include "core/state.h"
 #include "io/file_util.h"
@@ -18,11 +18,11 @@
 namespace frontier::study
 {
 
-// The run loop of `frontier run` (app/run_loop.h).
-using app::Recorder;
-using app::RunSettings;
-using app::runSimulation;
-using app::RunSummary;
+// The run loop of `frontier run` (run/run_loop.h).
+using run::Recorder;
+using run::RunSettings;
+using run::runSimulation;
+using run::RunSummary;
 
 namespace
 {
@@ -85,7 +85,7 @@ using Samples = std::vector<std::vector<core::Vec3>>;
 
 struct SampledRun
 {
-    RunSummary summary;
+    run::RunSummary summary;
     Samples samples;
 };
 
@@ -97,7 +97,7 @@ SampledRun runSampled(const core::Model& model, const SweepSchedule& schedule, c
 {
     const long perUnit = stepsPerUnit(schedule.unitS, model.simulation.dt);
     SampledRun run;
-    RunSettings settings;
+    run::RunSettings settings;
     settings.steps = schedule.units * perUnit;
     if (fraction)
     {
@@ -105,7 +105,7 @@ SampledRun runSampled(const core::Model& model, const SweepSchedule& schedule, c
         { fraction(static_cast<double>(step) / static_cast<double>(settings.steps)); };
     }
     std::size_t next = 0;
-    const Recorder record = [&](const core::State& state, const core::Simulator*)
+    const run::Recorder record = [&](const core::State& state, const core::Simulator*)
     {
         if (next < schedule.sampleUnits.size() && state.step == schedule.sampleUnits[next] * perUnit)
         {
@@ -126,7 +126,7 @@ SampledRun runSampled(const core::Model& model, const SweepSchedule& schedule, c
             ++next;
         }
     };
-    run.summary = runSimulation(model, settings, record);
+    run.summary = run::runSimulation(model, settings, record);
     return run;
 }
 
@@ -172,19 +172,19 @@ std::vector<double> parseTimeSteps(const std::vector<std::string>& entries)
     return dts;
 }
 
-std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations)
+std::vector<run::Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations)
 {
-    std::vector<Method> solvers;
+    std::vector<run::Method> solvers;
     for (const std::string& raw : entries)
     {
         const std::string entry = trim(raw);
         bool hasIntegrator = false;
-        const std::optional<Method> parsed = app::parseMethod(entry, scenePgsIterations, &hasIntegrator);
+        const std::optional<run::Method> parsed = run::parseMethod(entry, scenePgsIterations, &hasIntegrator);
         if (!parsed && entry.rfind("pgs:", 0) == 0)
         {
             throw SweepInputError("--solver: '" + raw +
                                   "': the pgs sweep count K of pgs:K must be a whole number from 1 to " +
-                                  std::to_string(app::cMaxPgsIterations));
+                                  std::to_string(run::cMaxPgsIterations));
         }
         if (!parsed || hasIntegrator)
         {
@@ -192,7 +192,7 @@ std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int sc
                                   "' (expected linear, dense, pgs or pgs:K with K sweeps)");
         }
         const bool seen = std::any_of(solvers.begin(), solvers.end(),
-                                      [&](const Method& s) { return s.sameSolver(*parsed); });
+                                      [&](const run::Method& s) { return s.sameSolver(*parsed); });
         if (!seen)
         {
             solvers.push_back(*parsed);
@@ -387,7 +387,7 @@ Samples externalSamples(const core::Model& model, const std::vector<int>& bodies
 }
 
 // A run's summary into its cell; survived when it stayed finite through every sample.
-void takeSummary(const RunSummary& s, std::size_t compared, std::size_t samples, double trajectoryError,
+void takeSummary(const run::RunSummary& s, std::size_t compared, std::size_t samples, double trajectoryError,
                  SweepCell& cell)
 {
     cell.stepsRun = s.steps;
@@ -461,11 +461,11 @@ void runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
         takeSummary(run.summary, compared, schedule.sampleUnits.size(), trajectoryError, cell);
         // Repeats give the same trajectory (the runs are deterministic); only the time differs.
         double spent = run.summary.wallSeconds;
-        RunSettings again;
+        run::RunSettings again;
         again.steps = cell.steps;
         for (int repeat = 1; cell.survived && repeat < cMaxTimingRuns && spent < cTimingSeconds; ++repeat)
         {
-            const double wall = runSimulation(work, again, {}).wallSeconds;
+            const double wall = run::runSimulation(work, again, {}).wallSeconds;
             cell.wallSeconds = std::min(cell.wallSeconds, wall);
             spent += wall;
         }
@@ -518,7 +518,7 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     result.contact = grid.contact;
     for (core::IntegratorKind integrator : grid.integrators)
     {
-        for (const Method& solver : grid.solvers)
+        for (const run::Method& solver : grid.solvers)
         {
             for (double dt : grid.dts)
             {

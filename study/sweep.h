@@ -10,7 +10,7 @@
 // reference hit them exactly.
 #pragma once
 
-#include "app/method.h"
+#include "run/method.h"
 #include "core/model.h"
 
 #include <functional>
@@ -22,7 +22,7 @@
 namespace frontier::study
 {
 
-using app::Method; // solver, its options and integrator (app/method.h)
+using run::Method; // solver, its options and integrator (run/method.h)
 
 inline constexpr int cSampleCount = 20;          // sample times compared with the reference
 inline constexpr int cReferenceRefinement = 4;   // reference dt = finest dt of the grid / 4
@@ -49,7 +49,7 @@ class SweepReferenceError : public std::runtime_error
 std::vector<double> parseTimeSteps(const std::vector<std::string>& entries);
 // Solvers: linear, dense, pgs (the scene's sweep count) or pgs:K (K >= 1 sweeps), no integrator
 // (the methods' integrator is left euler).
-std::vector<Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
+std::vector<run::Method> parseSolvers(const std::vector<std::string>& entries, int scenePgsIterations);
 // Integrators: euler, rattle, rattle4.
 std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string>& entries);
 
@@ -73,7 +73,7 @@ SweepSchedule planSchedule(const std::vector<double>& dts, double durationS);
 
 struct SweepCell
 {
-    Method method;
+    run::Method method;
     double dt = 0.0;   // s
     long steps = 0;    // steps of the whole run
     long stepsRun = 0; // steps completed (less than steps when the run failed)
@@ -120,7 +120,7 @@ ExternalReference readReferenceCsv(const std::string& path, const std::string& b
 struct SweepReference
 {
     std::string external; // the external reference's source (empty: a reference run, below)
-    Method method;        // rattle (or rattle4) linear, or euler linear when that failed
+    run::Method method;        // rattle (or rattle4) linear, or euler linear when that failed
     double dt = 0.0;      // s
     long steps = 0;
     double wallSeconds = 0.0;
@@ -143,7 +143,7 @@ using SweepProgress = std::function<void(const std::string& run, int index, int 
 struct SweepGrid
 {
     std::vector<double> dts;     // s, coarse to fine
-    std::vector<Method> solvers; // solver and options (the integrator is taken from integrators)
+    std::vector<run::Method> solvers; // solver and options (the integrator is taken from integrators)
     std::vector<core::IntegratorKind> integrators;
     core::ContactTolerances contact; // over the scene's in every cell (the reference keeps the scene's)
 };

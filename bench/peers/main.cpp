@@ -44,7 +44,7 @@
 // full buffer, a bound it cuts at; engine.h) goes into the row's note with the step it first came
 // at. MuJoCo's fixed buffers are sized from the scene; a run that still fills one is rerun with
 // them doubled (up to 8x), and the note says so.
-#include "app/scene_loading.h"
+#include "run/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
@@ -347,8 +347,8 @@ int runHarness(int argc, char** argv)
         else
         {
             // As `frontier run` loads it: a robot's links that overlap at the start never collide.
-            app::LoadedScene loaded = app::loadSceneWithRobots(scene, {});
-            app::printLoadWarnings(loaded.report);
+            run::LoadedScene loaded = run::loadScene(scene, {});
+            run::printLoadWarnings(loaded.report);
             model = std::move(loaded.model);
         }
     }

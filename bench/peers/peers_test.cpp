@@ -6,7 +6,7 @@
 // The harness: MuJoCo's buffers sized from the scene, an engine's warnings in the row's note, runs
 // that repeat exactly, the rounds' statistics, the jittered starts, and engines' settings (their
 // spellings, and that each acts).
-#include "app/scene_loading.h"
+#include "run/scene_loading.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
@@ -374,7 +374,7 @@ TEST(Peers, RealRobotFromUrdfAgreesInEveryEngine)
     const std::string path = "/usr/share/doc/dart/data/urdf/wam/wam.urdf";
     if (!std::filesystem::exists(path))
         GTEST_SKIP() << path << " is missing (Debian's dart-doc: scripts/install-deps.sh --for-tests)";
-    const core::Model model = app::loadSceneWithRobots(path, {}).model;
+    const core::Model model = run::loadScene(path, {}).model;
     constexpr long cSteps = 300;
     core::Model fine = model;
     fine.simulation.dt /= 8.0;

@@ -133,6 +133,12 @@ double jointCoordinate(const Model& model, const State& state, int jointIndex)
                            type == JointType::Revolute ? JointCoordinate::Rotation : JointCoordinate::Slide);
 }
 
+double fileCoordinate(const Model& model, const State& state, int jointIndex, JointCoordinate coordinate)
+{
+    return model.joints[static_cast<std::size_t>(jointIndex)].initialPosition +
+           jointCoordinate(model, state, jointIndex, coordinate);
+}
+
 double jointCoordinateVelocity(const Model& model, const State& state, int jointIndex,
                                JointCoordinate coordinate)
 {

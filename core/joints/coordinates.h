@@ -56,6 +56,9 @@ double continuedAngle(double wrapped, double reference);
 double jointCoordinate(const Model& model, const State& state, int jointIndex, JointCoordinate coordinate);
 // The coordinate a limit bounds: rotation of a revolute joint, slide of a prismatic one.
 double jointCoordinate(const Model& model, const State& state, int jointIndex);
+// The coordinate as the model file counts it (a URDF joint's position, rad or m):
+// Joint::initialPosition + jointCoordinate, which counts from the initial pose.
+double fileCoordinate(const Model& model, const State& state, int jointIndex, JointCoordinate coordinate);
 
 // The rate of a coordinate at a state, dq/dt from its velocity row (rad/s or m/s).
 double jointCoordinateVelocity(const Model& model, const State& state, int jointIndex,

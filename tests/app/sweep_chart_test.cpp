@@ -11,20 +11,20 @@ namespace frontier::app
 namespace
 {
 
-Method method(core::IntegratorKind integrator, core::SolverKind solver)
+run::Method method(core::IntegratorKind integrator, core::SolverKind solver)
 {
-    Method m;
+    run::Method m;
     m.integrator = integrator;
     m.solver = solver;
     return m;
 }
 
-const Method cEulerLinear = method(core::IntegratorKind::Euler, core::SolverKind::Linear);
-const Method cRattleLinear = method(core::IntegratorKind::Rattle, core::SolverKind::Linear);
-const Method cEulerPgs = method(core::IntegratorKind::Euler, core::SolverKind::Pgs);
-const Method cRattlePgs = method(core::IntegratorKind::Rattle, core::SolverKind::Pgs);
+const run::Method cEulerLinear = method(core::IntegratorKind::Euler, core::SolverKind::Linear);
+const run::Method cRattleLinear = method(core::IntegratorKind::Rattle, core::SolverKind::Linear);
+const run::Method cEulerPgs = method(core::IntegratorKind::Euler, core::SolverKind::Pgs);
+const run::Method cRattlePgs = method(core::IntegratorKind::Rattle, core::SolverKind::Pgs);
 
-SweepCell cell(const Method& m, double dt, double costS, double errorM)
+SweepCell cell(const run::Method& m, double dt, double costS, double errorM)
 {
     SweepCell c;
     c.method = m;
@@ -36,7 +36,7 @@ SweepCell cell(const Method& m, double dt, double costS, double errorM)
 }
 
 // A method of order `order`: error errorAtCoarsest * (dt / 2 ms)^order, cost 1/dt times costPerStep.
-void addConverging(std::vector<SweepCell>& cells, const Method& m, double order, double errorAtCoarsest,
+void addConverging(std::vector<SweepCell>& cells, const run::Method& m, double order, double errorAtCoarsest,
                    double costPerStep)
 {
     for (double dt : {0.002, 0.001, 0.0005, 0.00025})

@@ -51,7 +51,7 @@ TEST(Sweep, ListsParseSortAndDeduplicate)
 {
     EXPECT_EQ(parseTimeSteps({"0.001", " 0.004", "0.002", "0.004"}),
               (std::vector<double>{0.004, 0.002, 0.001}));
-    const std::vector<Method> solvers = parseSolvers({"linear", "pgs:10", "pgs", "dense", "pgs:20"}, 20);
+    const std::vector<run::Method> solvers = parseSolvers({"linear", "pgs:10", "pgs", "dense", "pgs:20"}, 20);
     ASSERT_EQ(solvers.size(), 4u); // pgs and pgs:20 are the same with the scene's 20 sweeps
     EXPECT_EQ(solvers[1].solver, core::SolverKind::Pgs);
     EXPECT_EQ(solvers[1].pgsIterations, 10);

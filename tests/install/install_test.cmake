@@ -5,7 +5,9 @@
 #      names an installed header;
 #   3. configures examples/step_a_scene with CMAKE_PREFIX_PATH=<dir>/prefix (the same generator,
 #      compiler and build type, warnings as errors), builds it and runs it: its exit status is the
-#      verdict on the physics it prints.
+#      verdict on the physics it prints;
+#   4. docs/library.md shows examples/run_a_scene/main.cpp; built like step_a_scene, its positions
+#      of a robot scene after 0.3 s equal those of `frontier run`'s trajectory, digit for digit.
 cmake_minimum_required(VERSION 3.20)
 
 string(RANDOM LENGTH 10 suffix)
@@ -67,4 +69,38 @@ run("configuring examples/step_a_scene" ${CMAKE_COMMAND} ${configure_args})
 run("building examples/step_a_scene" ${CMAKE_COMMAND} --build "${dir}/build")
 run("running step_a_scene" "${dir}/build/step_a_scene")
 message(STATUS "${header_count} headers installed; step_a_scene:\n${last_output}")
+
+# 4. docs/library.md's minimal program is examples/run_a_scene/main.cpp, word for word; built
+#    against the package, it ends a robot scene where `frontier run` does, to the last bit.
+file(READ "${FRONTIER_SOURCE_DIR}/examples/run_a_scene/main.cpp" program)
+file(READ "${FRONTIER_SOURCE_DIR}/docs/library.md" library_doc)
+string(FIND "${library_doc}" "${program}" at)
+if(at EQUAL -1)
+  file(REMOVE_RECURSE "${dir}")
+  message(FATAL_ERROR "docs/library.md does not show examples/run_a_scene/main.cpp as it is")
+endif()
+list(TRANSFORM configure_args REPLACE "examples/step_a_scene$" "examples/run_a_scene")
+list(TRANSFORM configure_args REPLACE "^${dir}/build$" "${dir}/build-run")
+run("configuring examples/run_a_scene" ${CMAKE_COMMAND} ${configure_args})
+run("building examples/run_a_scene" ${CMAKE_COMMAND} --build "${dir}/build-run")
+set(scene "${FRONTIER_SOURCE_DIR}/scenes/robots/quadruped_stand.yaml")
+run("frontier run" "${prefix}/bin/frontier" run "${scene}" --duration 0.3 --quiet
+    --trajectory "${dir}/trajectory.csv")
+run("running run_a_scene" "${dir}/build-run/run_a_scene" "${scene}" 0.3)
+string(STRIP "${last_output}" printed)
+string(REPLACE "\n" ";" printed "${printed}")
+file(READ "${dir}/trajectory.csv" trajectory)
+list(LENGTH printed body_count)
+if(body_count LESS 13)
+  file(REMOVE_RECURSE "${dir}")
+  message(FATAL_ERROR "run_a_scene printed ${body_count} bodies, the quadruped has 13:\n${last_output}")
+endif()
+foreach(line IN LISTS printed)
+  string(FIND "${trajectory}" "\n${line}," at)
+  if(at EQUAL -1)
+    file(REMOVE_RECURSE "${dir}")
+    message(FATAL_ERROR "run_a_scene printed '${line}', which no row of `frontier run`'s trajectory begins with")
+  endif()
+endforeach()
+message(STATUS "run_a_scene ends where frontier run does (${body_count} bodies)")
 file(REMOVE_RECURSE "${dir}")

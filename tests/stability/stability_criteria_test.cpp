@@ -3,8 +3,8 @@
 // each checked against the simulator stepped directly (independently of the suite's watch), each
 // criterion shown to fail when tightened below what the run does, and the largest-dt search
 // checked against single runs at its step and at twice its step.
-#include "app/run_loop.h"
-#include "app/scene_loading.h"
+#include "run/run_loop.h"
+#include "run/scene_loading.h"
 #include "core/joints/coordinates.h"
 #include "core/simulator.h"
 #include "core/state.h"
@@ -21,7 +21,7 @@
 
 namespace frontier::study::test
 {
-using app::parseMethod;
+using run::parseMethod;
 namespace
 {
 
@@ -34,7 +34,7 @@ struct Scene
 // As `frontier stability` loads it (the links of a robot that overlap at the start never collide).
 Scene load(const std::string& name)
 {
-    app::LoadedScene loaded = app::loadSceneWithRobots(
+    run::LoadedScene loaded = run::loadScene(
         std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/" + name + ".yaml", {});
     EXPECT_TRUE(loaded.report.stability.has_value()) << name << " has no 'stability:' criteria";
     Scene scene;
@@ -49,7 +49,7 @@ StabilityCell run(const Scene& scene, const std::string& name, std::optional<dou
     StabilityLimits limits;
     limits.duration = duration;
     const StabilityCell cell =
-        runStabilityCell(scene.model, name, *parseMethod(method), limits, scene.criteria);
+        runStabilityCell(scene.model, name, *run::parseMethod(method), limits, scene.criteria);
     std::printf(
         "%s %s: %s; %ld of %ld steps; energy %+.4g J (max rise); speed %.3g m/s ('%s'); angles %s .. %s "
         "rad; tracking %s rad\n",
@@ -135,10 +135,10 @@ TEST(StabilityCriteria, RobotStartedInTheFloorIsPushedOut)
     double z0 = 0.0;
     double zEnd = 0.0;
     double fastest = 0.0;
-    app::RunSettings settings;
+    run::RunSettings settings;
     settings.steps = 1000;
-    const app::RunSummary summary =
-        app::runSimulation(model, settings,
+    const run::RunSummary summary =
+        run::runSimulation(model, settings,
                            [&](const core::State& state, const core::Simulator* lastStep)
                            {
                                (lastStep == nullptr ? z0 : zEnd) = state.bodies[base].position_W.z();
@@ -219,7 +219,7 @@ TEST(StabilityCriteria, LimitBeyondPiHoldsWithoutWrapping)
 TEST(StabilityCriteria, LargestDtIsTheFirstHalvingThatHolds)
 {
     const Scene scene = load("limit_beyond_pi");
-    const Method method = *parseMethod("linear/euler");
+    const run::Method method = *run::parseMethod("linear/euler");
     StabilityLimits limits;
     LargestDtOptions options;
     options.duration = 1.0;
@@ -241,7 +241,7 @@ TEST(StabilityCriteria, LargestDtIsTheFirstHalvingThatHolds)
     // Dense beyond the row limit is skipped, not searched.
     limits.maxDenseRows = 1;
     const LargestDtCell skipped = largestHoldingDt(
-        scene.model, "limit_beyond_pi", *parseMethod("dense/euler"), limits, scene.criteria, options);
+        scene.model, "limit_beyond_pi", *run::parseMethod("dense/euler"), limits, scene.criteria, options);
     EXPECT_EQ(skipped.outcome, StabilityOutcome::Skipped);
     EXPECT_EQ(skipped.runs, 0);
 }

@@ -16,7 +16,7 @@
 
 namespace frontier::study::test
 {
-using app::parseMethod;
+using run::parseMethod;
 namespace
 {
 
@@ -34,11 +34,11 @@ StabilityCell run(const std::string& scene, const std::string& method = "linear/
 {
     const core::Model model =
         io::loadScene(std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/" + scene + ".yaml");
-    const std::optional<Method> parsed = parseMethod(method);
+    const std::optional<run::Method> parsed = run::parseMethod(method);
     EXPECT_TRUE(parsed.has_value()) << method;
     StabilityLimits limits;
     limits.duration = duration;
-    const StabilityCell cell = runStabilityCell(model, scene, parsed.value_or(Method{}), limits);
+    const StabilityCell cell = runStabilityCell(model, scene, parsed.value_or(run::Method{}), limits);
     std::printf("%s %s: %s; %ld of %ld steps; joint gap %.3g m, %.3g rad; energy rise %.3g%%, loss %.3g%% of "
                 "E_ref %.6g J; L drift %s; penetration %.3g m; %.2f s wall%s%s\n",
                 scene.c_str(), method.c_str(), cell.survived() ? "survived" : cell.note.c_str(),
@@ -58,22 +58,22 @@ constexpr double cExactGapRad = 1e-8;
 
 TEST(Method, ParsesSolverIterationsAndIntegrator)
 {
-    const auto pgs = parseMethod("pgs:100/euler");
+    const auto pgs = run::parseMethod("pgs:100/euler");
     ASSERT_TRUE(pgs);
     EXPECT_EQ(pgs->solver, core::SolverKind::Pgs);
     EXPECT_EQ(pgs->pgsIterations, 100);
     EXPECT_EQ(pgs->label(), "pgs:100/euler");
-    const auto rattle = parseMethod("linear/rattle");
+    const auto rattle = run::parseMethod("linear/rattle");
     ASSERT_TRUE(rattle);
     EXPECT_EQ(rattle->integrator, core::IntegratorKind::Rattle);
-    EXPECT_EQ(parseMethod("dense")->label(), "dense/euler");
-    EXPECT_EQ(parseMethod("pgs")->label(), "pgs:20/euler");
-    EXPECT_EQ(parseMethod("pgs", 7)->label(), "pgs:7/euler");
+    EXPECT_EQ(run::parseMethod("dense")->label(), "dense/euler");
+    EXPECT_EQ(run::parseMethod("pgs")->label(), "pgs:20/euler");
+    EXPECT_EQ(run::parseMethod("pgs", 7)->label(), "pgs:7/euler");
     for (const char* bad :
          {"", "cholesky/euler", "linear/verlet", "linear:5/euler", "pgs:/euler", "pgs:0/euler", "pgs:x/euler",
           "pgs:-3/euler", "linear/", "verlet linear", "euler pgs:0", "euler"})
     {
-        EXPECT_FALSE(parseMethod(bad)) << bad;
+        EXPECT_FALSE(run::parseMethod(bad)) << bad;
     }
     ASSERT_EQ(defaultStabilityMethods().size(), 5u);
     EXPECT_EQ(defaultStabilityMethods().front().label(), "linear/euler");
@@ -82,17 +82,17 @@ TEST(Method, ParsesSolverIterationsAndIntegrator)
 // The sweep tables' spelling `integrator solver[:K]` reads as the same method, printed one way.
 TEST(Method, ReadsTheSweepTablesSpelling)
 {
-    const auto fourth = parseMethod("pgs:20/rattle4");
+    const auto fourth = run::parseMethod("pgs:20/rattle4");
     ASSERT_TRUE(fourth);
     EXPECT_EQ(fourth->integrator, core::IntegratorKind::Rattle4);
     EXPECT_EQ(fourth->label(), "pgs:20/rattle4");
-    const auto method = parseMethod("rattle pgs:30");
+    const auto method = run::parseMethod("rattle pgs:30");
     ASSERT_TRUE(method);
     EXPECT_EQ(method->integrator, core::IntegratorKind::Rattle);
     EXPECT_EQ(method->solver, core::SolverKind::Pgs);
     EXPECT_EQ(method->pgsIterations, 30);
     EXPECT_EQ(method->label(), "pgs:30/rattle");
-    EXPECT_EQ(parseMethod(method->label())->label(), method->label());
+    EXPECT_EQ(run::parseMethod(method->label())->label(), method->label());
 }
 
 // The report names every scene and method, and says why a cell was not run.
@@ -102,12 +102,12 @@ TEST(StabilityReport, MarkdownHasEveryCell)
         std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/tunnelling_small_step.yaml";
     const std::vector<core::Model> scenes{io::loadScene(path)};
     const std::vector<std::string> names{"tunnelling_small_step"};
-    const std::vector<Method> methods{*parseMethod("linear/euler"), *parseMethod("dense/euler")};
+    const std::vector<run::Method> methods{*run::parseMethod("linear/euler"), *run::parseMethod("dense/euler")};
     StabilityLimits limits;
     limits.maxDenseRows = 1;
     limits.duration = 0.001;
     std::vector<StabilityCell> cells;
-    for (const Method& method : methods)
+    for (const run::Method& method : methods)
     {
         cells.push_back(runStabilityCell(scenes[0], names[0], method, limits));
     }

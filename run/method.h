@@ -1,4 +1,4 @@
-// app/method.h: a simulation method, the integrator with the solver and its options, as `frontier
+// run/method.h: a simulation method, the integrator with the solver and its options, as `frontier
 // run`, `check`, `sweep` and `stability` name it. Printed one way, `solver[:K]/integrator`
 // (`linear/euler`, `pgs:100/rattle`, `pgs:20/rattle4`; K = pgs sweeps, written for pgs only).
 #pragma once
@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace frontier::app
+namespace frontier::run
 {
 
 inline constexpr int cMaxPgsIterations = 1000000;
@@ -37,4 +37,4 @@ struct Method
 std::optional<Method> parseMethod(const std::string& text, int defaultPgsIterations = 20,
                                   bool* hasIntegrator = nullptr);
 
-} // namespace frontier::app
+} // namespace frontier::run

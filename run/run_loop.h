@@ -1,4 +1,4 @@
-// app/run_loop.h: drives a Simulator over a run, recording trajectory rows and statistics.
+// run/run_loop.h: drives a Simulator over a run, recording trajectory rows and statistics.
 #pragma once
 
 #include "core/model.h"
@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-namespace frontier::app
+namespace frontier::run
 {
 
 struct RunSettings
@@ -91,4 +91,4 @@ inline int interruptedExitCode(int signal)
 
 long stepsFor(double duration, double dt);
 
-} // namespace frontier::app
+} // namespace frontier::run

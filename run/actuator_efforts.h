@@ -1,4 +1,4 @@
-// app/actuator_efforts.h: what the actuators did in a step, as the run's outputs read it (the
+// run/actuator_efforts.h: what the actuators did in a step, as the run's outputs read it (the
 // joints file's effort column, the stats' max_actuator_effort and actuator_limit_steps). Every
 // such reading goes through lastActuatorEfforts.
 #pragma once
@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-namespace frontier::app
+namespace frontier::run
 {
 
 // One actuator in the last step.
@@ -32,4 +32,4 @@ void lastActuatorEfforts(const core::Model& model, const core::Simulator& simula
 void effortsByCoordinate(const core::Model& model, std::span<const CoordinateEffort> efforts,
                          std::vector<std::array<double, 2>>& out);
 
-} // namespace frontier::app
+} // namespace frontier::run

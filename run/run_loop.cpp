@@ -1,9 +1,9 @@
-// app/run_loop.cpp: the run loop with progress, statistics and recording.
-#include "app/run_loop.h"
+// run/run_loop.cpp: the run loop with progress, statistics and recording.
+#include "run/run_loop.h"
 
-#include "app/actuator_efforts.h"
-#include "collision/contacts.h"
 #include "core/impulse_solver.h"
+#include "run/actuator_efforts.h"
+#include "run/simulation.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <vector>
 
-namespace frontier::app
+namespace frontier::run
 {
 
 namespace
@@ -119,11 +119,9 @@ long stepsFor(double duration, double dt)
 RunSummary runSimulation(const core::Model& model, const RunSettings& settings, const Recorder& record)
 {
     RunSummary summary;
-    collision::ContactDetector detector(model,
-                                        collision::contactMargin(core::longestStage(model.simulation)));
-    detector.setStepTime(core::longestStage(model.simulation)); // fast bodies swept (docs/method.md §10)
-    core::Simulator simulator(model, {}, &detector);
-    core::State state = core::initialState(model);
+    Simulation simulation(model);
+    core::Simulator& simulator = simulation.simulator();
+    core::State& state = simulation.state();
     summary.energyInitialJ = core::totalEnergy(model, state);
     summary.energyMaxJ = summary.energyInitialJ;
     summary.energyMinJ = summary.energyInitialJ;
@@ -151,7 +149,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
                 summary.failure = text;
                 break;
             }
-            simulator.step(state);
+            simulation.step();
             const core::StepStats& stats = simulator.lastStep();
             summary.maxJointErrorM = std::max(summary.maxJointErrorM, stats.maxJointErrorM);
             summary.maxJointErrorRad = std::max(summary.maxJointErrorRad, stats.maxJointErrorRad);
@@ -213,4 +211,4 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     return summary;
 }
 
-} // namespace frontier::app
+} // namespace frontier::run

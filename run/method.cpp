@@ -1,9 +1,9 @@
-// app/method.cpp: printing and parsing `solver[:K]/integrator`.
-#include "app/method.h"
+// run/method.cpp: printing and parsing `solver[:K]/integrator`.
+#include "run/method.h"
 
 #include <charconv>
 
-namespace frontier::app
+namespace frontier::run
 {
 
 std::string Method::solverLabel() const
@@ -104,4 +104,4 @@ std::optional<Method> parseMethod(const std::string& text, int defaultPgsIterati
     return method;
 }
 
-} // namespace frontier::app
+} // namespace frontier::run

@@ -1,7 +1,7 @@
-// app/actuator_efforts.cpp: the actuators' efforts of a step, looked up by joint coordinate.
-#include "app/actuator_efforts.h"
+// run/actuator_efforts.cpp: the actuators' efforts of a step, looked up by joint coordinate.
+#include "run/actuator_efforts.h"
 
-namespace frontier::app
+namespace frontier::run
 {
 
 void lastActuatorEfforts(const core::Model& model, const core::Simulator& simulator,
@@ -33,4 +33,4 @@ void effortsByCoordinate(const core::Model& model, std::span<const CoordinateEff
     }
 }
 
-} // namespace frontier::app
+} // namespace frontier::run
