@@ -47,10 +47,10 @@ CLI::Validator numberIn(double low, double high, bool positive, bool count, cons
 }
 
 // Ranges (README "Commands"): times in seconds, counts bounded where a larger one could only be a
-// typo (a run's step count is bounded again from --duration / --dt, app/run_loop.h).
+// typo (a run's step count is bounded again from --duration / --dt, run/run_loop.h).
 const CLI::Validator cTimeStep = numberIn(0.0, 1e6, true, false);       // s
 const CLI::Validator cDuration = numberIn(0.0, 1e12, true, false);      // s
-const CLI::Validator cStepCount = numberIn(1.0, 1e12, false, true);     // steps (app/run_loop.h cMaxSteps)
+const CLI::Validator cStepCount = numberIn(1.0, 1e12, false, true);     // steps (run/run_loop.h cMaxSteps)
 const CLI::Validator cIterations = numberIn(1.0, 1e6, false, true);     // solver sweeps
 const CLI::Validator cEvery = numberIn(1.0, 2147483647.0, false, true); // steps between rows
 const CLI::Validator cFps = numberIn(0.0, 1e6, true, false);            // frames per simulated second
@@ -91,6 +91,27 @@ void addPackagePathOption(CLI::App& command, std::vector<std::string>& packagePa
         ->allow_extra_args(false);
 }
 
+// NAME=VALUE with a name and a finite number.
+CLI::Validator jointPositionEntry()
+{
+    return CLI::Validator(
+        [](std::string& entry)
+        {
+            const std::size_t equals = entry.rfind('=');
+            if (equals == std::string::npos || equals == 0)
+            {
+                return "expected NAME=POSITION (a joint of the URDF and rad or m), got " + entry;
+            }
+            const std::string value = entry.substr(equals + 1);
+            char* end = nullptr;
+            const double position = std::strtod(value.c_str(), &end);
+            return !value.empty() && *end == '\0' && std::isfinite(position)
+                       ? std::string()
+                       : "expected a finite number after '=' in " + entry;
+        },
+        "NAME=POSITION");
+}
+
 void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
 {
     addPackagePathOption(command, o.packagePaths);
@@ -103,6 +124,22 @@ void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
             "--drop-height", o.dropHeight,
             "a free-floating bare URDF starts with its lowest collision point this high above the floor (m)")
         ->check(cDropHeight);
+    command
+        .add_option_function<std::vector<std::string>>(
+            "--joint-position",
+            [&o](const std::vector<std::string>& entries)
+            {
+                for (const std::string& entry : entries)
+                {
+                    const std::size_t equals = entry.rfind('=');
+                    o.jointPositions[entry.substr(0, equals)] =
+                        std::strtod(entry.c_str() + equals + 1, nullptr);
+                }
+            },
+            "a bare URDF's joint starts at this position (rad or m, the URDF's convention), within its "
+            "limits; --hold holds it there (repeatable)")
+        ->check(jointPositionEntry())
+        ->allow_extra_args(false);
     command
         .add_option_function<std::string>(
             "--self-collision", [&o](const std::string& value) { o.selfCollision = value == "on"; },

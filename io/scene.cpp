@@ -17,12 +17,13 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadR
     }
     if (ext == ".yaml" || ext == ".yml")
     {
-        if (options.fixedBase || options.freeBase || options.dropHeight)
+        if (options.fixedBase || options.freeBase || options.dropHeight || !options.jointPositions.empty())
         {
             throw InputError(
                 path, 0, 0,
-                "--fixed-base, --free-base and --drop-height place a bare .urdf; a scene places its "
-                "models itself (keys 'fixed', 'free_base' and 'position' of each entry of 'models')");
+                "--fixed-base, --free-base, --drop-height and --joint-position place a bare .urdf; a "
+                "scene places its models itself (keys 'fixed', 'free_base', 'position' and "
+                "'joint_positions' of each entry of 'models')");
         }
         return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }

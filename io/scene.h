@@ -4,6 +4,7 @@
 #include "core/model.h"
 
 #include <array>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,8 @@ struct UrdfOptions
     bool fixedBase = false;           // weld the root link to the world where it is
     bool freeBase = false;            // let the root float even if the URDF welds it to a 'world' link
     std::optional<double> dropHeight; // m: lowest collision point this high above the floor (default 0)
+    // Joint name -> starting position (rad or m, the URDF's convention; --joint-position NAME=VALUE).
+    std::map<std::string, double> jointPositions;
     // Every URDF: overrides the scene's self_collision (default on).
     std::optional<bool> selfCollision;
     // Every URDF: a position servo on each joint coordinate without an actuator, holding it where

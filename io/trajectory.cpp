@@ -318,6 +318,7 @@ constexpr const char* cContactRelativeTolerance = "contact_relative_tolerance";
 constexpr const char* cFixedBase = "fixed_base";
 constexpr const char* cFreeBase = "free_base";
 constexpr const char* cDropHeight = "drop_height";
+constexpr const char* cJointPositions = "joint_positions"; // NAME=VALUE;NAME=VALUE
 constexpr const char* cSelfCollision = "self_collision";
 constexpr const char* cPackagePath = "package_path"; // entries joined by ';'
 constexpr const char* cHold = "hold";
@@ -351,6 +352,16 @@ void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options)
         value.precision(17);
         value << *options.dropHeight;
         metadata.emplace_back(cDropHeight, value.str());
+    }
+    if (!options.jointPositions.empty())
+    {
+        std::ostringstream joined;
+        joined.precision(17);
+        for (const auto& [name, position] : options.jointPositions)
+        {
+            joined << (joined.tellp() > 0 ? ";" : "") << name << '=' << position;
+        }
+        metadata.emplace_back(cJointPositions, joined.str());
     }
     if (options.selfCollision)
     {
@@ -388,6 +399,25 @@ UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, 
         if (!options.dropHeight)
         {
             throw InputError(path, 1, 0, "the header's drop_height=" + *height + " is not a finite number");
+        }
+    }
+    if (const std::string* positions = value(cJointPositions))
+    {
+        std::stringstream in(*positions);
+        std::string entry;
+        while (std::getline(in, entry, ';'))
+        {
+            const std::size_t equals = entry.rfind('=');
+            const std::optional<double> position = equals == std::string::npos
+                                                       ? std::nullopt
+                                                       : detail::parseFiniteNumber(entry.substr(equals + 1));
+            if (!position || equals == 0)
+            {
+                throw InputError(path, 1, 0,
+                                 "the header's joint_positions entry '" + entry +
+                                     "' is not NAME=POSITION with a finite position");
+            }
+            options.jointPositions[entry.substr(0, equals)] = *position;
         }
     }
     if (const std::string* self = value(cSelfCollision))

@@ -161,6 +161,7 @@ class UrdfConverter
             fail({}, "the URDF has no root link");
         }
         placeLinks(*root);
+        checkJointPositionsUsed();
         for (const std::string& linkName : mIndex.linkNames())
         {
             if (mPlaces.contains(linkName) &&
@@ -218,33 +219,84 @@ class UrdfConverter
         return static_cast<int>(mGroups.size()) - 1;
     }
 
-    // The joint's own motion at its start position: a joint whose zero lies outside its limits
-    // starts at the nearest limit (robot files such as quadrupeds' knees do that), with a warning.
+    // The joint's own motion at its start position: the placement's joint position if it gives
+    // one; else 0, or the nearest limit when 0 lies outside them (robot files such as quadrupeds'
+    // knees do that), with a warning.
     Pose startMotion(const urdf::Joint& joint)
     {
         const core::Vec3 axis(joint.axis.x, joint.axis.y, joint.axis.z);
-        if (!joint.limits || joint.type == urdf::Joint::CONTINUOUS || !(axis.norm() > 1e-12) ||
-            !axis.allFinite() || !(joint.limits->lower <= joint.limits->upper))
+        const bool limited = joint.limits && joint.type != urdf::Joint::CONTINUOUS && axis.allFinite() &&
+                             axis.norm() > 1e-12 && joint.limits->lower <= joint.limits->upper;
+        const bool slides = joint.type == urdf::Joint::PRISMATIC;
+        const char* unit = slides ? "m" : "rad";
+        double start = 0.0;
+        if (const auto given = mPlacement.jointPositions.find(joint.name);
+            given != mPlacement.jointPositions.end())
         {
-            return {}; // no limits to start within (a bad axis or limit is reported with the joint)
+            start = given->second;
+            if (limited && !(start >= joint.limits->lower && start <= joint.limits->upper))
+            {
+                throw JointPositionError(
+                    joint.name, "expected a position in [" + formatNumber(joint.limits->lower) + ", " +
+                                    formatNumber(joint.limits->upper) + "] " + unit + " for joint '" +
+                                    joint.name + "' (its limits), got " + formatNumber(start));
+            }
+            if (!std::isfinite(start))
+            {
+                throw JointPositionError(joint.name,
+                                         "expected a finite position for joint '" + joint.name + "'");
+            }
+            mUsedJointPositions.insert(joint.name);
         }
-        const double start = std::clamp(0.0, joint.limits->lower, joint.limits->upper);
-        if (start == 0.0)
+        else if (limited)
         {
-            return {};
+            start = std::clamp(0.0, joint.limits->lower, joint.limits->upper);
+            if (start != 0.0)
+            {
+                warn(mIndex.element("joint", joint.name, "limit"),
+                     "joint '" + joint.name + "': its zero position lies outside its limits [" +
+                         formatNumber(joint.limits->lower) + ", " + formatNumber(joint.limits->upper) + "] " +
+                         unit + "; it starts at " + formatNumber(start));
+            }
+        }
+        if (start == 0.0 || !axis.allFinite() || !(axis.norm() > 1e-12))
+        {
+            return {}; // a bad axis is reported with the joint
         }
         mStartPosition[joint.name] = start;
-        const bool slides = joint.type == urdf::Joint::PRISMATIC;
-        warn(mIndex.element("joint", joint.name, "limit"),
-             "joint '" + joint.name + "': its zero position lies outside its limits [" +
-                 formatNumber(joint.limits->lower) + ", " + formatNumber(joint.limits->upper) + "] " +
-                 (slides ? "m" : "rad") + "; it starts at " + formatNumber(start));
         const core::Vec3 u = axis.normalized();
         if (slides)
         {
             return {start * u, core::Quat::Identity()};
         }
         return {core::Vec3::Zero(), core::Quat(Eigen::AngleAxisd(start, u))};
+    }
+
+    // Every joint position the placement gives was taken (placeLinks found its joint movable).
+    void checkJointPositionsUsed() const
+    {
+        for (const auto& [name, value] : mPlacement.jointPositions)
+        {
+            if (mUsedJointPositions.contains(name))
+            {
+                continue;
+            }
+            const urdf::JointConstSharedPtr joint = mRobot.getJoint(name);
+            if (joint)
+            {
+                throw JointPositionError(name,
+                                         "joint '" + name +
+                                             "' has no position to start from (it is fixed or floating; "
+                                             "revolute, continuous and prismatic joints have one)");
+            }
+            std::vector<std::string> names;
+            for (const auto& [jointName, j] : mRobot.joints_)
+            {
+                names.push_back(jointName);
+            }
+            throw JointPositionError(name, "the URDF has no joint '" + name + "'" +
+                                               suggestionSuffix(name, names, names.size() <= 12));
+        }
     }
 
     // World poses and link groups, walking the tree from the root (no recursion: a URDF may be
@@ -731,7 +783,8 @@ class UrdfConverter
     std::map<std::string, LinkPlace> mPlaces; // by link name
     std::vector<LinkGroup> mGroups;
     std::set<std::string> mNotedPackages;         // last-resort package matches already warned about
-    std::map<std::string, double> mStartPosition; // joints that start at a limit (rad or m)
+    std::map<std::string, double> mStartPosition; // joints that start away from 0 (rad or m)
+    std::set<std::string> mUsedJointPositions;    // names of mPlacement.jointPositions taken
     UrdfFragment mOut;
 };
 

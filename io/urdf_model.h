@@ -4,6 +4,8 @@
 #include "core/model.h"
 #include "io/scene.h"
 
+#include <map>
+#include <stdexcept>
 #include <string>
 
 namespace frontier::io::detail
@@ -20,6 +22,25 @@ struct UrdfPlacement
     bool selfCollision = true;                       // false: every link goes into one collision group
     bool fixedRoot = false; // true: the root link is welded to the world (a static body) where it is
     bool freeRoot = false;  // true: a root link named 'world' is dropped; what it welded floats
+    // The starting pose: URDF joint name -> its position (rad or m, the URDF's convention), for
+    // revolute, continuous and prismatic joints, within their limits. Others start at 0 (or at
+    // the nearest limit when 0 lies outside them).
+    std::map<std::string, double> jointPositions;
+};
+
+// A jointPositions entry the URDF cannot take (no such joint, a fixed joint, outside the limits):
+// the scene reader names the line of the entry, the CLI the flag.
+class JointPositionError : public std::runtime_error
+{
+  public:
+    JointPositionError(std::string joint, const std::string& message)
+        : std::runtime_error(message), mJoint(std::move(joint))
+    {
+    }
+    const std::string& joint() const { return mJoint; }
+
+  private:
+    std::string mJoint;
 };
 
 // A URDF's links as bodies (links joined by fixed joints welded into one) and its moving joints,
@@ -38,6 +59,13 @@ std::string formatVector(const core::Vec3& v);
 // Throws InputError naming the URDF file and, where it can be found, the line.
 UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
                               const PackagePaths& packages);
+
+// Placing a robot (io/urdf_scene.cpp). The lowest point of the model's collision shapes along z
+// (m; +infinity when it has none); every body (and every joint anchor held by the world) moved by
+// `offset` (m); whether some body is static or some joint holds a body to the world.
+double lowestPoint(const core::Model& model);
+void translate(core::Model& model, const core::Vec3& offset);
+bool heldByWorld(const core::Model& model);
 
 // A URDF alone: the robot on a static floor with the default simulation settings. A free-floating
 // robot is moved so that its lowest collision point is options.dropHeight (default 0) above the

@@ -11,9 +11,6 @@
 namespace frontier::io::detail
 {
 
-namespace
-{
-
 // Lowest point of the robot's collision shapes along z (m); +infinity when it has none.
 double lowestPoint(const core::Model& model)
 {
@@ -65,8 +62,6 @@ bool heldByWorld(const core::Model& model)
     return false;
 }
 
-} // namespace
-
 core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     if (options.fixedBase && options.freeBase)
@@ -82,7 +77,16 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     placement.fixedRoot = options.fixedBase;
     placement.freeRoot = options.freeBase;
     placement.selfCollision = options.selfCollision.value_or(true);
-    UrdfFragment fragment = loadUrdfFragment(path, placement, packages);
+    placement.jointPositions = options.jointPositions;
+    UrdfFragment fragment;
+    try
+    {
+        fragment = loadUrdfFragment(path, placement, packages);
+    }
+    catch (const JointPositionError& e)
+    {
+        throw InputError(path, 0, 0, "--joint-position " + e.joint() + ": " + e.what());
+    }
     core::Model model = std::move(fragment.model);
     model.sourceFile = path;
     RobotReport& robot = fragment.report;

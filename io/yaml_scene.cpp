@@ -28,8 +28,8 @@ const std::vector<std::string> cContactKeys = {"friction",           "restitutio
                                                "relative_tolerance", "start_penetration", "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
-    "urdf",   "position",       "orientation", "velocity",  "angular_velocity",
-    "prefix", "self_collision", "fixed",       "free_base", "hold"};
+    "urdf",           "position", "orientation", "velocity", "angular_velocity", "prefix",
+    "self_collision", "fixed",    "free_base",   "hold",     "joint_positions"};
 
 // `reference: {csv: FILE, body: NAME}`, after all bodies exist; the CSV is read by `sweep` alone.
 SceneReference readReference(const SceneBuilder& builder, const YamlNode& node)
@@ -212,6 +212,33 @@ void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fra
     }
 }
 
+// Where a model goes: at its `position`; else a free robot rests its lowest collision point on
+// z = 0, or `drop_height` (m) above it, as a bare URDF does. Moves the fragment (its root frame in
+// placement.position); returns what was done, for the load report.
+std::string placeModel(const MapNode& map, core::Model& fragment, UrdfPlacement& placement)
+{
+    const std::optional<double> dropHeight = map.optNonNegative("drop_height", "m");
+    const bool held = heldByWorld(fragment);
+    if (dropHeight && (map.has("position") || held))
+    {
+        map.failAtKey("drop_height",
+                      std::string("'drop_height' places a free robot that has no 'position'; ") +
+                          (held ? "this one is held by the world" : "this one has a 'position'"));
+    }
+    const double lowest = lowestPoint(fragment);
+    if (map.has("position") || held || !std::isfinite(lowest))
+    {
+        return std::string(held ? "fixed to the world" : "placed") + " by the scene, root link frame at (" +
+               formatVector(placement.position) + ") m";
+    }
+    const double height = dropHeight.value_or(0.0); // m
+    const core::Vec3 shift(0.0, 0.0, height - lowest);
+    translate(fragment, shift);
+    placement.position += shift;
+    return "free-floating, its lowest collision point " + formatNumber(height) +
+           " m above z = 0 (no 'position'), root link frame at (" + formatVector(placement.position) + ") m";
+}
+
 void readModels(SceneBuilder& builder, const YamlNode& node)
 {
     const YamlSource& source = builder.source;
@@ -239,6 +266,25 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         {
             map.failAtValue("prefix", "a prefix cannot contain commas or double quotes");
         }
+        const YamlNode positions = map.get("joint_positions");
+        if (positions.isDefined() && !positions.isNull())
+        {
+            if (!positions.isMap())
+            {
+                failAt(
+                    source, positions,
+                    "expected a map of URDF joint names to positions (rad or m) for 'joint_positions' in " +
+                        map.context());
+            }
+            for (std::size_t k = 0; k < positions.size(); ++k)
+            {
+                const std::string name =
+                    toString(source, positions.key(k), "a joint name in 'joint_positions'");
+                placement.jointPositions[name] =
+                    toNumber(source, positions.value(k),
+                             "the position (rad or m) of joint '" + name + "' in 'joint_positions'");
+            }
+        }
         const std::string path = resolvePath(source.baseDir, file);
         if (!builder.packages)
         {
@@ -248,6 +294,17 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         try
         {
             loaded = loadUrdfFragment(path, placement, *builder.packages);
+        }
+        catch (const JointPositionError& e)
+        {
+            for (std::size_t k = 0; k < positions.size(); ++k)
+            {
+                if (positions.key(k).scalar() == e.joint())
+                {
+                    failAt(source, positions.value(k), e.what());
+                }
+            }
+            failAt(source, positions, e.what());
         }
         catch (const InputError& e)
         {
@@ -262,6 +319,7 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
             throw;
         }
         core::Model& fragment = loaded.model;
+        const std::string placedAt = placeModel(map, fragment, placement);
         // A rigid motion of the whole model: v at the root link origin, w about it.
         const core::Vec3 velocity = map.optVec3("velocity").value_or(core::Vec3::Zero());
         const core::Vec3 angularVelocity = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
@@ -288,9 +346,7 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         appendFragment(builder, map, std::move(fragment), path);
         if (builder.report)
         {
-            loaded.report.placement = std::string(placement.fixedRoot ? "fixed to the world" : "placed") +
-                                      " by the scene, root link frame at (" +
-                                      formatVector(placement.position) + ") m";
+            loaded.report.placement = placedAt;
             builder.report->robots.push_back(std::move(loaded.report));
             builder.report->warnings.insert(builder.report->warnings.end(), loaded.warnings.begin(),
                                             loaded.warnings.end());
