@@ -502,9 +502,11 @@ class UrdfConverter
         const std::string what = std::string(collision ? "collision" : "visual") + " mesh '" + mesh.filename +
                                  "' of link '" + l.name + "'";
         const core::Vec3 scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        if (!(scale.minCoeff() > 0.0) || !scale.allFinite())
+        if (!scale.allFinite() || (scale.array() == 0.0).any())
         {
-            fail(at, what + " needs a positive scale");
+            fail(at, what + " has scale=\"" + formatNumber(scale.x()) + " " + formatNumber(scale.y()) + " " +
+                         formatNumber(scale.z()) +
+                         "\"; expected three nonzero numbers (a negative one mirrors the mesh)");
         }
         const ResolvedUri resolved = mPackages.resolve(mesh.filename, mFile);
         std::string problem = resolved.notFound;

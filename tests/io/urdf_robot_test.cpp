@@ -235,6 +235,67 @@ TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
     EXPECT_INPUT_ERROR_AT(e, bad, 5, 26, "collision mesh 'no_such_collision.stl' of link 'a'");
 }
 
+// A tetrahedron (0,0,0) (0.1,0,0) (0,0.2,0) (0,0,0.3) with outward faces: no mirror symmetry.
+const char* const cTetraObj =
+    "v 0 0 0\nv 0.1 0 0\nv 0 0.2 0\nv 0 0 0.3\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+// A one-link robot whose visual (line 4) and collision (line 5) are the mesh `file` at `scale`.
+std::string scaledMeshRobot(const std::string& file, const std::string& scale)
+{
+    const std::string mesh = "<geometry><mesh filename=\"" + file + "\" scale=\"" + scale + "\"/></geometry>";
+    return "<robot name=\"r\">\n  <link name=\"a\">\n    <inertial><mass value=\"1\"/><inertia ixx=\"0.01\" "
+           "ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial>\n    <visual>" +
+           mesh + "</visual>\n    <collision>" + mesh + "</collision>\n  </link>\n</robot>\n";
+}
+
+// Volume (m^3) enclosed by a mesh shape, by the divergence theorem: negative when inside out.
+double urdfMeshVolume(const core::Shape& shape)
+{
+    double sixTimes = 0.0;
+    for (const auto& t : shape.triangles)
+    {
+        sixTimes += shape.vertices.at(static_cast<std::size_t>(t[0]))
+                        .dot(shape.vertices.at(static_cast<std::size_t>(t[1]))
+                                 .cross(shape.vertices.at(static_cast<std::size_t>(t[2]))));
+    }
+    return sixTimes / 6.0;
+}
+
+TEST(UrdfMeshes, NegativeScaleMirrorsCollisionAndVisualMeshes)
+{
+    TempDir dir;
+    dir.write("tetra.obj", cTetraObj);
+    const core::Model plain = loadScene(dir.write("plain.urdf", scaledMeshRobot("tetra.obj", "1 1 1")));
+    LoadReport report;
+    const core::Model mirrored =
+        loadScene(dir.write("mirrored.urdf", scaledMeshRobot("tetra.obj", "1 -1 1")), {}, &report);
+    EXPECT_TRUE(report.warnings.empty());
+    const core::Body& p = plain.bodies.at(0);
+    const core::Body& m = mirrored.bodies.at(0);
+    ASSERT_EQ(m.shapes.size(), 1u);
+    ASSERT_EQ(m.visuals.size(), 1u);
+    for (const core::Shape* shape : {&m.shapes[0], &m.visuals[0]})
+    {
+        const core::Shape& unmirrored = shape == &m.shapes[0] ? p.shapes.at(0) : p.visuals.at(0);
+        ASSERT_EQ(shape->vertices.size(), unmirrored.vertices.size());
+        for (std::size_t i = 0; i < shape->vertices.size(); ++i)
+        {
+            EXPECT_EQ(shape->vertices[i], unmirrored.vertices[i].cwiseProduct(core::Vec3(1, -1, 1)));
+        }
+        EXPECT_NEAR(urdfMeshVolume(*shape), 0.001, 1e-9); // 0.1 * 0.2 * 0.3 / 6, facing outwards
+    }
+}
+
+TEST(UrdfMeshes, ZeroScaleIsAnError)
+{
+    TempDir dir;
+    dir.write("tetra.obj", cTetraObj);
+    const std::string urdf = dir.write("r.urdf", scaledMeshRobot("tetra.obj", "1 0 1"));
+    const InputError e = captureInputError([&] { loadScene(urdf); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 5, 26, "collision mesh 'tetra.obj' of link 'a' has scale=\"1 0 1\"");
+    EXPECT_NE(std::string(e.what()).find("expected three nonzero numbers"), std::string::npos) << e.what();
+}
+
 // base (2 kg box) --fixed--> plate (1 kg, 0.3 m up, turned 90 degrees about z, its own inertial offset)
 // --fixed--> frame (no inertial) --revolute--> arm (1 kg). Expected body: base + plate; arm's joint
 // hangs from it.
