@@ -40,6 +40,10 @@ f 4 1 5
 f 4 5 8
 )";
 
+// A tetrahedron (0,0,0) (0.1,0,0) (0,0.2,0) (0,0,0.3) with outward faces: no mirror symmetry.
+const char* const cTetraObj =
+    "v 0 0 0\nv 0.1 0 0\nv 0 0.2 0\nv 0 0 0.3\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
 std::string packageXml(const std::string& name)
 {
     return "<?xml version=\"1.0\"?>\n<package format=\"2\">\n  <name>" + name +
@@ -115,6 +119,27 @@ TEST(UrdfPackages, PackagePathThatIsAPackage)
     EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
     options.packagePaths = {dir.path().string()};
     EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
+}
+
+TEST(UrdfPackages, ThreeSlashesAreReadAsTwo)
+{
+    TempDir dir;
+    mkdirs(dir, "pkgs/my_robot/meshes");
+    mkdirs(dir, "robot");
+    dir.write("pkgs/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("pkgs/my_robot/meshes/tetra.obj", cTetraObj);
+    UrdfOptions options;
+    options.packagePaths = {dir.file("pkgs")};
+    const core::Model two =
+        loadScene(dir.write("robot/two.urdf", meshRobot("package://my_robot/meshes/tetra.obj")), options);
+    LoadReport report;
+    const core::Model three = loadScene(
+        dir.write("robot/three.urdf", meshRobot("package:///my_robot/meshes/tetra.obj")), options, &report);
+    EXPECT_TRUE(report.warnings.empty());
+    const core::Shape& mesh = three.bodies.at(0).shapes.at(0);
+    EXPECT_EQ(mesh.meshFile, dir.file("pkgs/my_robot/meshes/tetra.obj"));
+    EXPECT_EQ(mesh.meshFile, two.bodies.at(0).shapes.at(0).meshFile);
+    EXPECT_EQ(mesh.vertices, two.bodies.at(0).shapes.at(0).vertices);
 }
 
 TEST(UrdfPackages, NameEqualsDirMapsAPackageWithoutManifest)
@@ -234,10 +259,6 @@ TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
     const InputError e = captureInputError([&] { loadScene(bad); });
     EXPECT_INPUT_ERROR_AT(e, bad, 5, 26, "collision mesh 'no_such_collision.stl' of link 'a'");
 }
-
-// A tetrahedron (0,0,0) (0.1,0,0) (0,0.2,0) (0,0,0.3) with outward faces: no mirror symmetry.
-const char* const cTetraObj =
-    "v 0 0 0\nv 0.1 0 0\nv 0 0.2 0\nv 0 0 0.3\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
 
 // A one-link robot whose visual (line 4) and collision (line 5) are the mesh `file` at `scale`.
 std::string scaledMeshRobot(const std::string& file, const std::string& scale)
