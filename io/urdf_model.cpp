@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <console_bridge/console.h>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -790,6 +791,61 @@ void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
     }
 }
 
+// `text` with ` attribute` inserted after the "<robot" of the <robot> element at `robotAt`, on
+// the same line, so that every line keeps its number.
+std::string withRobotAttribute(const std::string& text, TextPosition robotAt, const std::string& attribute)
+{
+    std::size_t lineStart = 0;
+    for (int line = 1; line < robotAt.line && lineStart != std::string::npos; ++line)
+    {
+        lineStart = text.find('\n', lineStart);
+        lineStart = lineStart == std::string::npos ? lineStart : lineStart + 1;
+    }
+    const std::size_t tag = text.find("<robot", lineStart == std::string::npos ? 0 : lineStart);
+    std::string out = text;
+    out.insert(tag == std::string::npos ? 0 : tag + 6, " " + attribute);
+    return out;
+}
+
+// `value` as the text of a double-quoted XML attribute.
+std::string xmlAttributeText(const std::string& value)
+{
+    std::string out;
+    for (const char c : value)
+    {
+        switch (c)
+        {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+// A <robot> without a name (which urdfdom refuses) is named after the file's stem, with a warning.
+std::string nameTheRobot(const std::string& path, const std::string& text, const UrdfXmlIndex& index,
+                         std::vector<std::string>& warnings)
+{
+    if (index.robotNamed())
+    {
+        return text;
+    }
+    const std::string stem = std::filesystem::path(path).stem().string();
+    warnings.push_back(
+        diagnostic(path, index.robot(), "warning",
+                   "the <robot> has no name attribute; naming the robot '" + stem + "' after the file"));
+    return withRobotAttribute(text, index.robot(), "name=\"" + xmlAttributeText(stem) + "\"");
+}
+
 } // namespace
 
 std::string formatNumber(double value)
@@ -807,9 +863,11 @@ std::string formatVector(const core::Vec3& v)
 UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
                               const PackagePaths& packages)
 {
-    const std::string text = readTextFile(path, "URDF file");
-    const UrdfXmlIndex index(path, text); // XML syntax errors with row and column
+    const std::string original = readTextFile(path, "URDF file");
+    const UrdfXmlIndex index(path, original); // XML syntax errors with row and column
     checkJointTree(path, index);
+    std::vector<std::string> warnings;
+    const std::string text = nameTheRobot(path, original, index, warnings);
     CapturedLog log;
     const urdf::ModelInterfaceSharedPtr robot = parseCapturingErrors(text, log);
     if (!log.errors.empty() || !robot)
@@ -836,6 +894,7 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
     }
     UrdfConverter converter(path, index, *robot, placement, packages);
     UrdfFragment fragment = converter.convert();
+    fragment.warnings.insert(fragment.warnings.begin(), warnings.begin(), warnings.end());
     fragment.report.name = placement.prefix.empty() ? fragment.model.name : placement.prefix;
     fragment.report.prefix = placement.prefix;
     return fragment;
