@@ -14,7 +14,7 @@
 // * Moving joints are anchored at the child link's frame origin with the axis rotated into the
 //   world, in the initial pose; <dynamics damping friction> become the joint's damping and friction.
 // * Mesh URIs resolve through PackagePaths. A collision mesh that cannot be read is an error, a
-//   visual one a warning (the body is then drawn from its collision shapes).
+//   visual one a warning (that link is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
 #include "io/file_util.h"
@@ -421,8 +421,10 @@ class UrdfConverter
     }
 
     // The link's collision (or visual) elements as shapes posed in the link frame. Collision
-    // meshes that cannot be read are errors; visual ones warnings (quiet: skipped silently).
-    std::vector<core::Shape> linkShapes(const urdf::Link& l, bool collision, bool quiet)
+    // meshes that cannot be read are errors; visual ones warnings (quiet: skipped silently), and
+    // set *unreadable when given.
+    std::vector<core::Shape> linkShapes(const urdf::Link& l, bool collision, bool quiet,
+                                        bool* unreadable = nullptr)
     {
         std::vector<core::Shape> out;
         const std::size_t count = collision ? l.collision_array.size() : l.visual_array.size();
@@ -440,6 +442,10 @@ class UrdfConverter
             std::optional<core::Shape> shape = readGeometry(l, *geometry, element, collision, quiet);
             if (!shape)
             {
+                if (unreadable != nullptr)
+                {
+                    *unreadable = true;
+                }
                 continue;
             }
             const Pose pose = fromUrdf(origin);
@@ -536,7 +542,8 @@ class UrdfConverter
         }
         if (!quiet)
         {
-            warn(at, what + " cannot be read (" + problem + "); the link is drawn from its collision shapes");
+            warn(at, what + " cannot be read (" + problem + "); the link is drawn from its collision shapes" +
+                         (l.collision_array.empty() ? ", and it has none: it is not drawn" : ""));
         }
         return std::nullopt;
     }
@@ -592,16 +599,15 @@ class UrdfConverter
             const urdf::Link& l = link(name);
             const std::optional<Pose>& inTop = mPlaces[name].inTop;
             const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
-            for (const bool collision : {true, false})
+            std::vector<core::Shape> collisionShapes = linkShapes(l, true, false);
+            bool visualUnreadable = false;
+            std::vector<core::Shape> visualShapes = linkShapes(l, false, false, &visualUnreadable);
+            if (visualUnreadable)
             {
-                for (core::Shape& shape : linkShapes(l, collision, false))
-                {
-                    const Pose shapePose = linkInBody * Pose{shape.position_BS, shape.rotation_BS};
-                    shape.position_BS = shapePose.p;
-                    shape.rotation_BS = shapePose.q;
-                    (collision ? body.shapes : body.visuals).push_back(std::move(shape));
-                }
+                visualShapes = collisionShapes; // as readMesh's warning says
             }
+            appendPosed(collisionShapes, linkInBody, body.shapes);
+            appendPosed(visualShapes, linkInBody, body.visuals);
             for (const urdf::VisualSharedPtr& visual : l.visual_array)
             {
                 if (visual && visual->material && !body.color)
@@ -621,6 +627,19 @@ class UrdfConverter
         }
         g.body = static_cast<int>(mOut.model.bodies.size());
         mOut.model.bodies.push_back(std::move(body));
+    }
+
+    // `shapes` (posed in a link frame) appended to `out`, posed in the body frame.
+    static void appendPosed(std::vector<core::Shape>& shapes, const Pose& linkInBody,
+                            std::vector<core::Shape>& out)
+    {
+        for (core::Shape& shape : shapes)
+        {
+            const Pose shapePose = linkInBody * Pose{shape.position_BS, shape.rotation_BS};
+            shape.position_BS = shapePose.p;
+            shape.rotation_BS = shapePose.q;
+            out.push_back(std::move(shape));
+        }
     }
 
     [[noreturn]] void failMassless(const LinkGroup& g) const

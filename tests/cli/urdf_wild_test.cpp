@@ -1,5 +1,5 @@
 // tests/cli/urdf_wild_test.cpp: robot files as makers ship them, run with `frontier` and drawn
-// with render::Renderer: meshes mirrored by a negative scale.
+// with render::Renderer: meshes mirrored by a negative scale, a link whose visual mesh is missing.
 #include "app_test_util.h"
 #include "io/scene.h"
 #include "render/renderer.h"
@@ -78,6 +78,52 @@ TEST(UrdfWild, MirroredMeshRunsAndIsDrawnMirrored)
         wildFrame(io::loadScene(dir.write("plain.urdf", wildMeshRobot("tetra.obj", "1 1 1"))));
     EXPECT_EQ(differingPixels(byScale, byFile), 0u);
     EXPECT_GT(differingPixels(byScale, unmirrored), 100u);
+}
+
+// trunk (its <visual> is `trunkVisual`, its collision a box) welded to marker (a visual sphere
+// 0.5 m up): the body has visuals whatever the trunk's are.
+std::string wildTrunkRobot(const std::string& trunkVisual)
+{
+    return R"(<robot name="dog">
+  <link name="trunk">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    )" + trunkVisual +
+           R"(
+    <collision><origin xyz="0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry></collision>
+  </link>
+  <joint name="marker_fixed" type="fixed"><parent link="trunk"/><child link="marker"/><origin xyz="0 0 0.5"/></joint>
+  <link name="marker">
+    <visual><geometry><sphere radius="0.05"/></geometry></visual>
+  </link>
+</robot>
+)";
+}
+
+TEST(UrdfWild, ALinkWhoseVisualMeshIsMissingIsDrawnAsItsCollisionBox)
+{
+    const TestDir dir;
+    const std::string missing = dir.write(
+        "missing.urdf",
+        wildTrunkRobot(R"(<visual><geometry><mesh filename="no_such_trunk.dae"/></geometry></visual>)"));
+    const Result r =
+        dir.run("run " + shellQuote(missing) + " --duration 0.1 --fps 10 --width 64 --height 48 --frames " +
+                shellQuote(dir.out("frames")));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find(missing + ":4:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("warning: visual mesh 'no_such_trunk.dae' of link 'trunk' cannot be read"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("the link is drawn from its collision shapes"), std::string::npos) << r.err;
+
+    // Drawn as a trunk whose visual is its collision box, and unlike a trunk with no visual at all.
+    const render::Image drawn = wildFrame(io::loadScene(missing));
+    const render::Image asBox = wildFrame(io::loadScene(dir.write(
+        "box.urdf",
+        wildTrunkRobot(
+            R"(<visual><origin xyz="0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry></visual>)"))));
+    const render::Image invisible = wildFrame(io::loadScene(dir.write("none.urdf", wildTrunkRobot(""))));
+    EXPECT_EQ(differingPixels(drawn, asBox), 0u);
+    EXPECT_GT(differingPixels(drawn, invisible), 500u); // of 160 x 120: where the box is
 }
 
 } // namespace

@@ -248,7 +248,9 @@ TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
     const std::string urdf = dir.write("r.urdf", meshRobot("cube.obj", "no_such_visual.dae"));
     LoadReport report;
     const core::Model model = loadScene(urdf, {}, &report);
-    EXPECT_TRUE(model.bodies.at(0).visuals.empty()); // drawn from its collision shapes
+    const core::Body& body = model.bodies.at(0);
+    ASSERT_EQ(body.visuals.size(), 1u); // drawn from its collision shapes
+    EXPECT_EQ(body.visuals[0].vertices, body.shapes.at(0).vertices);
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_NE(report.warnings[0].find(urdf + ":4:"), std::string::npos) << report.warnings[0];
     EXPECT_NE(report.warnings[0].find("visual mesh 'no_such_visual.dae' of link 'a' cannot be read"),
@@ -280,6 +282,40 @@ double urdfMeshVolume(const core::Shape& shape)
                                  .cross(shape.vertices.at(static_cast<std::size_t>(t[2]))));
     }
     return sixTimes / 6.0;
+}
+
+// trunk (a visual mesh that is missing, a collision box) welded to marker (a visual sphere 0.5 m
+// up): the trunk is drawn as its box even though its body has another link's visual.
+const char* const cTrunkWithoutVisual = R"(<robot name="dog">
+  <link name="trunk">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <visual><geometry><mesh filename="missing_trunk.dae"/></geometry></visual>
+    <collision><origin xyz="0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry></collision>
+  </link>
+  <joint name="marker_fixed" type="fixed"><parent link="trunk"/><child link="marker"/><origin xyz="0 0 0.5"/></joint>
+  <link name="marker">
+    <visual><geometry><sphere radius="0.05"/></geometry></visual>
+  </link>
+</robot>
+)";
+
+TEST(UrdfMeshes, ALinkWhoseVisualMeshIsMissingIsDrawnFromItsCollisionShapes)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("dog.urdf", cTrunkWithoutVisual);
+    LoadReport report;
+    const core::Model model = loadScene(urdf, {}, &report);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(urdf + ":4:"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("the link is drawn from its collision shapes"), std::string::npos)
+        << report.warnings[0];
+    const core::Body& body = model.bodies.at(0);
+    ASSERT_EQ(body.shapes.size(), 1u);
+    ASSERT_EQ(body.visuals.size(), 2u); // the trunk's box, then the marker's sphere
+    EXPECT_EQ(body.visuals[0].type, core::ShapeType::Box);
+    EXPECT_EQ(body.visuals[0].size, core::Vec3(0.4, 0.2, 0.1));
+    EXPECT_EQ(body.visuals[0].position_BS, body.shapes[0].position_BS);
+    EXPECT_EQ(body.visuals[1].type, core::ShapeType::Sphere);
 }
 
 TEST(UrdfMeshes, NegativeScaleMirrorsCollisionAndVisualMeshes)
