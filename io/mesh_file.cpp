@@ -103,8 +103,9 @@ class MeshCollector
             }
             index[v] = addVertex(p_S);
         }
-        // A mirroring node transform turns the surface inside out; swap two corners to undo it.
-        const bool mirrored = mesh_FM.linear().determinant() < 0.0;
+        // A mirroring node transform or scale (an odd number of negative components) turns the
+        // surface inside out; swap two corners to undo it.
+        const bool mirrored = mesh_FM.linear().determinant() * mScale.prod() < 0.0;
         for (unsigned f = 0; f < mesh.mNumFaces; ++f)
         {
             const aiFace& face = mesh.mFaces[f];

@@ -294,7 +294,11 @@ ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urd
         out.path = path;
         return out;
     }
-    const std::string body = percentDecoded(uri.substr(package ? 10 : 8));
+    std::string body = percentDecoded(uri.substr(package ? 10 : 8));
+    if (body.starts_with('/'))
+    {
+        body.erase(0, 1); // package:///NAME/PATH, as some exporters write it, is package://NAME/PATH
+    }
     const std::size_t slash = body.find('/');
     const std::string name = body.substr(0, slash);
     const std::string rest = slash == std::string::npos ? std::string() : body.substr(slash + 1);

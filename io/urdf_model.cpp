@@ -14,7 +14,7 @@
 // * Moving joints are anchored at the child link's frame origin with the axis rotated into the
 //   world, in the initial pose; <dynamics damping friction> become the joint's damping and friction.
 // * Mesh URIs resolve through PackagePaths. A collision mesh that cannot be read is an error, a
-//   visual one a warning (the body is then drawn from its collision shapes).
+//   visual one a warning (that link is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
 #include "io/file_util.h"
@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <console_bridge/console.h>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <numbers>
@@ -472,8 +473,10 @@ class UrdfConverter
     }
 
     // The link's collision (or visual) elements as shapes posed in the link frame. Collision
-    // meshes that cannot be read are errors; visual ones warnings (quiet: skipped silently).
-    std::vector<core::Shape> linkShapes(const urdf::Link& l, bool collision, bool quiet)
+    // meshes that cannot be read are errors; visual ones warnings (quiet: skipped silently), and
+    // set *unreadable when given.
+    std::vector<core::Shape> linkShapes(const urdf::Link& l, bool collision, bool quiet,
+                                        bool* unreadable = nullptr)
     {
         std::vector<core::Shape> out;
         const std::size_t count = collision ? l.collision_array.size() : l.visual_array.size();
@@ -491,6 +494,10 @@ class UrdfConverter
             std::optional<core::Shape> shape = readGeometry(l, *geometry, element, collision, quiet);
             if (!shape)
             {
+                if (unreadable != nullptr)
+                {
+                    *unreadable = true;
+                }
                 continue;
             }
             const Pose pose = fromUrdf(origin);
@@ -554,9 +561,11 @@ class UrdfConverter
         const std::string what = std::string(collision ? "collision" : "visual") + " mesh '" + mesh.filename +
                                  "' of link '" + l.name + "'";
         const core::Vec3 scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
-        if (!(scale.minCoeff() > 0.0) || !scale.allFinite())
+        if (!scale.allFinite() || (scale.array() == 0.0).any())
         {
-            fail(at, what + " needs a positive scale");
+            fail(at, what + " has scale=\"" + formatNumber(scale.x()) + " " + formatNumber(scale.y()) + " " +
+                         formatNumber(scale.z()) +
+                         "\"; expected three nonzero numbers (a negative one mirrors the mesh)");
         }
         const ResolvedUri resolved = mPackages.resolve(mesh.filename, mFile);
         std::string problem = resolved.notFound;
@@ -585,7 +594,8 @@ class UrdfConverter
         }
         if (!quiet)
         {
-            warn(at, what + " cannot be read (" + problem + "); the link is drawn from its collision shapes");
+            warn(at, what + " cannot be read (" + problem + "); the link is drawn from its collision shapes" +
+                         (l.collision_array.empty() ? ", and it has none: it is not drawn" : ""));
         }
         return std::nullopt;
     }
@@ -641,16 +651,15 @@ class UrdfConverter
             const urdf::Link& l = link(name);
             const std::optional<Pose>& inTop = mPlaces[name].inTop;
             const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
-            for (const bool collision : {true, false})
+            std::vector<core::Shape> collisionShapes = linkShapes(l, true, false);
+            bool visualUnreadable = false;
+            std::vector<core::Shape> visualShapes = linkShapes(l, false, false, &visualUnreadable);
+            if (visualUnreadable)
             {
-                for (core::Shape& shape : linkShapes(l, collision, false))
-                {
-                    const Pose shapePose = linkInBody * Pose{shape.position_BS, shape.rotation_BS};
-                    shape.position_BS = shapePose.p;
-                    shape.rotation_BS = shapePose.q;
-                    (collision ? body.shapes : body.visuals).push_back(std::move(shape));
-                }
+                visualShapes = collisionShapes; // as readMesh's warning says
             }
+            appendPosed(collisionShapes, linkInBody, body.shapes);
+            appendPosed(visualShapes, linkInBody, body.visuals);
             for (const urdf::VisualSharedPtr& visual : l.visual_array)
             {
                 if (visual && visual->material && !body.color)
@@ -670,6 +679,19 @@ class UrdfConverter
         }
         g.body = static_cast<int>(mOut.model.bodies.size());
         mOut.model.bodies.push_back(std::move(body));
+    }
+
+    // `shapes` (posed in a link frame) appended to `out`, posed in the body frame.
+    static void appendPosed(std::vector<core::Shape>& shapes, const Pose& linkInBody,
+                            std::vector<core::Shape>& out)
+    {
+        for (core::Shape& shape : shapes)
+        {
+            const Pose shapePose = linkInBody * Pose{shape.position_BS, shape.rotation_BS};
+            shape.position_BS = shapePose.p;
+            shape.rotation_BS = shapePose.q;
+            out.push_back(std::move(shape));
+        }
     }
 
     [[noreturn]] void failMassless(const LinkGroup& g) const
@@ -841,6 +863,61 @@ void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
     }
 }
 
+// `text` with ` attribute` inserted after the "<robot" of the <robot> element at `robotAt`, on
+// the same line, so that every line keeps its number.
+std::string withRobotAttribute(const std::string& text, TextPosition robotAt, const std::string& attribute)
+{
+    std::size_t lineStart = 0;
+    for (int line = 1; line < robotAt.line && lineStart != std::string::npos; ++line)
+    {
+        lineStart = text.find('\n', lineStart);
+        lineStart = lineStart == std::string::npos ? lineStart : lineStart + 1;
+    }
+    const std::size_t tag = text.find("<robot", lineStart == std::string::npos ? 0 : lineStart);
+    std::string out = text;
+    out.insert(tag == std::string::npos ? 0 : tag + 6, " " + attribute);
+    return out;
+}
+
+// `value` as the text of a double-quoted XML attribute.
+std::string xmlAttributeText(const std::string& value)
+{
+    std::string out;
+    for (const char c : value)
+    {
+        switch (c)
+        {
+        case '&':
+            out += "&amp;";
+            break;
+        case '<':
+            out += "&lt;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += c;
+        }
+    }
+    return out;
+}
+
+// A <robot> without a name (which urdfdom refuses) is named after the file's stem, with a warning.
+std::string nameTheRobot(const std::string& path, const std::string& text, const UrdfXmlIndex& index,
+                         std::vector<std::string>& warnings)
+{
+    if (index.robotNamed())
+    {
+        return text;
+    }
+    const std::string stem = std::filesystem::path(path).stem().string();
+    warnings.push_back(
+        diagnostic(path, index.robot(), "warning",
+                   "the <robot> has no name attribute; naming the robot '" + stem + "' after the file"));
+    return withRobotAttribute(text, index.robot(), "name=\"" + xmlAttributeText(stem) + "\"");
+}
+
 } // namespace
 
 std::string formatNumber(double value)
@@ -858,9 +935,11 @@ std::string formatVector(const core::Vec3& v)
 UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
                               const PackagePaths& packages)
 {
-    const std::string text = readTextFile(path, "URDF file");
-    const UrdfXmlIndex index(path, text); // XML syntax errors with row and column
+    const std::string original = readTextFile(path, "URDF file");
+    const UrdfXmlIndex index(path, original); // XML syntax errors with row and column
     checkJointTree(path, index);
+    std::vector<std::string> warnings;
+    const std::string text = nameTheRobot(path, original, index, warnings);
     CapturedLog log;
     const urdf::ModelInterfaceSharedPtr robot = parseCapturingErrors(text, log);
     if (!log.errors.empty() || !robot)
@@ -887,6 +966,7 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
     }
     UrdfConverter converter(path, index, *robot, placement, packages);
     UrdfFragment fragment = converter.convert();
+    fragment.warnings.insert(fragment.warnings.begin(), warnings.begin(), warnings.end());
     fragment.report.name = placement.prefix.empty() ? fragment.model.name : placement.prefix;
     fragment.report.prefix = placement.prefix;
     return fragment;

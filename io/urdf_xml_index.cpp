@@ -148,6 +148,7 @@ UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : m
         throw InputError(file, row, column, "expected a <robot> root element");
     }
     mRobot = {robot->Row(), robot->Column()};
+    mRobotNamed = robot->Attribute("name") != nullptr;
     for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement())
     {
         const std::string kind = e->Value();

@@ -35,8 +35,9 @@ class UrdfXmlIndex
     // a link or joint (when the message says "link"/"joint") or appears as an attribute value.
     TextPosition locateMessage(const std::string& message) const;
 
-    // Position of the <robot> element.
+    // Position of the <robot> element, and whether it has a name attribute.
     TextPosition robot() const { return mRobot; }
+    bool robotNamed() const { return mRobotNamed; }
 
     // Names of <link> and <joint> elements in document order.
     const std::vector<std::string>& linkNames() const { return mLinkNames; }
@@ -55,6 +56,7 @@ class UrdfXmlIndex
   private:
     std::string mText;
     TextPosition mRobot;
+    bool mRobotNamed = false;
     std::map<std::string, TextPosition> mElements; // "link:NAME/inertial/mass" -> position
     std::vector<std::string> mLinkNames;
     std::vector<std::string> mJointNames;

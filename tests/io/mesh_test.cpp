@@ -1,5 +1,6 @@
 // tests/io/mesh_test.cpp: mesh files (STL, OBJ, COLLADA) written here with known geometry, read
 // directly and through scenes (volume, vertices, units, node transforms, winding, errors).
+#include "io/mass_properties.h"
 #include "io/mesh_file.h"
 #include "io/scene.h"
 #include "io_test_util.h"
@@ -360,6 +361,54 @@ TEST(Mesh, ColladaMirroredNodeStillFacesOutwards)
     const core::Shape shape = loadMeshFile(path, core::Vec3::Ones());
     expectVertexSet(shape, {{0, 0, 0}, {-1, 0, 0}, {0, 2, 0}, {0, 0, 3}}, 1e-6);
     EXPECT_NEAR(signedVolume(shape), 1.0, 1e-6);
+}
+
+// Each vertex of `shape` with its coordinates multiplied by `scale`, worked out here.
+std::vector<core::Vec3> mirroredVertices(const core::Shape& shape, const core::Vec3& scale)
+{
+    std::vector<core::Vec3> out;
+    for (const core::Vec3& v : shape.vertices)
+    {
+        out.push_back(v.cwiseProduct(scale));
+    }
+    return out;
+}
+
+TEST(Mesh, NegativeScaleMirrorsAndKeepsTheSurfaceFacingOutwards)
+{
+    TempDir dir;
+    const std::string path = dir.write("tetra.stl", binaryStl(cTetraTriangles));
+    const core::Shape plain = loadMeshFile(path, core::Vec3::Ones());
+    // One, two and three negative components: an odd number mirrors, an even one rotates.
+    for (const core::Vec3& scale : {core::Vec3(1, -1, 1), core::Vec3(-1, -1, 1), core::Vec3(-2, -1, -0.5)})
+    {
+        SCOPED_TRACE(testing::Message() << "scale " << scale.transpose());
+        const core::Shape shape = loadMeshFile(path, scale);
+        EXPECT_EQ(shape.triangles.size(), 4u);
+        expectVertexSet(shape, mirroredVertices(plain, scale), 0.0);
+        const double volume_m3 = std::abs(scale.prod()) / 6.0;
+        EXPECT_NEAR(signedVolume(shape), volume_m3, 1e-12);
+        expectOutwardFaces(shape, scale / 4.0); // the centroid, inside
+    }
+}
+
+TEST(Mesh, MirroredMeshHasTheMirroredMassProperties)
+{
+    TempDir dir;
+    const std::string path = dir.write("tetra.stl", binaryStl(cTetraTriangles));
+    const double density = 6.0; // kg/m^3: the tetrahedron of volume 1/6 m^3 weighs 1 kg
+    const detail::CompositeMass plain =
+        detail::compositeMassProperties({loadMeshFile(path, core::Vec3::Ones())}, density);
+    const detail::CompositeMass mirrored =
+        detail::compositeMassProperties({loadMeshFile(path, core::Vec3(1, -1, 1))}, density);
+    EXPECT_NEAR(plain.mass, 1.0, 1e-12);
+    EXPECT_NEAR(mirrored.mass, 1.0, 1e-12);
+    EXPECT_NEAR((plain.centre - core::Vec3(0.25, 0.25, 0.25)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((mirrored.centre - core::Vec3(0.25, -0.25, 0.25)).norm(), 0.0, 1e-12);
+    // Mirroring y: the products of inertia with y change sign, the rest stay.
+    const core::Mat3 flipY = core::Vec3(1, -1, 1).asDiagonal();
+    EXPECT_NEAR((mirrored.inertia - flipY * plain.inertia * flipY).norm(), 0.0, 1e-12);
+    EXPECT_GT(std::abs(plain.inertia(0, 1)), 1e-3); // kg m^2: a product that mirroring changes
 }
 
 TEST(Mesh, ColladaThroughASceneWithScale)

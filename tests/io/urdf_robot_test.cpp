@@ -40,6 +40,10 @@ f 4 1 5
 f 4 5 8
 )";
 
+// A tetrahedron (0,0,0) (0.1,0,0) (0,0.2,0) (0,0,0.3) with outward faces: no mirror symmetry.
+const char* const cTetraObj =
+    "v 0 0 0\nv 0.1 0 0\nv 0 0.2 0\nv 0 0 0.3\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
 std::string packageXml(const std::string& name)
 {
     return "<?xml version=\"1.0\"?>\n<package format=\"2\">\n  <name>" + name +
@@ -115,6 +119,27 @@ TEST(UrdfPackages, PackagePathThatIsAPackage)
     EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
     options.packagePaths = {dir.path().string()};
     EXPECT_EQ(meshVertexCount(loadScene(urdf, options)), 8u);
+}
+
+TEST(UrdfPackages, ThreeSlashesAreReadAsTwo)
+{
+    TempDir dir;
+    mkdirs(dir, "pkgs/my_robot/meshes");
+    mkdirs(dir, "robot");
+    dir.write("pkgs/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("pkgs/my_robot/meshes/tetra.obj", cTetraObj);
+    UrdfOptions options;
+    options.packagePaths = {dir.file("pkgs")};
+    const core::Model two =
+        loadScene(dir.write("robot/two.urdf", meshRobot("package://my_robot/meshes/tetra.obj")), options);
+    LoadReport report;
+    const core::Model three = loadScene(
+        dir.write("robot/three.urdf", meshRobot("package:///my_robot/meshes/tetra.obj")), options, &report);
+    EXPECT_TRUE(report.warnings.empty());
+    const core::Shape& mesh = three.bodies.at(0).shapes.at(0);
+    EXPECT_EQ(mesh.meshFile, dir.file("pkgs/my_robot/meshes/tetra.obj"));
+    EXPECT_EQ(mesh.meshFile, two.bodies.at(0).shapes.at(0).meshFile);
+    EXPECT_EQ(mesh.vertices, two.bodies.at(0).shapes.at(0).vertices);
 }
 
 TEST(UrdfPackages, NameEqualsDirMapsAPackageWithoutManifest)
@@ -223,7 +248,9 @@ TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
     const std::string urdf = dir.write("r.urdf", meshRobot("cube.obj", "no_such_visual.dae"));
     LoadReport report;
     const core::Model model = loadScene(urdf, {}, &report);
-    EXPECT_TRUE(model.bodies.at(0).visuals.empty()); // drawn from its collision shapes
+    const core::Body& body = model.bodies.at(0);
+    ASSERT_EQ(body.visuals.size(), 1u); // drawn from its collision shapes
+    EXPECT_EQ(body.visuals[0].vertices, body.shapes.at(0).vertices);
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_NE(report.warnings[0].find(urdf + ":4:"), std::string::npos) << report.warnings[0];
     EXPECT_NE(report.warnings[0].find("visual mesh 'no_such_visual.dae' of link 'a' cannot be read"),
@@ -233,6 +260,97 @@ TEST(UrdfMeshes, MissingVisualMeshIsAWarningMissingCollisionMeshAnError)
     const std::string bad = dir.write("bad.urdf", meshRobot("no_such_collision.stl", "cube.obj"));
     const InputError e = captureInputError([&] { loadScene(bad); });
     EXPECT_INPUT_ERROR_AT(e, bad, 5, 26, "collision mesh 'no_such_collision.stl' of link 'a'");
+}
+
+// A one-link robot whose visual (line 4) and collision (line 5) are the mesh `file` at `scale`.
+std::string scaledMeshRobot(const std::string& file, const std::string& scale)
+{
+    const std::string mesh = "<geometry><mesh filename=\"" + file + "\" scale=\"" + scale + "\"/></geometry>";
+    return "<robot name=\"r\">\n  <link name=\"a\">\n    <inertial><mass value=\"1\"/><inertia ixx=\"0.01\" "
+           "ixy=\"0\" ixz=\"0\" iyy=\"0.01\" iyz=\"0\" izz=\"0.01\"/></inertial>\n    <visual>" +
+           mesh + "</visual>\n    <collision>" + mesh + "</collision>\n  </link>\n</robot>\n";
+}
+
+// Volume (m^3) enclosed by a mesh shape, by the divergence theorem: negative when inside out.
+double urdfMeshVolume(const core::Shape& shape)
+{
+    double sixTimes = 0.0;
+    for (const auto& t : shape.triangles)
+    {
+        sixTimes += shape.vertices.at(static_cast<std::size_t>(t[0]))
+                        .dot(shape.vertices.at(static_cast<std::size_t>(t[1]))
+                                 .cross(shape.vertices.at(static_cast<std::size_t>(t[2]))));
+    }
+    return sixTimes / 6.0;
+}
+
+// trunk (a visual mesh that is missing, a collision box) welded to marker (a visual sphere 0.5 m
+// up): the trunk is drawn as its box even though its body has another link's visual.
+const char* const cTrunkWithoutVisual = R"(<robot name="dog">
+  <link name="trunk">
+    <inertial><mass value="1"/><inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+    <visual><geometry><mesh filename="missing_trunk.dae"/></geometry></visual>
+    <collision><origin xyz="0.1 0 0"/><geometry><box size="0.4 0.2 0.1"/></geometry></collision>
+  </link>
+  <joint name="marker_fixed" type="fixed"><parent link="trunk"/><child link="marker"/><origin xyz="0 0 0.5"/></joint>
+  <link name="marker">
+    <visual><geometry><sphere radius="0.05"/></geometry></visual>
+  </link>
+</robot>
+)";
+
+TEST(UrdfMeshes, ALinkWhoseVisualMeshIsMissingIsDrawnFromItsCollisionShapes)
+{
+    TempDir dir;
+    const std::string urdf = dir.write("dog.urdf", cTrunkWithoutVisual);
+    LoadReport report;
+    const core::Model model = loadScene(urdf, {}, &report);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(urdf + ":4:"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("the link is drawn from its collision shapes"), std::string::npos)
+        << report.warnings[0];
+    const core::Body& body = model.bodies.at(0);
+    ASSERT_EQ(body.shapes.size(), 1u);
+    ASSERT_EQ(body.visuals.size(), 2u); // the trunk's box, then the marker's sphere
+    EXPECT_EQ(body.visuals[0].type, core::ShapeType::Box);
+    EXPECT_EQ(body.visuals[0].size, core::Vec3(0.4, 0.2, 0.1));
+    EXPECT_EQ(body.visuals[0].position_BS, body.shapes[0].position_BS);
+    EXPECT_EQ(body.visuals[1].type, core::ShapeType::Sphere);
+}
+
+TEST(UrdfMeshes, NegativeScaleMirrorsCollisionAndVisualMeshes)
+{
+    TempDir dir;
+    dir.write("tetra.obj", cTetraObj);
+    const core::Model plain = loadScene(dir.write("plain.urdf", scaledMeshRobot("tetra.obj", "1 1 1")));
+    LoadReport report;
+    const core::Model mirrored =
+        loadScene(dir.write("mirrored.urdf", scaledMeshRobot("tetra.obj", "1 -1 1")), {}, &report);
+    EXPECT_TRUE(report.warnings.empty());
+    const core::Body& p = plain.bodies.at(0);
+    const core::Body& m = mirrored.bodies.at(0);
+    ASSERT_EQ(m.shapes.size(), 1u);
+    ASSERT_EQ(m.visuals.size(), 1u);
+    for (const core::Shape* shape : {&m.shapes[0], &m.visuals[0]})
+    {
+        const core::Shape& unmirrored = shape == &m.shapes[0] ? p.shapes.at(0) : p.visuals.at(0);
+        ASSERT_EQ(shape->vertices.size(), unmirrored.vertices.size());
+        for (std::size_t i = 0; i < shape->vertices.size(); ++i)
+        {
+            EXPECT_EQ(shape->vertices[i], unmirrored.vertices[i].cwiseProduct(core::Vec3(1, -1, 1)));
+        }
+        EXPECT_NEAR(urdfMeshVolume(*shape), 0.001, 1e-9); // 0.1 * 0.2 * 0.3 / 6, facing outwards
+    }
+}
+
+TEST(UrdfMeshes, ZeroScaleIsAnError)
+{
+    TempDir dir;
+    dir.write("tetra.obj", cTetraObj);
+    const std::string urdf = dir.write("r.urdf", scaledMeshRobot("tetra.obj", "1 0 1"));
+    const InputError e = captureInputError([&] { loadScene(urdf); });
+    EXPECT_INPUT_ERROR_AT(e, urdf, 5, 26, "collision mesh 'tetra.obj' of link 'a' has scale=\"1 0 1\"");
+    EXPECT_NE(std::string(e.what()).find("expected three nonzero numbers"), std::string::npos) << e.what();
 }
 
 // base (2 kg box) --fixed--> plate (1 kg, 0.3 m up, turned 90 degrees about z, its own inertial offset)

@@ -250,6 +250,37 @@ TEST(Urdf, ZeroAxis)
     EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 6, 5, "joint 'hinge' has a zero <axis>");
 }
 
+// A collision box, so that the robot stands on the floor without a warning.
+const std::string cNamelessBox = "<collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>";
+
+TEST(Urdf, NamelessRobotIsNamedAfterItsFileWithAWarning)
+{
+    TempDir dir;
+    const std::string links = "  <link name=\"a\">" + cGoodInertial + cNamelessBox + "</link>\n" +
+                              "  <link name=\"b\">" + cGoodInertial + cNamelessBox + "</link>\n" +
+                              "  <joint name=\"hinge\" type=\"continuous\">\n"
+                              "    <parent link=\"a\"/><child link=\"b\"/>\n";
+    const std::string arm =
+        dir.write("my_arm.urdf", "<?xml version=\"1.0\"?>\n<robot\n    xmlns:xacro=\"x\">\n" + links +
+                                     "    <axis xyz=\"0 0 1\"/>\n  </joint>\n</robot>\n");
+    LoadReport report;
+    const core::Model model = loadScene(arm, {}, &report);
+    EXPECT_EQ(model.name, "my_arm");
+    ASSERT_EQ(report.robots.size(), 1u);
+    EXPECT_EQ(report.robots[0].name, "my_arm");
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find(arm + ":2:1: warning: the <robot> has no name"), std::string::npos)
+        << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("'my_arm'"), std::string::npos) << report.warnings[0];
+
+    // The name goes in without moving a line: a later mistake is reported where it is.
+    const std::string bad =
+        dir.write("bad.urdf", "<?xml version=\"1.0\"?>\n<robot\n    xmlns:xacro=\"x\">\n" + links +
+                                  "    <axis xyz=\"0 0 0\"/>\n  </joint>\n</robot>\n");
+    const InputError e = captureInputError([&] { loadScene(bad); });
+    EXPECT_INPUT_ERROR_AT(e, bad, 8, 5, "joint 'hinge' has a zero <axis>");
+}
+
 TEST(Urdf, BadXmlReportsRowAndColumn)
 {
     TempDir dir;
