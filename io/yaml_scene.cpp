@@ -29,7 +29,7 @@ const std::vector<std::string> cContactKeys = {"friction",           "restitutio
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
     "urdf",           "position", "orientation", "velocity", "angular_velocity", "prefix",
-    "self_collision", "fixed",    "free_base",   "hold",     "joint_positions"};
+    "self_collision", "fixed",    "free_base",   "hold",     "joint_positions",  "drop_height"};
 
 // `reference: {csv: FILE, body: NAME}`, after all bodies exist; the CSV is read by `sweep` alone.
 SceneReference readReference(const SceneBuilder& builder, const YamlNode& node)
