@@ -21,6 +21,33 @@ int Model::findBody(const std::string& bodyName) const
     return -2;
 }
 
+namespace
+{
+// A body's own value of a material property, or none (cWorld has none).
+std::optional<double> material(const Model& model, int body, std::optional<double> Body::*property)
+{
+    return body >= 0 ? model.bodies[static_cast<std::size_t>(body)].*property : std::nullopt;
+}
+} // namespace
+
+double contactFriction(const Model& model, int a, int b)
+{
+    const std::optional<double> muA = material(model, a, &Body::friction);
+    const std::optional<double> muB = material(model, b, &Body::friction);
+    if (!muA && !muB)
+    {
+        return model.contact.friction; // the scene's, exactly
+    }
+    return std::sqrt(muA.value_or(model.contact.friction) * muB.value_or(model.contact.friction));
+}
+
+double contactRestitution(const Model& model, int a, int b)
+{
+    const double scene = model.contact.restitution;
+    return std::max(material(model, a, &Body::restitution).value_or(scene),
+                    material(model, b, &Body::restitution).value_or(scene));
+}
+
 bool isMovingBody(const Model& model, int body)
 {
     return body >= 0 && !model.bodies[static_cast<std::size_t>(body)].isStatic;

@@ -58,6 +58,10 @@ struct Body
     std::vector<Shape> visuals;    // render-only geometry (URDF <visual>); no mass, no contacts
     std::optional<Vec3> color;     // RGB in [0, 1], for the renderer
     std::string group;             // bodies of one non-empty group never collide with each other
+    // The body's material (a scene body's `friction`, `restitution`; a URDF link's <contact>): none
+    // takes the scene's contact settings. A pair combines them by contactFriction, contactRestitution.
+    std::optional<double> friction;    // Coulomb coefficient, >= 0
+    std::optional<double> restitution; // Newton e in [0, 1]
     // Initial state.
     Vec3 position_W = Vec3::Zero();         // centre of mass (m)
     Quat orientation_WB = Quat::Identity(); // body to world
@@ -272,6 +276,21 @@ struct Model
     // the scene loaders resolve names through a name -> index map (io's SceneBuilder).
     int findBody(const std::string& bodyName) const;
 };
+
+// The friction and restitution of a contact between bodies a and b (b may be cWorld), as Box2D
+// mixes materials: friction the geometric mean sqrt(mu_a mu_b), restitution the larger, each body
+// taking the scene's value (Model::contact) when it has none of its own.
+double contactFriction(const Model& model, int a, int b);
+// The values a material may take: friction >= 0, restitution in [0, 1] (NaN neither).
+inline bool isFriction(double mu)
+{
+    return mu >= 0.0 && mu <= 1e6;
+}
+inline bool isRestitution(double e)
+{
+    return e >= 0.0 && e <= 1.0;
+}
+double contactRestitution(const Model& model, int a, int b);
 
 // True for the index of a moving body (not cWorld, not a static body).
 bool isMovingBody(const Model& model, int body);

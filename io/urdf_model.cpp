@@ -677,8 +677,52 @@ class UrdfConverter
         {
             body.group = mPlacement.prefix.empty() ? mOut.model.name : mPlacement.prefix;
         }
+        setMaterial(g, body);
         g.body = static_cast<int>(mOut.model.bodies.size());
         mOut.model.bodies.push_back(std::move(body));
+    }
+
+    // The body's friction and restitution from its links' <contact> (or Gazebo's mu1): the first
+    // link of the group that gives each (its top link first); a welded link that gives another
+    // value is a warning.
+    void setMaterial(const LinkGroup& g, core::Body& body)
+    {
+        // quantity: "friction" or "restitution"; range: the values its rule allows.
+        const auto take = [&](const std::string& linkName, const std::optional<std::string>& text,
+                              TextPosition at, bool (*rule)(double), const std::string& quantity,
+                              const char* range, std::optional<double>& out)
+        {
+            if (!text)
+            {
+                return;
+            }
+            const std::optional<double> value = parseFiniteNumber(*text);
+            if (!value || !rule(*value))
+            {
+                fail(at, "expected a " + quantity + " in " + range + " for link '" + linkName + "', got '" +
+                             *text + "'");
+            }
+            if (!out)
+            {
+                out = value;
+            }
+            else if (*out != *value)
+            {
+                warn(at, "link '" + linkName + "' is welded into body '" + body.name + "', whose " +
+                             quantity + " is " + formatNumber(*out) + " from an earlier link; its " +
+                             formatNumber(*value) + " is not used");
+            }
+        };
+        for (const std::string& name : g.links)
+        {
+            if (const UrdfXmlIndex::LinkMaterial* m = mIndex.material(name))
+            {
+                take(name, m->friction, m->frictionAt, core::isFriction, "friction", "[0, 1e6]",
+                     body.friction);
+                take(name, m->restitution, m->restitutionAt, core::isRestitution, "restitution", "[0, 1]",
+                     body.restitution);
+            }
+        }
     }
 
     // `shapes` (posed in a link frame) appended to `out`, posed in the body frame.

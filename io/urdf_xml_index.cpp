@@ -127,7 +127,52 @@ void checkXmlShape(const std::string& file, const std::string& text)
     }
 }
 
+// <link><contact><lateral_friction value=".."/><restitution value=".."/></contact> (PyBullet's).
+void readContactMaterial(const TiXmlElement& link, UrdfXmlIndex::LinkMaterial& out)
+{
+    const TiXmlElement* contact = link.FirstChildElement("contact");
+    if (contact == nullptr)
+    {
+        return;
+    }
+    const auto read = [&](const char* element, std::optional<std::string>& value, TextPosition& at)
+    {
+        const TiXmlElement* e = contact->FirstChildElement(element);
+        if (e != nullptr)
+        {
+            const char* text = e->Attribute("value");
+            value = text != nullptr ? text : "";
+            at = {e->Row(), e->Column()};
+        }
+    };
+    read("lateral_friction", out.friction, out.frictionAt);
+    read("restitution", out.restitution, out.restitutionAt);
+}
+
+// <gazebo reference="LINK"><mu1>..</mu1></gazebo>: the link's friction unless its <contact> gives one.
+void readGazeboFriction(const TiXmlElement& gazebo, std::map<std::string, UrdfXmlIndex::LinkMaterial>& out)
+{
+    const char* link = gazebo.Attribute("reference");
+    const TiXmlElement* mu = gazebo.FirstChildElement("mu1");
+    if (link == nullptr || mu == nullptr)
+    {
+        return;
+    }
+    UrdfXmlIndex::LinkMaterial& material = out[link];
+    if (!material.friction)
+    {
+        material.friction = mu->GetText() != nullptr ? mu->GetText() : "";
+        material.frictionAt = {mu->Row(), mu->Column()};
+    }
+}
+
 } // namespace
+
+const UrdfXmlIndex::LinkMaterial* UrdfXmlIndex::material(const std::string& link) const
+{
+    const auto it = mMaterials.find(link);
+    return it == mMaterials.end() ? nullptr : &it->second;
+}
 
 UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : mText(text)
 {
@@ -152,6 +197,11 @@ UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : m
     for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement())
     {
         const std::string kind = e->Value();
+        if (kind == "gazebo")
+        {
+            readGazeboFriction(*e, mMaterials);
+            continue;
+        }
         if (kind != "link" && kind != "joint")
         {
             continue;
@@ -167,6 +217,10 @@ UrdfXmlIndex::UrdfXmlIndex(const std::string& file, const std::string& text) : m
             continue;
         }
         (kind == "link" ? mLinkNames : mJointNames).push_back(name);
+        if (kind == "link")
+        {
+            readContactMaterial(*e, mMaterials[name]);
+        }
         if (kind == "joint")
         {
             const TiXmlElement* parent = e->FirstChildElement("parent");

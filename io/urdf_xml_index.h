@@ -8,6 +8,7 @@
 #include "io/file_util.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,8 +54,22 @@ class UrdfXmlIndex
     };
     const std::vector<JointLinks>& jointLinks() const { return mJointLinks; }
 
+    // A link's contact material as written: PyBullet's <link><contact><lateral_friction value=..>
+    // and <restitution value=..>, Gazebo's <gazebo reference="LINK"><mu1> (the friction when the
+    // link gives none). Values are the attribute or element text, unparsed; at: where each is.
+    struct LinkMaterial
+    {
+        std::optional<std::string> friction;
+        TextPosition frictionAt;
+        std::optional<std::string> restitution;
+        TextPosition restitutionAt;
+    };
+    // The material of a link, or null when it gives none.
+    const LinkMaterial* material(const std::string& link) const;
+
   private:
     std::string mText;
+    std::map<std::string, LinkMaterial> mMaterials;
     TextPosition mRobot;
     bool mRobotNamed = false;
     std::map<std::string, TextPosition> mElements; // "link:NAME/inertial/mass" -> position

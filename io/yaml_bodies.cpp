@@ -27,8 +27,9 @@ namespace
 constexpr double cDefaultDensity = 1000.0; // kg/m^3
 
 const std::vector<std::string> cBodyKeys = {
-    "name",     "static",      "shape",    "shapes",           "mass",  "density", "inertia",
-    "position", "orientation", "velocity", "angular_velocity", "color", "group"};
+    "name",       "static",      "shape",    "shapes",           "mass",  "density", "inertia",
+    "position",   "orientation", "velocity", "angular_velocity", "color", "group",   "friction",
+    "restitution"};
 
 const std::vector<std::string> cShapeTypes = {"box", "sphere", "capsule", "cylinder", "plane", "mesh"};
 const std::vector<std::string> cAllShapeKeys = {"type",   "size", "radius", "length",   "normal",
@@ -342,6 +343,8 @@ void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
             map.failAtValue("group", "expected a non-empty name for " + map.what("group"));
         }
     }
+    body.friction = readFriction(map);
+    body.restitution = readRestitution(map);
     std::vector<ShapeEntry> shapes = readShapes(map);
     core::Vec3 centre_D = core::Vec3::Zero(); // centre of mass in the frame given by position/orientation
     if (!body.isStatic)

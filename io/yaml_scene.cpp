@@ -89,22 +89,8 @@ YamlNode readContact(const YamlSource& source, const YamlNode& node, core::Conta
 {
     const MapNode map(source, node, "'contact'");
     map.checkKeys(cContactKeys);
-    if (map.has("friction"))
-    {
-        contact.friction = map.number("friction");
-        if (contact.friction < 0.0)
-        {
-            map.failAtValue("friction", "expected a number >= 0 for " + map.what("friction"));
-        }
-    }
-    if (map.has("restitution"))
-    {
-        contact.restitution = map.number("restitution");
-        if (contact.restitution < 0.0 || contact.restitution > 1.0)
-        {
-            map.failAtValue("restitution", "expected a number in [0, 1] for " + map.what("restitution"));
-        }
-    }
+    contact.friction = readFriction(map).value_or(contact.friction);
+    contact.restitution = readRestitution(map).value_or(contact.restitution);
     if (map.has("tolerance"))
     {
         contact.tolerance = map.number("tolerance");

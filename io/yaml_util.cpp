@@ -368,4 +368,32 @@ std::optional<core::Quat> MapNode::optQuaternion(const std::string& key) const
     return entry ? std::optional(toQuaternion(*mSource, entry->value, what(key))) : std::nullopt;
 }
 
+std::optional<double> readFriction(const MapNode& map)
+{
+    if (!map.has("friction"))
+    {
+        return std::nullopt;
+    }
+    const double mu = map.number("friction");
+    if (!core::isFriction(mu))
+    {
+        map.failAtValue("friction", "expected a number in [0, 1e6] for " + map.what("friction"));
+    }
+    return mu;
+}
+
+std::optional<double> readRestitution(const MapNode& map)
+{
+    if (!map.has("restitution"))
+    {
+        return std::nullopt;
+    }
+    const double e = map.number("restitution");
+    if (!core::isRestitution(e))
+    {
+        map.failAtValue("restitution", "expected a number in [0, 1] for " + map.what("restitution"));
+    }
+    return e;
+}
+
 } // namespace frontier::io::detail

@@ -106,4 +106,9 @@ class MapNode
     std::vector<Entry> mEntries;
 };
 
+// A map's `friction` (a Coulomb coefficient, core::isFriction) and `restitution` (core::isRestitution),
+// when given: the scene's contact settings and a body's material.
+std::optional<double> readFriction(const MapNode& map);
+std::optional<double> readRestitution(const MapNode& map);
+
 } // namespace frontier::io::detail

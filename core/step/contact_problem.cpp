@@ -58,7 +58,6 @@ int ContactProblem::build(const State& state, const std::vector<BodyState>& star
                           const Actuation& actuation)
 {
     mExtra.clear();
-    const double e = mModel.contact.restitution;
     for (std::size_t c = 0; c < mContacts.size(); ++c)
     {
         const Contact& contact = mContacts[c];
@@ -83,7 +82,8 @@ int ContactProblem::build(const State& state, const std::vector<BodyState>& star
             }
         }
         ExtraBlock& block =
-            appendContactBlock(mModel, state, contact, mModel.contact.friction, static_cast<int>(c), mExtra);
+            appendContactBlock(mModel, state, contact, contactFriction(mModel, contact.bodyA, contact.bodyB),
+                               static_cast<int>(c), mExtra);
         // Normal velocity before this step's gravity (m/s); < 0 approaching.
         double approach =
             block.J_A.row(0).dot((Vec6() << start[static_cast<std::size_t>(block.bodyA)].velocity_W,
@@ -101,7 +101,8 @@ int ContactProblem::build(const State& state, const std::vector<BodyState>& star
         }
         else if (approach < -mOptions.restitutionSpeed)
         {
-            block.target(0) = -e * approach; // Newton restitution
+            // Newton restitution
+            block.target(0) = -contactRestitution(mModel, contact.bodyA, contact.bodyB) * approach;
         }
     }
     for (const ExtraBlock& loop : loops)

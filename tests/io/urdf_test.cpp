@@ -564,3 +564,48 @@ TEST(Urdf, OnlyRegularFilesAreRead)
 
 } // namespace
 } // namespace frontier::io::test
+
+namespace frontier::io::test
+{
+namespace
+{
+const std::string cMaterialBox = "<collision><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>";
+
+// PyBullet's <contact> block and Gazebo's <mu1> give a link's friction and restitution; a link's
+// own <contact> wins over <gazebo>, a link without either takes the scene's.
+TEST(UrdfMaterials, ContactBlockAndGazeboMu1GiveTheLinksMaterial)
+{
+    TempDir dir;
+    const std::string urdf = robot(
+        "  <link name=\"foot\">" + cGoodInertial + cMaterialBox +
+        "<contact><lateral_friction value=\"1.1\"/><restitution value=\"0.3\"/></contact></link>\n"
+        "  <link name=\"shin\">" +
+        cGoodInertial + cMaterialBox + "</link>\n" + "  <link name=\"hand\">" + cGoodInertial + cMaterialBox +
+        "</link>\n"
+        "  <joint name=\"a\" type=\"continuous\"><parent link=\"foot\"/><child link=\"shin\"/></joint>\n"
+        "  <joint name=\"b\" type=\"continuous\"><parent link=\"shin\"/><child link=\"hand\"/></joint>\n"
+        "  <gazebo reference=\"shin\"><mu1>0.7</mu1></gazebo>\n"
+        "  <gazebo reference=\"foot\"><mu1>0.2</mu1></gazebo>\n");
+    const core::Model model = loadScene(dir.write("robot.urdf", urdf));
+    const core::Body& foot = model.bodies[static_cast<std::size_t>(model.findBody("foot"))];
+    const core::Body& shin = model.bodies[static_cast<std::size_t>(model.findBody("shin"))];
+    const core::Body& hand = model.bodies[static_cast<std::size_t>(model.findBody("hand"))];
+    EXPECT_EQ(foot.friction, 1.1);
+    EXPECT_EQ(foot.restitution, 0.3);
+    EXPECT_EQ(shin.friction, 0.7);
+    EXPECT_FALSE(shin.restitution);
+    EXPECT_FALSE(hand.friction);
+    EXPECT_FALSE(hand.restitution);
+}
+
+TEST(UrdfMaterials, AnImpossibleValueIsAnErrorAtItsLine)
+{
+    TempDir dir;
+    const InputError e =
+        urdfError(dir, robot("  <link name=\"foot\">" + cGoodInertial + cMaterialBox +
+                             "\n    <contact><restitution value=\"1.5\"/></contact></link>\n"));
+    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 3, 14,
+                          "expected a restitution in [0, 1] for link 'foot', got '1.5'");
+}
+} // namespace
+} // namespace frontier::io::test
