@@ -11,13 +11,16 @@
 #include "io/stats.h"
 #include "run/run_loop.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fcntl.h>
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -117,6 +120,38 @@ void writeFailedStats(const PlanJob& job, const JobOutputs& files, const std::st
     io::writeStats(files.stats, stats);
 }
 
+// A job's scene loaded before the job is judged complete or not (its inputs digest says whether
+// its results stand), or what its load threw, thrown again when the job runs (runOne reports it).
+struct PreparedScene
+{
+    std::optional<BatchScene> scene;
+    std::exception_ptr loadError;
+
+    std::string inputsDigest() const { return scene ? scene->inputsDigest : std::string(); }
+    run::LoadedScene take()
+    {
+        if (loadError)
+        {
+            std::rethrow_exception(loadError);
+        }
+        return std::move(scene->loaded);
+    }
+};
+
+PreparedScene prepareScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
+{
+    PreparedScene prepared;
+    try
+    {
+        prepared.scene = loadBatchScene(plan, job, urdf);
+    }
+    catch (...)
+    {
+        prepared.loadError = std::current_exception();
+    }
+    return prepared;
+}
+
 int listJobs(const std::vector<const PlanJob*>& jobs)
 {
     for (const PlanJob* job : jobs)
@@ -187,6 +222,8 @@ int batchCommand(const BatchOptions& options)
     run::installInterruptHandlers();
     std::vector<Outcome> outcomes(selected.size(), Outcome::NotStarted);
     std::vector<std::string> messages(selected.size());
+    // Run again because its inputs changed (char, not bool: each thread writes its own element).
+    std::vector<char> redone(selected.size(), 0);
     std::mutex printing;
     std::size_t ended = 0;
     runJobs(selected.size(), options.jobs,
@@ -199,6 +236,7 @@ int batchCommand(const BatchOptions& options)
                 const PlanJob& job = *selected[k];
                 const JobOutputs files = jobOutputs(plan, options.out, job);
                 Outcome outcome = Outcome::Failed;
+                JobState state = JobState::NotComplete;
                 std::string& message = messages[k];
                 try
                 {
@@ -208,9 +246,10 @@ int batchCommand(const BatchOptions& options)
                     {
                         outcome = Outcome::Locked;
                     }
-                    else if (jobComplete(plan, files)) // also when another process finished it meanwhile
+                    else if (PreparedScene prepared = prepareScene(plan, job, options.urdf);
+                             (state = jobState(plan, files, prepared.inputsDigest())) == JobState::Complete)
                     {
-                        outcome = Outcome::Complete;
+                        outcome = Outcome::Complete; // also when another process finished it meanwhile
                     }
                     else
                     {
@@ -228,11 +267,12 @@ int batchCommand(const BatchOptions& options)
                         {
                             io::removeStaleTemporaries(files.frames);
                         }
+                        RunOptions runOptions = runOptionsOf(plan, job, options);
+                        runOptions.inputsDigest = prepared.inputsDigest();
                         std::string summary;
                         const int code = runOne(
-                            runOptionsOf(plan, job, options), job.scenePath, files, 1,
-                            [](const std::string&) {}, summary, message,
-                            [&]() { return loadBatchScene(plan, job, options.urdf); });
+                            runOptions, job.scenePath, files, 1, [](const std::string&) {}, summary, message,
+                            [&]() { return prepared.take(); });
                         if (code == cExitBadInput)
                         {
                             writeFailedStats(job, files, message);
@@ -253,6 +293,8 @@ int batchCommand(const BatchOptions& options)
                     message = e.what();
                 }
                 outcomes[k] = outcome;
+                redone[k] = state == JobState::InputsChanged &&
+                            (outcome == Outcome::Done || outcome == Outcome::Failed);
                 const std::lock_guard<std::mutex> guard(printing);
                 ++ended;
                 if (!options.quiet)
@@ -262,8 +304,9 @@ int batchCommand(const BatchOptions& options)
                                        : outcome == Outcome::Locked   ? "running elsewhere (locked), skipped"
                                        : outcome == Outcome::Failed   ? "FAILED"
                                                                       : "interrupted";
-                    std::fprintf(stderr, "[%zu/%zu] %s: %s%s%s\n", ended, selected.size(), job.id.c_str(),
-                                 word, outcome == Outcome::Failed ? ": " : "",
+                    std::fprintf(stderr, "[%zu/%zu] %s: %s%s%s%s\n", ended, selected.size(), job.id.c_str(),
+                                 word, redone[k] ? " (redone: its inputs changed since its last run)" : "",
+                                 outcome == Outcome::Failed ? ": " : "",
                                  outcome == Outcome::Failed ? message.c_str() : "");
                 }
                 return 0;
@@ -276,11 +319,16 @@ int batchCommand(const BatchOptions& options)
     }
     if (!options.quiet)
     {
+        const auto redoneCount = static_cast<std::size_t>(std::count(redone.begin(), redone.end(), 1));
+        const std::string redoneText = // of the jobs run or failed
+            redoneCount == 0 ? ""
+                             : "; " + std::to_string(redoneCount) + " redone because their inputs changed";
         std::printf("batch: %zu jobs (shard %d of %d): %zu run, %zu complete before, %zu running elsewhere, "
-                    "%zu failed, %zu not run\n",
+                    "%zu failed, %zu not run%s\n",
                     selected.size(), shard.index, shard.count, counts[static_cast<int>(Outcome::Done)],
                     counts[static_cast<int>(Outcome::Complete)], counts[static_cast<int>(Outcome::Locked)],
-                    counts[static_cast<int>(Outcome::Failed)], counts[static_cast<int>(Outcome::NotStarted)]);
+                    counts[static_cast<int>(Outcome::Failed)], counts[static_cast<int>(Outcome::NotStarted)],
+                    redoneText.c_str());
     }
     for (std::size_t k = 0; k < selected.size(); ++k)
     {

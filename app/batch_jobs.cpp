@@ -30,6 +30,40 @@ std::optional<long long> envNumber(const char* name)
 {
     return wholeNumber(std::getenv(name), 0, 1000000000);
 }
+
+// The stats of a complete job (see JobState), else nullopt.
+std::optional<io::RunStats> completeStats(const BatchPlan& plan, const JobOutputs& files)
+{
+    std::error_code error;
+    if (!fs::is_regular_file(files.stats, error))
+    {
+        return std::nullopt;
+    }
+    io::RunStats stats;
+    try
+    {
+        stats = io::readStats(files.stats);
+    }
+    catch (const io::InputError&)
+    {
+        return std::nullopt;
+    }
+    if (!stats.completed)
+    {
+        return std::nullopt;
+    }
+    for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
+    {
+        if (!file->empty() && !fs::is_regular_file(*file, error))
+        {
+            return std::nullopt;
+        }
+    }
+    const bool framesDone =
+        !plan.outputs.frames || (fs::is_directory(files.frames, error) &&
+                                 !fs::exists(fs::path(files.frames) / cIncompleteMarker, error));
+    return framesDone ? std::optional<io::RunStats>(std::move(stats)) : std::nullopt;
+}
 } // namespace
 
 std::string jobFolder(const std::string& out, const PlanJob& job)
@@ -49,33 +83,15 @@ JobOutputs jobOutputs(const BatchPlan& plan, const std::string& out, const PlanJ
     return files;
 }
 
-bool jobComplete(const BatchPlan& plan, const JobOutputs& files)
+JobState jobState(const BatchPlan& plan, const JobOutputs& files, const std::string& inputsDigest)
 {
-    std::error_code error;
-    if (!fs::is_regular_file(files.stats, error))
+    const std::optional<io::RunStats> stats = completeStats(plan, files);
+    if (!stats)
     {
-        return false;
+        return JobState::NotComplete;
     }
-    try
-    {
-        if (!io::readStats(files.stats).completed)
-        {
-            return false;
-        }
-    }
-    catch (const io::InputError&)
-    {
-        return false;
-    }
-    for (const std::string* file : {&files.trajectory, &files.joints, &files.contacts})
-    {
-        if (!file->empty() && !fs::is_regular_file(*file, error))
-        {
-            return false;
-        }
-    }
-    return !plan.outputs.frames || (fs::is_directory(files.frames, error) &&
-                                    !fs::exists(fs::path(files.frames) / cIncompleteMarker, error));
+    const bool same = !inputsDigest.empty() && stats->inputsDigest == inputsDigest; // "": not known
+    return same ? JobState::Complete : JobState::InputsChanged;
 }
 
 Shard parseShard(const std::string& text)

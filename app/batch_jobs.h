@@ -16,9 +16,18 @@ std::string jobFolder(const std::string& out, const PlanJob& job);
 // The job's files in its folder: stats.json always, trajectory.csv, frames/, joints.csv,
 // contacts.csv when the plan asks for them.
 JobOutputs jobOutputs(const BatchPlan& plan, const std::string& out, const PlanJob& job);
-// Complete: its stats say "completed": true and every other output is in place (a frames folder
-// without the INCOMPLETE marker).
-bool jobComplete(const BatchPlan& plan, const JobOutputs& files);
+// Whether a job's results stand. Complete: its stats say "completed": true and every other output
+// is in place (a frames folder without the INCOMPLETE marker).
+enum class JobState
+{
+    NotComplete,   // not run, failed, stopped, or an output missing
+    Complete,      // complete, from the inputs it has now
+    InputsChanged, // complete, but its stats' inputs_digest differs from the inputs' digest now (an
+                   // edited scene, URDF, mesh or table, another frontier binary; or no digest)
+};
+// `inputsDigest`: the digest of the job's inputs now (BatchScene::inputsDigest; "" when its scene
+// does not load, which no result matches).
+JobState jobState(const BatchPlan& plan, const JobOutputs& files, const std::string& inputsDigest);
 
 // Which shard this process runs.
 struct Shard

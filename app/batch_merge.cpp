@@ -1,6 +1,7 @@
 // app/batch_merge.cpp: `frontier batch --merge`: DIR/batch.csv (one row per job, in job order),
 // DIR/summary.md, and with --chart X,Y the chart DIR/chart.png (drawn as the sweep's, by gnuplot).
 #include "app/batch_jobs.h"
+#include "app/batch_scene.h"
 #include "app/sweep_chart.h"
 #include "io/atomic_file.h"
 #include "io/csv_output.h"
@@ -15,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace frontier::app
 {
@@ -25,8 +27,50 @@ namespace fs = std::filesystem;
 
 struct JobResult
 {
-    std::string status; // done, failed, missing
+    std::string status; // done, failed, missing, stale (done from inputs that have changed since)
     std::optional<io::RunStats> stats;
+};
+
+// The inputs digest of each job now (BatchScene::inputsDigest), "" when its scene does not load.
+// Jobs that differ only in run settings and seed values read the same inputs, so each scene with
+// its scene-path settings is loaded once.
+class CurrentDigests
+{
+  public:
+    CurrentDigests(const BatchPlan& plan, const io::UrdfOptions& urdf) : mPlan(plan), mUrdf(urdf) {}
+
+    const std::string& of(const PlanJob& job)
+    {
+        std::string key = job.scenePath;
+        for (const BatchSetting& s : job.settings)
+        {
+            if (s.key == "seed" || !isRunSetting(s.key)) // a seed's value changes no input
+            {
+                key += "\n" + s.key + (s.key == "seed" ? "" : "=" + s.value);
+            }
+        }
+        const auto known = mDigests.find(key);
+        return known != mDigests.end() ? known->second : mDigests[key] = load(job);
+    }
+
+  private:
+    std::string load(const PlanJob& job) const
+    {
+        try
+        {
+            return loadBatchScene(mPlan, job, mUrdf).inputsDigest;
+        }
+        catch (const io::InputError& e)
+        {
+            std::cerr << "frontier: note: job " << job.id << ": its scene does not load now: " << e.what()
+                      << "\n";
+            return {};
+        }
+    }
+
+    const BatchPlan& mPlan;
+    const io::UrdfOptions& mUrdf;
+    std::map<std::string, std::string> mDigests;
 };
 
 // Wall-clock keys of the stats: they differ from run to run, so they come last, named wall_*.
@@ -121,12 +165,13 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
         }
     }
     // The stats JSON's keys (docs/files.md), then the extra ones. The scene and the failure have
-    // columns of their own, the warnings none.
+    // columns of their own; the warnings and the inputs (digest and files) none.
     std::vector<std::string> statsKeys;
     std::vector<std::string> wallKeys;
     for (const std::string& key : io::statsKeys())
     {
-        if (key != "scene" && key != "failure" && key != "warnings")
+        if (key != "scene" && key != "failure" && key != "warnings" && key != "inputs_digest" &&
+            key != "input_files")
         {
             (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
         }
@@ -209,13 +254,14 @@ std::string cell(const std::string& text)
 
 void writeSummary(const std::string& path, const BatchPlan& plan, const std::vector<JobResult>& results)
 {
-    std::size_t done = 0, failed = 0, missing = 0;
+    std::size_t done = 0, failed = 0, missing = 0, stale = 0;
     double simulatedS = 0.0, wallS = 0.0;
     for (const JobResult& r : results)
     {
         done += r.status == "done";
         failed += r.status == "failed";
         missing += r.status == "missing";
+        stale += r.status == "stale";
         if (r.stats)
         {
             simulatedS += r.stats->simulatedSeconds;
@@ -224,10 +270,11 @@ void writeSummary(const std::string& path, const BatchPlan& plan, const std::vec
     }
     char text[512];
     std::snprintf(text, sizeof text,
-                  "# Batch %s\n\n%zu jobs: %zu done, %zu failed, %zu missing (not run, or not finished).\n"
+                  "# Batch %s\n\n%zu jobs: %zu done, %zu failed, %zu missing (not run, or not finished), "
+                  "%zu stale (their inputs changed since they ran: run the batch again).\n"
                   "%.6g s simulated in %.3f s of wall time summed over the jobs.\n",
-                  fs::path(plan.file).filename().c_str(), plan.jobs.size(), done, failed, missing, simulatedS,
-                  wallS);
+                  fs::path(plan.file).filename().c_str(), plan.jobs.size(), done, failed, missing, stale,
+                  simulatedS, wallS);
     std::string out = text;
     if (failed > 0)
     {
@@ -246,14 +293,19 @@ void writeSummary(const std::string& path, const BatchPlan& plan, const std::vec
             }
         }
     }
-    if (missing > 0)
+    for (const auto& [status, count, title] :
+         {std::tuple<const char*, std::size_t, const char*>{"missing", missing, "Missing jobs"},
+          {"stale", stale, "Stale jobs (inputs changed since they ran)"}})
     {
-        out += "\n## Missing jobs\n\n";
-        for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+        if (count > 0)
         {
-            if (results[j].status == "missing")
+            out += std::string("\n## ") + title + "\n\n";
+            for (std::size_t j = 0; j < plan.jobs.size(); ++j)
             {
-                out += "* " + plan.jobs[j].id + "\n";
+                if (results[j].status == status)
+                {
+                    out += "* " + plan.jobs[j].id + "\n";
+                }
             }
         }
     }
@@ -316,6 +368,7 @@ bool drawChart(const std::string& folder, const Table& table, const std::string&
 int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
 {
     std::vector<JobResult> results(plan.jobs.size());
+    CurrentDigests digests(plan, options.urdf);
     for (std::size_t j = 0; j < plan.jobs.size(); ++j)
     {
         const JobOutputs files = jobOutputs(plan, options.out, plan.jobs[j]);
@@ -334,9 +387,11 @@ int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
             std::cerr << "frontier: " << e.what() << "\n";
             continue;
         }
-        results[j].status = jobComplete(plan, files)      ? "done"
-                            : results[j].stats->completed ? "missing"
-                                                          : "failed";
+        const JobState state = jobState(plan, files, digests.of(plan.jobs[j]));
+        results[j].status = state == JobState::Complete        ? "done"
+                            : state == JobState::InputsChanged ? "stale"
+                            : results[j].stats->completed      ? "missing"
+                                                               : "failed";
     }
     const Table table = makeTable(plan, results);
     const fs::path folder(options.out);

@@ -2,10 +2,13 @@
 #include "app/batch_scene.h"
 
 #include "io/file_util.h"
+#include "io/input_digest.h"
 #include "io/scene.h"
+#include "io/trajectory.h"
 
 #include <array>
 #include <charconv>
+#include <cstdio>
 #include <numeric>
 #include <optional>
 
@@ -62,6 +65,45 @@ std::uint64_t splitmix64(std::uint64_t& state)
 double symmetricUniform(std::uint64_t& state)
 {
     return 2.0 * static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-53 - 1.0;
+}
+
+// The scene file's YAML tree; throws io::InputError (with the line and column of a syntax error).
+YAML::Node parseScene(const std::string& path)
+{
+    try
+    {
+        return YAML::Load(io::detail::readTextFile(path, "scene file"));
+    }
+    catch (const YAML::Exception& e)
+    {
+        const bool at = !e.mark.is_null();
+        throw io::InputError(path, at ? e.mark.line + 1 : 0, at ? e.mark.column + 1 : 0,
+                             "invalid YAML: " + e.msg);
+    }
+}
+
+// What a job runs besides its files and its id's settings: the scene text as run (the YAML written
+// after the plan's scene paths are set; empty when there are none: the scene file is then among
+// the files), the loader's options (--package-path, --self-collision, ...) and, with a seed, the
+// plan's perturbation sizes.
+std::string jobRunText(const BatchPlan& plan, const PlanJob& job, const std::string& sceneText,
+                       const io::UrdfOptions& urdf)
+{
+    std::string text = "scene text:\n" + sceneText + "\nloader options:\n";
+    io::TrajectoryMetadata options;
+    io::addUrdfOptions(options, urdf);
+    for (const auto& [key, value] : options)
+    {
+        text += key + "=" + value + "\n";
+    }
+    if (findSetting(job, "seed") != nullptr)
+    {
+        char perturbation[96]; // m and m/s per axis, exactly (17 digits)
+        std::snprintf(perturbation, sizeof perturbation, "perturb position=%.17g velocity=%.17g\n",
+                      plan.perturbPositionM, plan.perturbVelocityMps);
+        text += perturbation;
+    }
+    return text;
 }
 } // namespace
 
@@ -179,21 +221,23 @@ void perturbInitialState(core::Model& model, std::uint64_t seed, double position
     }
 }
 
-run::LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
+BatchScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf)
 {
     bool scenePaths = false;
     for (const BatchSetting& s : job.settings)
     {
         scenePaths = scenePaths || !isRunSetting(s.key);
     }
-    run::LoadedScene loaded;
+    const io::detail::InputFileLog reads; // the scene file too, read here when scene paths are set
+    BatchScene scene;
+    std::string sceneText; // as run, when it is not the scene file's
     if (!scenePaths)
     {
-        loaded = run::loadScene(job.scenePath, urdf);
+        scene.loaded = run::loadScene(job.scenePath, urdf);
     }
     else
     {
-        YAML::Node root = YAML::Load(io::detail::readTextFile(job.scenePath, "scene file"));
+        YAML::Node root = parseScene(job.scenePath);
         for (const BatchSetting& s : job.settings)
         {
             if (!isRunSetting(s.key))
@@ -207,14 +251,19 @@ run::LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const
         }
         YAML::Emitter text;
         text << root;
-        loaded = run::loadSceneText(text.c_str(), job.scenePath, urdf);
+        sceneText = text.c_str();
+        scene.loaded = run::loadSceneText(sceneText, job.scenePath, urdf);
     }
     if (const std::string* seed = findSetting(job, "seed"))
     {
-        perturbInitialState(loaded.model, std::stoull(*seed), plan.perturbPositionM, plan.perturbVelocityMps);
-        run::checkFiniteEnergy(loaded.model, job.scenePath);
+        perturbInitialState(scene.loaded.model, std::stoull(*seed), plan.perturbPositionM,
+                            plan.perturbVelocityMps);
+        run::checkFiniteEnergy(scene.loaded.model, job.scenePath);
     }
-    return loaded;
+    scene.loaded.report.inputFiles = reads.files();
+    scene.inputsDigest =
+        io::inputsDigest(io::programIdentity(), jobRunText(plan, job, sceneText, urdf), reads.files());
+    return scene;
 }
 
 } // namespace frontier::app

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "app/batch_plan.h"
-#include "run/scene_loading.h"
 #include "core/model.h"
+#include "run/scene_loading.h"
 
 #include <cstdint>
 #include <string>
@@ -26,8 +26,16 @@ std::string applySceneSetting(YAML::Node root, const std::string& path, const YA
 // group's joints closed.
 void perturbInitialState(core::Model& model, std::uint64_t seed, double positionM, double velocityMps);
 
-// The job's scene as `frontier run` loads it, with its scene paths and seed applied. Throws
-// io::InputError.
-run::LoadedScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf);
+// A batch job's scene, ready to run, and the digest of everything its results depend on beyond
+// the job's id (docs/batch.md): the job's results are kept only while this digest is unchanged.
+struct BatchScene
+{
+    run::LoadedScene loaded;  // loaded.report.inputFiles: every file read, the scene file first
+    std::string inputsDigest; // io::inputsDigest: this program, the scene as run, the files read
+};
+
+// The job's scene as `frontier run` loads it, with its scene paths and seed applied, and its inputs
+// digest. Throws io::InputError.
+BatchScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::UrdfOptions& urdf);
 
 } // namespace frontier::app

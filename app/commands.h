@@ -41,6 +41,9 @@ struct RunOptions
     bool quiet = false;
     bool strict = false;  // warnings of the run (a passive scene that gained energy) fail it
     io::UrdfOptions urdf; // --package-path, --fixed-base, --free-base, --drop-height, --self-collision
+    // A batch job's: the digest of its inputs (io/input_digest.h), written to the stats with the
+    // files the load read; empty: neither.
+    std::string inputsDigest;
 };
 
 struct RenderCommandOptions

@@ -1,6 +1,7 @@
 // app/main.cpp: command-line parsing (CLI11) and exit codes of `frontier`.
 #include "app/commands.h"
 #include "app/sweep_chart.h"
+#include "io/input_digest.h"
 #include "io/suggest.h"
 
 #include <CLI/CLI.hpp>
@@ -342,7 +343,7 @@ int main(int argc, char** argv)
     CLI::App app{"Frontier: articulated rigid bodies, joint and contact impulses solved exactly in O(n)"};
     app.require_subcommand(1);
     app.option_defaults()->always_capture_default(); // --help shows each option's default
-    app.set_version_flag("--version", "frontier 0.1.0");
+    app.set_version_flag("--version", frontier::io::frontierVersion());
 
     RunOptions runOptions;
     auto* run = app.add_subcommand("run", "simulate a scene, writing trajectory, statistics and frames");

@@ -147,9 +147,14 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     long steps = 0;
     std::unique_ptr<io::TrajectoryWriter> trajectory;
     std::unique_ptr<StepOutputs> stepOutputs; // --joints, --contacts
+    std::vector<std::string> inputFiles;      // read by the load
     try
     {
         run::LoadedScene loaded = load ? load() : run::loadScene(scene, options.urdf);
+        for (const io::InputFile& file : loaded.report.inputFiles)
+        {
+            inputFiles.push_back(file.path);
+        }
         if (options.strict && loaded.startPenetration)
         {
             throw io::InputError(scene, 0, 0, "--strict: " + run::startPenetrationText(loaded));
@@ -321,6 +326,11 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             stats.completed = ok;
             stats.failure = failure;
             stats.warnings = warnings;
+            if (!options.inputsDigest.empty())
+            {
+                stats.inputsDigest = options.inputsDigest;
+                stats.inputFiles = inputFiles;
+            }
             if (run::isPassive(model))
             {
                 stats.extra["energy_rise_fraction"] = rise; // of energy_scale_j

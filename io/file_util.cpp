@@ -51,6 +51,9 @@ void checkType(const std::string& path, const std::string& what, mode_t mode)
     }
 }
 
+// The innermost open InputFileLog of this thread (loads of parallel batch jobs run on their own threads).
+thread_local InputFileLog* tInnermostLog = nullptr;
+
 [[noreturn]] void failErrno(const std::string& path, const std::string& verb, int err)
 {
     throw InputError(path, 0, 0, "cannot " + verb + " file: " + std::strerror(err));
@@ -95,6 +98,10 @@ void checkInputFile(const std::string& path, const std::string& what)
     if (static_cast<std::uintmax_t>(info.st_size) > limit)
     {
         failTooLarge(path, what, static_cast<std::uintmax_t>(info.st_size), limit, true);
+    }
+    if (InputFileLog::recording())
+    {
+        readTextFile(path, what); // its reader opens it itself; the log needs its bytes
     }
 }
 
@@ -142,12 +149,46 @@ std::string readTextFile(const std::string& path, const std::string& what)
         }
         if (n == 0)
         {
+            InputFileLog::record(path, out);
             return out;
         }
         out.append(buffer, static_cast<std::size_t>(n));
         if (out.size() > limit)
         {
             failTooLarge(path, what, limit, limit, false);
+        }
+    }
+}
+
+InputFileLog::InputFileLog() : mOuter(tInnermostLog)
+{
+    tInnermostLog = this;
+}
+
+InputFileLog::~InputFileLog()
+{
+    tInnermostLog = mOuter;
+}
+
+bool InputFileLog::recording()
+{
+    return tInnermostLog != nullptr;
+}
+
+void InputFileLog::record(const std::string& path, std::string_view bytes)
+{
+    std::string digest; // computed once, for the first log that lacks the file
+    for (InputFileLog* log = tInnermostLog; log != nullptr; log = log->mOuter)
+    {
+        const bool known = std::any_of(log->mFiles.begin(), log->mFiles.end(),
+                                       [&](const InputFile& file) { return file.path == path; });
+        if (!known)
+        {
+            if (digest.empty())
+            {
+                digest = sha256Hex(bytes);
+            }
+            log->mFiles.push_back({path, digest});
         }
     }
 }

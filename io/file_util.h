@@ -1,10 +1,13 @@
 // io/file_util.h: reading whole files and resolving paths relative to a scene file.
 #pragma once
 
+#include "io/input_digest.h"
+
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace frontier::io::detail
 {
@@ -25,6 +28,31 @@ void checkInputFile(const std::string& path, const std::string& what = "file");
 // The file's bytes, under the same rules as checkInputFile (checked on the open file, so that a
 // FIFO never blocks); throws InputError(path, 0, 0, ...) when it cannot be read.
 std::string readTextFile(const std::string& path, const std::string& what = "file");
+
+// While it lives, records the input files this thread reads: each file readTextFile returns and
+// each file checkInputFile accepts (read again for its digest), every path once, in the order of
+// its first read, with the SHA-256 of its bytes. Logs nest: a file goes into every open log of the
+// thread. The readers take no part, so any reader going through the two functions above, also one
+// added later, has its files recorded (io::LoadReport::inputFiles, a batch job's inputs digest).
+class InputFileLog
+{
+  public:
+    InputFileLog();
+    ~InputFileLog();
+    InputFileLog(const InputFileLog&) = delete;
+    InputFileLog& operator=(const InputFileLog&) = delete;
+
+    const std::vector<InputFile>& files() const { return mFiles; }
+
+    // True while a log is open on this thread.
+    static bool recording();
+    // Adds `path` with the digest of `bytes` to the open logs that lack it (readTextFile calls it).
+    static void record(const std::string& path, std::string_view bytes);
+
+  private:
+    InputFileLog* mOuter; // the log that was innermost when this one opened
+    std::vector<InputFile> mFiles;
+};
 
 // The one rule for numbers in text input files (trajectory headers and rows, target tables): the
 // whole field is a finite decimal number ("-1.5e3", an optional leading '+'); std::nullopt otherwise

@@ -8,7 +8,21 @@
 namespace frontier::io
 {
 
-core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
+namespace
+{
+// Runs load() with the files it reads recorded in report->inputFiles (when a report is given).
+template <typename Load> core::Model recordingInputs(LoadReport* report, const Load& load)
+{
+    const detail::InputFileLog reads;
+    core::Model model = load();
+    if (report != nullptr)
+    {
+        report->inputFiles = reads.files();
+    }
+    return model;
+}
+
+core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     const std::string ext = detail::lowerExtension(path);
     if (ext == ".urdf")
@@ -30,11 +44,18 @@ core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadR
     throw InputError(
         path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");
 }
+} // namespace
+
+core::Model loadScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
+{
+    return recordingInputs(report, [&]() { return loadSceneFile(path, options, report); });
+}
 
 core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName,
                                 const UrdfOptions& options, LoadReport* report)
 {
-    return detail::loadYamlScene(yamlText, sourceName, options, report);
+    return recordingInputs(report,
+                           [&]() { return detail::loadYamlScene(yamlText, sourceName, options, report); });
 }
 
 } // namespace frontier::io

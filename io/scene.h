@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/model.h"
+#include "io/input_digest.h"
 
 #include <array>
 #include <map>
@@ -99,11 +100,14 @@ struct LoadReport
     std::vector<RobotReport> robots;
     std::optional<SceneReference> reference;         // the scene's `reference:`, when it has one
     std::optional<SceneStabilityCriteria> stability; // the scene's `stability:`, when it has one
+    // Every file the load read (the scene file, URDFs, meshes and the files they name, CSV tables,
+    // ...), each once, in the order first read, with the SHA-256 of its bytes (io/input_digest.h).
+    std::vector<InputFile> inputFiles;
 };
 
 // Loads a .yaml/.yml scene or a .urdf model (a URDF alone is dropped onto a floor with defaults).
 // Throws InputError on any bad input (scenes/README.md lists the rules). `report`, when given,
-// receives the warnings and what was welded, repaired and placed.
+// receives the warnings, what was welded, repaired and placed, and the files read.
 core::Model loadScene(const std::string& path, const UrdfOptions& options = {}, LoadReport* report = nullptr);
 // Parses scene YAML text; sourceName is used in messages and to resolve relative files.
 core::Model loadSceneFromString(const std::string& yamlText, const std::string& sourceName,

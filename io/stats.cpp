@@ -5,6 +5,7 @@
 #include "io/file_util.h"
 #include "io/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -67,6 +68,21 @@ class Reader
         }
         return v.get<long>();
     }
+    std::vector<std::string> strings(const std::string& key) const
+    {
+        const nlohmann::json& v = at(key);
+        if (!v.is_array() ||
+            !std::all_of(v.begin(), v.end(), [](const nlohmann::json& item) { return item.is_string(); }))
+        {
+            throw InputError(mPath, 0, 0, "expected an array of strings for '" + key + "', got " + v.dump());
+        }
+        std::vector<std::string> out;
+        for (const nlohmann::json& item : v)
+        {
+            out.push_back(item.get<std::string>());
+        }
+        return out;
+    }
     bool boolean(const std::string& key) const
     {
         const nlohmann::json& v = at(key);
@@ -108,7 +124,9 @@ const std::vector<std::string>& statsKeys()
                                                   "finite",
                                                   "completed",
                                                   "failure",
-                                                  "warnings"};
+                                                  "warnings",
+                                                  "inputs_digest",
+                                                  "input_files"};
     return keys;
 }
 
@@ -158,6 +176,11 @@ void writeStats(const std::string& path, const RunStats& stats)
         json["failure"] = stats.failure;
     }
     json["warnings"] = stats.warnings;
+    if (!stats.inputsDigest.empty())
+    {
+        json["inputs_digest"] = stats.inputsDigest;
+        json["input_files"] = stats.inputFiles;
+    }
     for (const auto& [key, value] : stats.extra)
     {
         if (!json.contains(key))
@@ -216,21 +239,15 @@ RunStats readStats(const std::string& path)
     }
     if (json.contains("warnings"))
     {
-        const nlohmann::json& warnings = json["warnings"];
-        if (!warnings.is_array())
-        {
-            throw InputError(path, 0, 0,
-                             "expected an array of strings for 'warnings', got " + warnings.dump());
-        }
-        for (const nlohmann::json& w : warnings)
-        {
-            if (!w.is_string())
-            {
-                throw InputError(path, 0, 0,
-                                 "expected an array of strings for 'warnings', got " + warnings.dump());
-            }
-            s.warnings.push_back(w.get<std::string>());
-        }
+        s.warnings = r.strings("warnings");
+    }
+    if (json.contains("inputs_digest"))
+    {
+        s.inputsDigest = r.string("inputs_digest");
+    }
+    if (json.contains("input_files"))
+    {
+        s.inputFiles = r.strings("input_files");
     }
     for (const auto& [key, value] : json.items())
     {

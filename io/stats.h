@@ -38,6 +38,10 @@ struct RunStats
                                          // a singular joint, a signal, a --strict warning; true if absent)
     std::string failure;                 // "failure": why the run failed; written when not empty
     std::vector<std::string> warnings;   // "warnings": what looks wrong in a run that ended (an array)
+    std::string inputsDigest;            // "inputs_digest": io::inputsDigest of the run (64 hex digits;
+                                         // a batch job's), written when not empty
+    std::vector<std::string> inputFiles; // "input_files": the files the load read (an array), written
+                                         // with inputs_digest
     std::map<std::string, double> extra; // further numeric keys, written at the top level
 };
 

@@ -16,7 +16,7 @@ packages=(
   cmake g++ pkg-config make
   libeigen3-dev libfcl-dev libccd-dev libqhull-dev liburdfdom-dev libyaml-cpp-dev libassimp-dev
   libosmesa6-dev libpng-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libssl-dev
   gnuplot-nox
 )
 for option in "$@"; do
