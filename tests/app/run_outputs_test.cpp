@@ -1,10 +1,10 @@
 // tests/app/run_outputs_test.cpp: `frontier run --joints` and `--contacts` end to end: their
-// comment and header lines, rows per recorded step; a pendulum's joint columns against the angle,
-// spin and momentum computed from the trajectory CSV; a hanging chain's joints carrying the
-// weight below them; batch names; outputs refused before the run (colliding paths, an input, links,
-// devices, folders, empty paths, too many frames); the stats' limit and actuator keys, and each
-// actuator's figures against the joints file. (A failed run keeps them under .failed names:
-// run_test.cpp.)
+// comment and header lines, rows per recorded step; a resting box's contact forces against its
+// weight; a pendulum's joint columns against the angle, spin and momentum computed from the
+// trajectory CSV; a hanging chain's joints carrying the weight below them; batch names; outputs
+// refused before the run (colliding paths, an input, links, devices, folders, empty paths, too many
+// frames); the stats' limit and actuator keys, and each actuator's figures against the joints
+// file. (A failed run keeps them under .failed names: run_test.cpp.)
 #include "app_test_util.h"
 #include "csv_table.h"
 #include "io/stats.h"
@@ -15,6 +15,7 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <limits>
+#include <map>
 #include <set>
 
 namespace frontier::app::test
@@ -80,14 +81,14 @@ TEST(RunOutputs, FilesHaveTheTrajectoryCommentTheirHeaderAndARowPerCoordinateOrC
     EXPECT_EQ(metadataOf(c.comment, "contacts"),
               metadataOf(readCsvTable(stackTrajectory).comment, "trajectory"));
     EXPECT_EQ(c.columns, (std::vector<std::string>{"time", "body_a", "body_b", "px", "py", "pz", "nx", "ny",
-                                                   "nz", "depth", "normal_impulse", "friction_impulse_x",
-                                                   "friction_impulse_y", "friction_impulse_z"}));
+                                                   "nz", "depth", "normal_force", "friction_force_x",
+                                                   "friction_force_y", "friction_force_z"}));
     std::set<long> steps;
     for (std::size_t k = 0; k < c.rows.size(); ++k)
     {
         ASSERT_EQ(c.rows[k].size(), c.columns.size()) << "row " << k;
         steps.insert(std::lround(c.number(k, "time") / 0.001));
-        EXPECT_GE(c.number(k, "normal_impulse"), 0.0) << "row " << k;
+        EXPECT_GE(c.number(k, "normal_force"), 0.0) << "row " << k;
         EXPECT_NEAR(std::hypot(std::hypot(c.number(k, "nx"), c.number(k, "ny")), c.number(k, "nz")), 1.0,
                     1e-12);
     }
@@ -495,6 +496,58 @@ actuators:
     EXPECT_EQ(s.actuators[2].limitSteps, s.steps);
     EXPECT_EQ(s.extra.at("max_actuator_effort"),
               std::max({s.actuators[0].effortMax, s.actuators[1].effortMax, 3.0}));
+}
+
+// A 2 kg box resting on the floor from the start. Its contacts' forces are what holds it (the
+// floor is B, pushed down along the normal): at every step their vertical sum on the box is its
+// weight plus its momentum change, m g + m (vz_k - vz_{k-1}) / dt from the trajectory, to
+// round-off; and with the contacts solved to 1e-9 m/s (each step leaves the box's speed within
+// that, so it changes by at most 2e-9 m/s a step) the normal forces add up to m g within
+// m 2e-9 m/s / dt.
+TEST(RunOutputs, RestingBoxContactForcesCarryItsWeight)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("resting.yaml", R"(
+simulation: {dt: 0.001, gravity: [0, 0, -9.81]}
+bodies:
+  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1]}}
+  - {name: box, mass: 2.0, shape: {type: box, size: [0.4, 0.3, 0.2]}, position: [0, 0, 0.1]}
+)");
+    const double m = 2.0, g = 9.81, dt = 0.001; // kg, m/s^2, s
+    for (const std::string tolerance : {"3e-5", "1e-9"})
+    {
+        const std::string contacts = dir.out("c" + tolerance + ".csv");
+        const std::string traj = dir.out("t" + tolerance + ".csv");
+        const Result r =
+            dir.run("run " + shellQuote(scene) + " --quiet --duration 0.3 --contact-tolerance " + tolerance +
+                    " --contacts " + shellQuote(contacts) + " --trajectory " + shellQuote(traj));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const CsvTable c = readCsvTable(contacts);
+        const CsvTable t = readCsvTable(traj);
+        ASSERT_EQ(t.rows.size(), 301u);
+        std::map<long, double> normalByStep; // N, the sum of normal_force
+        std::map<long, double> onBoxByStep;  // N, the vertical force on the box
+        for (std::size_t k = 0; k < c.rows.size(); ++k)
+        {
+            ASSERT_EQ(c.text(k, "body_b"), "floor");
+            ASSERT_NEAR(c.number(k, "nz"), -1.0, 1e-12);
+            const long step = std::lround(c.number(k, "time") / dt);
+            normalByStep[step] += c.number(k, "normal_force");
+            onBoxByStep[step] -=
+                c.number(k, "normal_force") * c.number(k, "nz") + c.number(k, "friction_force_z");
+        }
+        ASSERT_EQ(normalByStep.size(), 300u) << "the box touches the floor in every step";
+        for (const auto& [step, onBox] : onBoxByStep)
+        {
+            const std::size_t k = static_cast<std::size_t>(step);
+            const double momentum = m * (t.number(k, "vz") - t.number(k - 1, "vz")) / dt; // N
+            ASSERT_NEAR(onBox, m * g + momentum, 1e-9 * m * g) << "step " << step;
+            if (tolerance == "1e-9")
+            {
+                ASSERT_NEAR(normalByStep[step], m * g, m * 2e-9 / dt) << "step " << step;
+            }
+        }
+    }
 }
 
 } // namespace
