@@ -4,12 +4,14 @@
 // trajectory CSV; a hanging chain's joints carrying the weight below them; batch names; outputs
 // refused before the run (colliding paths, an input, links, devices, folders, empty paths, too many
 // frames); the stats' limit and actuator keys, and each actuator's figures against the joints
-// file. (A failed run keeps them under .failed names: run_test.cpp.)
+// file; times that are whole steps of dt. (A failed run keeps them under .failed names:
+// run_test.cpp.)
 #include "app_test_util.h"
 #include "csv_table.h"
 #include "io/stats.h"
 #include "io/trajectory.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -546,6 +548,41 @@ bodies:
             {
                 ASSERT_NEAR(normalByStep[step], m * g, m * 2e-9 / dt) << "step " << step;
             }
+        }
+    }
+}
+
+// Times are step * dt exactly, not a sum of dt's: after 1200 steps of 1 ms every file says 1.2
+// (a sum of 1 ms steps says 1.1999999999999786), and each recorded time is k dt to the bit.
+TEST(RunOutputs, RecordedTimesAreWholeStepsOfDt)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("clock.yaml", R"(
+simulation: {dt: 0.001}
+bodies:
+  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1]}}
+  - {name: box, mass: 1.0, shape: {type: box, size: [0.2, 0.2, 0.2]}, position: [0, 0, 0.1]}
+  - {name: bob, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 1, 2]}
+joints:
+  - {name: pivot, type: revolute, parent: world, child: bob, anchor: [0, 1, 2], axis: [0, 1, 0]}
+)");
+    const std::string traj = dir.out("t.csv");
+    const std::string joints = dir.out("j.csv");
+    const std::string contacts = dir.out("c.csv");
+    const Result r =
+        dir.run("run " + shellQuote(scene) + " --quiet --steps 1200 --record-every 100 --trajectory " +
+                shellQuote(traj) + " --joints " + shellQuote(joints) + " --contacts " + shellQuote(contacts));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const std::string& file : {traj, joints, contacts})
+    {
+        const CsvTable table = readCsvTable(file);
+        ASSERT_FALSE(table.rows.empty()) << file;
+        EXPECT_EQ(table.text(table.rows.size() - 1, "time"), "1.2") << file;
+        for (std::size_t k = 0; k < table.rows.size(); ++k)
+        {
+            const double t = table.number(k, "time");
+            const double steps = std::round(t / 0.001);
+            ASSERT_EQ(t, steps * 0.001) << file << ", row " << k << ": " << table.text(k, "time");
         }
     }
 }
