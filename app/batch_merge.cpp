@@ -138,6 +138,30 @@ std::string statsField(const io::RunStats& s, const std::string& key)
     return it == s.extra.end() ? std::string() : number(it->second);
 }
 
+// The figures of each actuator (io::ActuatorStats), a column each: actuator.<joint>.<figure>.
+constexpr const char* cActuatorFigures[] = {"tracking_rms", "tracking_max", "effort_rms", "effort_max",
+                                            "limit_steps"};
+
+// The columns' prefix of an actuator of a job: actuator.<joint>, with .<coordinate> when two
+// actuators of the job drive that joint (a cylindrical joint's slide and rotation).
+std::string actuatorPrefix(const io::RunStats& s, const io::ActuatorStats& a)
+{
+    const auto drivers = std::count_if(s.actuators.begin(), s.actuators.end(),
+                                       [&](const io::ActuatorStats& b) { return b.joint == a.joint; });
+    return "actuator." + a.joint + (drivers > 1 ? "." + a.coordinate : "");
+}
+
+// A figure of an actuator as CSV text; empty where it does not exist (an effort actuator's tracking).
+std::string actuatorField(const io::ActuatorStats& a, const std::string& figure)
+{
+    const double value = figure == "tracking_rms"   ? a.trackingRms
+                         : figure == "tracking_max" ? a.trackingMax
+                         : figure == "effort_rms"   ? a.effortRms
+                         : figure == "effort_max"   ? a.effortMax
+                                                    : static_cast<double>(a.limitSteps);
+    return a.type == "effort" && figure.rfind("tracking", 0) == 0 ? std::string() : number(value);
+}
+
 std::string csvField(const std::string& text)
 {
     std::string out;
@@ -165,13 +189,14 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
         }
     }
     // The stats JSON's keys (docs/files.md), then the extra ones. The scene and the failure have
-    // columns of their own; the warnings and the inputs (digest and files) none.
+    // columns of their own; the warnings and the inputs (digest and files) none; the actuators
+    // theirs below.
     std::vector<std::string> statsKeys;
     std::vector<std::string> wallKeys;
     for (const std::string& key : io::statsKeys())
     {
         if (key != "scene" && key != "failure" && key != "warnings" && key != "inputs_digest" &&
-            key != "input_files")
+            key != "input_files" && key != "actuators")
         {
             (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
         }
@@ -184,11 +209,31 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
     std::erase_if(
         statsKeys, [&](const std::string& key)
         { return std::find(plan.varyKeys.begin(), plan.varyKeys.end(), key) != plan.varyKeys.end(); });
+    // Then the actuators' columns, grouped by actuator in the order the jobs first name them.
+    std::vector<std::string> actuatorPrefixes;
+    for (const JobResult& r : results)
+    {
+        for (std::size_t a = 0; r.stats && a < r.stats->actuators.size(); ++a)
+        {
+            const std::string prefix = actuatorPrefix(*r.stats, r.stats->actuators[a]);
+            if (std::find(actuatorPrefixes.begin(), actuatorPrefixes.end(), prefix) == actuatorPrefixes.end())
+            {
+                actuatorPrefixes.push_back(prefix);
+            }
+        }
+    }
     Table table;
     table.header = {"job", "scene"};
     table.header.insert(table.header.end(), plan.varyKeys.begin(), plan.varyKeys.end());
     table.header.push_back("status");
     table.header.insert(table.header.end(), statsKeys.begin(), statsKeys.end());
+    for (const std::string& prefix : actuatorPrefixes)
+    {
+        for (const char* figure : cActuatorFigures)
+        {
+            table.header.push_back(prefix + "." + figure);
+        }
+    }
     table.header.push_back("failure");
     for (const std::string& key : wallKeys)
     {
@@ -207,6 +252,21 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
         for (const std::string& key : statsKeys)
         {
             row.push_back(r.stats ? statsField(*r.stats, key) : "");
+        }
+        for (const std::string& prefix : actuatorPrefixes)
+        {
+            const io::ActuatorStats* actuator = nullptr;
+            for (std::size_t a = 0; r.stats && a < r.stats->actuators.size(); ++a)
+            {
+                if (actuatorPrefix(*r.stats, r.stats->actuators[a]) == prefix)
+                {
+                    actuator = &r.stats->actuators[a];
+                }
+            }
+            for (const char* figure : cActuatorFigures)
+            {
+                row.push_back(actuator ? actuatorField(*actuator, figure) : "");
+            }
         }
         row.push_back(r.stats ? r.stats->failure : "");
         for (const std::string& key : wallKeys)

@@ -31,12 +31,9 @@ nlohmann::json describeActuators(const core::Model& model)
     for (const core::Actuator& actuator : model.actuators)
     {
         const bool position = actuator.kind == core::ActuatorKind::Position;
-        nlohmann::json entry = {
-            {"joint", model.joints[static_cast<std::size_t>(actuator.joint)].name},
-            {"type", position                                        ? "position"
-                     : actuator.kind == core::ActuatorKind::Velocity ? "velocity"
-                                                                     : "effort"},
-            {"coordinate", actuator.coordinate == core::JointCoordinate::Rotation ? "rotation" : "slide"}};
+        nlohmann::json entry = {{"joint", model.joints[static_cast<std::size_t>(actuator.joint)].name},
+                                {"type", core::actuatorTypeName(actuator.kind)},
+                                {"coordinate", core::coordinateName(actuator.coordinate)}};
         if (position)
         {
             entry["kp"] = actuator.kp;

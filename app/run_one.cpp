@@ -109,6 +109,17 @@ io::RunStats makeStats(const std::string& scene, const core::Model& model, const
     stats.extra["limit_steps"] = static_cast<double>(s.limitSteps);
     stats.extra["max_actuator_effort"] = s.maxActuatorEffort;
     stats.extra["actuator_limit_steps"] = static_cast<double>(s.actuatorLimitSteps);
+    // Each actuator over the run (run::ActuatorSummary), named as the scene names it.
+    for (std::size_t a = 0; a < s.actuators.size() && a < model.actuators.size(); ++a)
+    {
+        const core::Actuator& actuator = model.actuators[a];
+        const run::ActuatorSummary& summary = s.actuators[a];
+        stats.actuators.push_back({model.joints[static_cast<std::size_t>(actuator.joint)].name,
+                                   core::coordinateName(actuator.coordinate),
+                                   core::actuatorTypeName(actuator.kind), summary.trackingRms,
+                                   summary.trackingMax, summary.effortRms, summary.effortMax,
+                                   summary.limitSteps});
+    }
     // Steps in which tensioned light bodies took their geometric stiffness (docs/method.md §7a).
     stats.extra["geometric_stiffness_steps"] = static_cast<double>(s.stiffenedSteps);
     // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.

@@ -1,4 +1,4 @@
-// app/step_outputs.cpp: joint loads and contact impulses of a step, to the joints and contacts files.
+// app/step_outputs.cpp: joint loads and contact forces of a step, to the joints and contacts files.
 #include "app/step_outputs.h"
 
 #include "app/outputs.h"
@@ -22,13 +22,14 @@ StepOutputs::StepOutputs(const std::string& jointsPath, const std::string& conta
 
 void StepOutputs::record(const core::Model& model, const core::State& state, const core::Simulator* lastStep)
 {
+    // Forces, of joints and contacts, are the step's impulses over its duration: the mean force of
+    // the step.
+    const double dt = model.simulation.dt; // s
     if (mJoints)
     {
         mLoads.clear();
         if (lastStep != nullptr)
         {
-            // Forces are the step's impulses over its duration: the mean force of the step.
-            const double dt = model.simulation.dt;
             lastStep->jointChildImpulses(state, mChildImpulses);
             run::lastActuatorEfforts(model, *lastStep, mEfforts);
             run::effortsByCoordinate(model, mEfforts, mEffortsByCoordinate);
@@ -45,7 +46,7 @@ void StepOutputs::record(const core::Model& model, const core::State& state, con
     if (mContacts && lastStep != nullptr)
     {
         lastStep->contactImpulses(mContactImpulses);
-        mContacts->writeStep(model, state.time, mContactImpulses);
+        mContacts->writeStep(model, state.time, dt, mContactImpulses);
     }
 }
 

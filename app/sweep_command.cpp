@@ -143,7 +143,8 @@ int sweepCommand(const SweepOptions& options)
     }
     std::printf("%s: %d moving bod%s, %.9g s simulated per run\n%s\n\n%s", model.name.c_str(), result.bodies,
                 result.bodies == 1 ? "y" : "ies", schedule.durationS(),
-                study::describeReference(result).c_str(), study::formatSweepTable(result).c_str());
+                study::describeReference(result).c_str(),
+                study::formatSweepTable(result, options.chartAccuracy).c_str());
     std::fflush(stdout);
 
     const bool anySurvived = std::any_of(result.cells.begin(), result.cells.end(),

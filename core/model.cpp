@@ -159,6 +159,25 @@ const char* integratorName(IntegratorKind kind)
     return "euler";
 }
 
+const char* actuatorTypeName(ActuatorKind kind)
+{
+    switch (kind)
+    {
+    case ActuatorKind::Position:
+        return "position";
+    case ActuatorKind::Velocity:
+        return "velocity";
+    case ActuatorKind::Effort:
+        return "effort";
+    }
+    return "position";
+}
+
+const char* coordinateName(JointCoordinate coordinate)
+{
+    return coordinate == JointCoordinate::Rotation ? "rotation" : "slide";
+}
+
 double longestStage(const SimulationSettings& settings)
 {
     if (settings.integrator != IntegratorKind::Rattle4)

@@ -306,6 +306,9 @@ std::optional<JointType> jointTypeFromName(const std::string& name);
 const char* solverName(SolverKind kind);
 std::optional<SolverKind> solverFromName(const std::string& name);
 const char* integratorName(IntegratorKind kind);
+// An actuator's type and coordinate as scenes name them: position | velocity | effort, rotation | slide.
+const char* actuatorTypeName(ActuatorKind kind);
+const char* coordinateName(JointCoordinate coordinate);
 // The longest time one stage of a step covers (s): dt, or |c2| dt = 1.70 dt for rattle4, whose
 // middle stage runs backward (docs/method.md §11). Contact margins cover it.
 double longestStage(const SimulationSettings& settings);

@@ -15,6 +15,20 @@
 namespace frontier::core
 {
 
+namespace
+{
+// The clock after a step of dt that started at `start` (s), state.step the steps before it. While
+// the clock is on the grid of dt (start == step dt exactly: a run from 0 at one dt), it stays on
+// it, (step + 1) dt, so a run's times carry no round-off (1.2, not 1.1999999999999786 after 1200
+// steps of 1 ms); a clock set elsewhere by its user advances by dt.
+void advanceClock(State& state, double start, double dt)
+{
+    const bool onGrid = start == static_cast<double>(state.step) * dt;
+    ++state.step;
+    state.time = onGrid ? static_cast<double>(state.step) * dt : start + dt;
+}
+} // namespace
+
 Simulator::Simulator(const Model& model, const StepOptions& options, ContactSource* contacts)
     : mModel(model), mOptions(options), mContactSource(contacts), mLayout(buildFrontierLayout(model)),
       mActuation(model, mLayout),
@@ -154,8 +168,7 @@ bool Simulator::stepRattle4(State& state)
     }
     mRattle4Stage = false;
     mComposedStep = true;
-    state.time = start + mDt;
-    ++state.step;
+    advanceClock(state, start, mDt);
     mStats.stabilizationIterations = iterations;
     return true;
 }
@@ -316,8 +329,7 @@ void Simulator::projectVelocities(State& state)
 void Simulator::finishStep(State& state)
 {
     trackJointAngles(mModel, state);
-    state.time += mDt;
-    ++state.step;
+    advanceClock(state, state.time, mDt);
     checkState(state, "end of step");
 }
 

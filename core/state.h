@@ -18,8 +18,8 @@ struct BodyState
 
 struct State
 {
-    double time = 0.0; // s
-    long step = 0;
+    double time = 0.0; // s; from 0 at one dt, exactly step * dt (core::Simulator adds no round-off)
+    long step = 0;     // steps taken
     std::vector<BodyState> bodies; // one per Model::bodies entry, static ones included (never change)
     // Per Model::joints entry: the rotation of revolute and cylindrical joints about their axis,
     // continuous across +-pi (rad, 0 at the model's initial pose; core/joints/coordinates.h); 0

@@ -9,7 +9,7 @@ ContactsWriter::ContactsWriter(const std::string& path, const FileMetadata& meta
 {
 }
 
-void ContactsWriter::writeStep(const core::Model& model, double time,
+void ContactsWriter::writeStep(const core::Model& model, double time, double dt,
                                std::span<const core::ContactImpulse> contacts)
 {
     for (const core::ContactImpulse& c : contacts)
@@ -22,10 +22,10 @@ void ContactsWriter::writeStep(const core::Model& model, double time,
             line += ',';
             appendName(line, model.bodies[static_cast<std::size_t>(body)].name);
         }
-        const core::Vec3 friction = c.frictionImpulse_W();
+        const core::Vec3 friction = c.frictionImpulse_W() / dt; // N
         const double values[] = {
             c.contact.point_W.x(),  c.contact.point_W.y(),  c.contact.point_W.z(), c.contact.normal_W.x(),
-            c.contact.normal_W.y(), c.contact.normal_W.z(), c.contact.depth,       c.normalImpulse(),
+            c.contact.normal_W.y(), c.contact.normal_W.z(), c.contact.depth,       c.normalImpulse() / dt,
             friction.x(),           friction.y(),           friction.z()};
         for (const double v : values)
         {

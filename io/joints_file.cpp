@@ -10,7 +10,8 @@ namespace frontier::io
 
 namespace
 {
-const char* coordinateName(core::JointCoordinate coordinate)
+// The joints file's name of a coordinate: angle (rad) or slide (m).
+const char* columnCoordinateName(core::JointCoordinate coordinate)
 {
     return coordinate == core::JointCoordinate::Rotation ? "angle" : "slide";
 }
@@ -46,7 +47,7 @@ void JointsWriter::writeState(const core::Model& model, const core::State& state
             else
             {
                 const int index = static_cast<int>(k);
-                line += coordinateName(coordinates[c]);
+                line += columnCoordinateName(coordinates[c]);
                 line += ',';
                 appendNumber(line, core::fileCoordinate(model, state, index, coordinates[c]));
                 line += ',';

@@ -98,6 +98,35 @@ class Reader
     const nlohmann::json& mJson;
 };
 
+std::vector<ActuatorStats> readActuators(const std::string& path, const nlohmann::json& array)
+{
+    if (!array.is_array())
+    {
+        throw InputError(path, 0, 0, "expected an array of objects for 'actuators', got " + array.dump());
+    }
+    std::vector<ActuatorStats> out;
+    for (const nlohmann::json& entry : array)
+    {
+        if (!entry.is_object())
+        {
+            throw InputError(path, 0, 0, "expected an object in 'actuators', got " + entry.dump());
+        }
+        const Reader r(path, entry);
+        ActuatorStats a;
+        a.joint = r.string("joint");
+        a.coordinate = r.string("coordinate");
+        a.type = r.string("type");
+        const bool tracks = entry.contains("tracking_rms");
+        a.trackingRms = tracks ? r.number("tracking_rms") : std::numeric_limits<double>::quiet_NaN();
+        a.trackingMax = tracks ? r.number("tracking_max") : std::numeric_limits<double>::quiet_NaN();
+        a.effortRms = r.number("effort_rms");
+        a.effortMax = r.number("effort_max");
+        a.limitSteps = r.integer("limit_steps");
+        out.push_back(std::move(a));
+    }
+    return out;
+}
+
 } // namespace
 
 const std::vector<std::string>& statsKeys()
@@ -126,7 +155,8 @@ const std::vector<std::string>& statsKeys()
                                                   "failure",
                                                   "warnings",
                                                   "inputs_digest",
-                                                  "input_files"};
+                                                  "input_files",
+                                                  "actuators"};
     return keys;
 }
 
@@ -180,6 +210,23 @@ void writeStats(const std::string& path, const RunStats& stats)
     {
         json["inputs_digest"] = stats.inputsDigest;
         json["input_files"] = stats.inputFiles;
+    }
+    json["actuators"] = Json::array();
+    for (const ActuatorStats& a : stats.actuators)
+    {
+        Json entry;
+        entry["joint"] = a.joint;
+        entry["coordinate"] = a.coordinate;
+        entry["type"] = a.type;
+        if (a.type != "effort")
+        {
+            entry["tracking_rms"] = number(a.trackingRms);
+            entry["tracking_max"] = number(a.trackingMax);
+        }
+        entry["effort_rms"] = number(a.effortRms);
+        entry["effort_max"] = number(a.effortMax);
+        entry["limit_steps"] = a.limitSteps;
+        json["actuators"].push_back(entry);
     }
     for (const auto& [key, value] : stats.extra)
     {
@@ -248,6 +295,10 @@ RunStats readStats(const std::string& path)
     if (json.contains("input_files"))
     {
         s.inputFiles = r.strings("input_files");
+    }
+    if (json.contains("actuators"))
+    {
+        s.actuators = readActuators(path, json["actuators"]);
     }
     for (const auto& [key, value] : json.items())
     {

@@ -10,6 +10,23 @@
 namespace frontier::io
 {
 
+// One actuator over a run: an entry of the stats' "actuators" array, each member under the key
+// in its comment. Over the states at the end of the steps (one sample a step).
+struct ActuatorStats
+{
+    std::string joint;      // "joint": the joint it drives
+    std::string coordinate; // "coordinate": rotation | slide (core::coordinateName)
+    std::string type;       // "type": position | velocity | effort (core::actuatorTypeName)
+    // "tracking_rms", "tracking_max": RMS and largest |target - actual| (run/actuator_efforts.h
+    // trackingError): rad or m for a position servo, rad/s or m/s for a velocity motor. NaN for
+    // an effort actuator, whose entry has no such keys.
+    double trackingRms = 0.0;
+    double trackingMax = 0.0;
+    double effortRms = 0.0; // "effort_rms" (N or N m)
+    double effortMax = 0.0; // "effort_max": largest |effort| (N or N m)
+    long limitSteps = 0;    // "limit_steps": steps at its effort limit
+};
+
 // One run's summary. Every member is written under the JSON key in its comment. Non-finite
 // numbers are written as null and read back as NaN.
 struct RunStats
@@ -43,6 +60,8 @@ struct RunStats
     std::vector<std::string> inputFiles; // "input_files": the files the load read (an array), written
                                          // with inputs_digest
     std::map<std::string, double> extra; // further numeric keys, written at the top level
+    // "actuators": one entry per actuator, the model's order.
+    std::vector<ActuatorStats> actuators;
 };
 
 // The JSON keys of RunStats's members, in their order; every other key is an extra.

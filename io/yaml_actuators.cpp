@@ -18,11 +18,6 @@ const std::vector<std::string> cActuatorKeys = {"joint", "type",   "coordinate",
 const std::vector<std::string> cActuatorTypes = {"position", "velocity", "effort"};
 const std::vector<std::string> cCoordinates = {"rotation", "slide"};
 
-const char* coordinateName(core::JointCoordinate coordinate)
-{
-    return coordinate == core::JointCoordinate::Rotation ? "rotation" : "slide";
-}
-
 core::ActuatorKind readKind(const MapNode& map)
 {
     const YamlNode node = map.require("type");
@@ -61,7 +56,7 @@ core::JointCoordinate readCoordinate(const MapNode& map, const core::Joint& join
     const std::string name = map.string("coordinate");
     for (const core::JointCoordinate coordinate : coordinates)
     {
-        if (name == coordinateName(coordinate))
+        if (name == core::coordinateName(coordinate))
         {
             return coordinate;
         }
@@ -69,7 +64,7 @@ core::JointCoordinate readCoordinate(const MapNode& map, const core::Joint& join
     std::vector<std::string> known;
     for (const core::JointCoordinate coordinate : coordinates)
     {
-        known.emplace_back(coordinateName(coordinate));
+        known.emplace_back(core::coordinateName(coordinate));
     }
     map.failAtValue("coordinate", "joint '" + joint.name + "' (" + core::jointTypeName(joint.type) +
                                       ") has no coordinate '" + name + "'; expected " + joinNames(known));
@@ -122,7 +117,7 @@ void readActuator(SceneBuilder& builder, const YamlNode& node, std::size_t index
     if (const auto first = taken.find(coordinate); first != taken.end())
     {
         failAt(source, jointNode,
-               "a second actuator on the " + std::string(coordinateName(actuator.coordinate)) +
+               "a second actuator on the " + std::string(core::coordinateName(actuator.coordinate)) +
                    " of joint '" + joint.name + "' (the first is on line " +
                    std::to_string(first->second.line + 1) + "); one actuator per joint coordinate");
     }

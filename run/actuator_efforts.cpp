@@ -1,6 +1,10 @@
 // run/actuator_efforts.cpp: the actuators' efforts of a step, looked up by joint coordinate.
 #include "run/actuator_efforts.h"
 
+#include "core/time_function.h"
+
+#include <limits>
+
 namespace frontier::run
 {
 
@@ -31,6 +35,23 @@ void effortsByCoordinate(const core::Model& model, std::span<const CoordinateEff
             }
         }
     }
+}
+
+double trackingError(const core::Model& model, const core::State& state, std::size_t a)
+{
+    const core::Actuator& actuator = model.actuators[a];
+    switch (actuator.kind)
+    {
+    case core::ActuatorKind::Position:
+        return core::valueAt(actuator.target, state.time) -
+               core::fileCoordinate(model, state, actuator.joint, actuator.coordinate);
+    case core::ActuatorKind::Velocity:
+        return core::valueAt(actuator.target, state.time) -
+               core::jointCoordinateVelocity(model, state, actuator.joint, actuator.coordinate);
+    case core::ActuatorKind::Effort:
+        break;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
 }
 
 } // namespace frontier::run

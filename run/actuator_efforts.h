@@ -1,6 +1,7 @@
 // run/actuator_efforts.h: what the actuators did in a step, as the run's outputs read it (the
-// joints file's effort column, the stats' max_actuator_effort and actuator_limit_steps). Every
-// such reading goes through lastActuatorEfforts.
+// joints file's effort column, the stats' max_actuator_effort, actuator_limit_steps and
+// `actuators`). Every such reading goes through lastActuatorEfforts, every tracking error through
+// trackingError.
 #pragma once
 
 #include "core/joints/coordinates.h"
@@ -31,5 +32,11 @@ void lastActuatorEfforts(const core::Model& model, const core::Simulator& simula
 // the actuator that drives it (N or N m), 0 where none does.
 void effortsByCoordinate(const core::Model& model, std::span<const CoordinateEffort> efforts,
                          std::vector<std::array<double, 2>>& out);
+
+// How far actuator `a` (Model::actuators index) is from its target at a state, target minus
+// actual: for a position servo its target at state.time minus the coordinate in the model file's
+// convention (core::fileCoordinate; rad or m), for a velocity motor its target speed minus the
+// coordinate's rate (rad/s or m/s). NaN for an effort actuator, which follows no target.
+double trackingError(const core::Model& model, const core::State& state, std::size_t a);
 
 } // namespace frontier::run

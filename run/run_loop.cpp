@@ -10,6 +10,8 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <limits>
+#include <span>
 #include <vector>
 
 namespace frontier::run
@@ -111,6 +113,59 @@ int bodyWithInfiniteEnergy(const core::Model& model)
     return -1;
 }
 
+namespace
+{
+// Sums of the actuators' figures over the steps, made into ActuatorSummary at the end of the run.
+class ActuatorTally
+{
+  public:
+    explicit ActuatorTally(const core::Model& model)
+        : mModel(model), mTrackingSquares(model.actuators.size(), 0.0),
+          mEffortSquares(model.actuators.size(), 0.0), mSummaries(model.actuators.size())
+    {
+    }
+
+    // One step: `efforts` from lastActuatorEfforts, `state` the state it ended in.
+    void add(const core::State& state, std::span<const CoordinateEffort> efforts)
+    {
+        for (std::size_t a = 0; a < efforts.size() && a < mSummaries.size(); ++a)
+        {
+            ActuatorSummary& s = mSummaries[a];
+            const double tracking = trackingError(mModel, state, a);
+            mTrackingSquares[a] += tracking * tracking;
+            s.trackingMax = std::max(s.trackingMax, std::abs(tracking));
+            mEffortSquares[a] += efforts[a].effort * efforts[a].effort;
+            s.effortMax = std::max(s.effortMax, std::abs(efforts[a].effort));
+            s.limitSteps += efforts[a].atLimit ? 1 : 0;
+        }
+        ++mSteps;
+    }
+
+    std::vector<ActuatorSummary> finish() const
+    {
+        std::vector<ActuatorSummary> out = mSummaries;
+        const double n = static_cast<double>(std::max(1L, mSteps));
+        for (std::size_t a = 0; a < out.size(); ++a)
+        {
+            out[a].trackingRms = std::sqrt(mTrackingSquares[a] / n);
+            out[a].effortRms = std::sqrt(mEffortSquares[a] / n);
+            if (mModel.actuators[a].kind == core::ActuatorKind::Effort)
+            {
+                out[a].trackingRms = out[a].trackingMax = std::numeric_limits<double>::quiet_NaN();
+            }
+        }
+        return out;
+    }
+
+  private:
+    const core::Model& mModel;
+    std::vector<double> mTrackingSquares; // rad^2 or m^2 (per s^2 for a velocity motor)
+    std::vector<double> mEffortSquares;   // N^2 or N^2 m^2
+    std::vector<ActuatorSummary> mSummaries;
+    long mSteps = 0;
+};
+} // namespace
+
 long stepsFor(double duration, double dt)
 {
     return static_cast<long>(std::llround(duration / dt));
@@ -134,6 +189,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
         record(state, nullptr);
     }
     std::vector<CoordinateEffort> efforts;
+    ActuatorTally actuators(model);
     const auto start = std::chrono::steady_clock::now();
     try
     {
@@ -162,6 +218,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
             summary.limitSteps += simulator.pushingLimitRows() > 0 ? 1 : 0;
             summary.stiffenedSteps += stats.stiffenedBodies > 0 ? 1 : 0;
             lastActuatorEfforts(model, simulator, efforts);
+            actuators.add(state, efforts);
             bool atLimit = false;
             for (const CoordinateEffort& e : efforts)
             {
@@ -208,6 +265,7 @@ RunSummary runSimulation(const core::Model& model, const RunSettings& settings, 
     }
     summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary.energyFinalJ = core::totalEnergy(model, state);
+    summary.actuators = actuators.finish();
     return summary;
 }
 

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace frontier::run
 {
@@ -17,6 +18,19 @@ struct RunSettings
 {
     long steps = 0;                          // number of steps (from --steps or duration / dt)
     std::function<void(long step)> progress; // called after every step (may be empty)
+};
+
+// What one actuator did over a run, over the states at the end of the steps taken (one sample a
+// step; the initial state, before any effort, is not one).
+struct ActuatorSummary
+{
+    // RMS and largest |.| of trackingError (run/actuator_efforts.h): rad or m for a position
+    // servo, rad/s or m/s for a velocity motor; NaN for an effort actuator (no target to follow).
+    double trackingRms = 0.0;
+    double trackingMax = 0.0;
+    double effortRms = 0.0; // RMS of its effort (N or N m)
+    double effortMax = 0.0; // largest |effort| (N or N m)
+    long limitSteps = 0;    // steps in which it sat at its effort limit
 };
 
 struct RunSummary
@@ -46,6 +60,8 @@ struct RunSummary
     int interruptedBy = 0;          // the signal that stopped the run (interruptSignal), 0: none
     std::string failure;            // why the run did not complete (the error's message)
     std::optional<core::SimulationFailure> failureDetails; // and what it named
+    // Per actuator, Model::actuators order.
+    std::vector<ActuatorSummary> actuators;
 };
 
 // Called with the initial state (`lastStep` null: no step yet) and with the state after every

@@ -1,10 +1,10 @@
 // study/sweep.cpp: the sweep grid, its schedule, the reference run, one run per cell and the metrics.
 #include "study/sweep.h"
 
-#include "run/run_loop.h"
 #include "core/simulator.h"
 #include "core/state.h"
 #include "io/file_util.h"
+#include "run/run_loop.h"
 
 #include <algorithm>
 #include <array>
@@ -630,6 +630,20 @@ double accuracyOf(const SweepCell& cell, Accuracy accuracy)
         break;
     }
     return cell.trajectoryErrorM;
+}
+
+const char* accuracyName(Accuracy accuracy)
+{
+    switch (accuracy)
+    {
+    case Accuracy::JointGap:
+        return "joint gap";
+    case Accuracy::Penetration:
+        return "penetration";
+    case Accuracy::TrajectoryError:
+        break;
+    }
+    return "trajectory error";
 }
 
 std::vector<std::size_t> paretoFront(const std::vector<SweepCell>& cells, Accuracy accuracy)

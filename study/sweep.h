@@ -10,8 +10,8 @@
 // reference hit them exactly.
 #pragma once
 
-#include "run/method.h"
 #include "core/model.h"
+#include "run/method.h"
 
 #include <functional>
 #include <optional>
@@ -120,7 +120,7 @@ ExternalReference readReferenceCsv(const std::string& path, const std::string& b
 struct SweepReference
 {
     std::string external; // the external reference's source (empty: a reference run, below)
-    run::Method method;        // rattle (or rattle4) linear, or euler linear when that failed
+    run::Method method;   // rattle (or rattle4) linear, or euler linear when that failed
     double dt = 0.0;      // s
     long steps = 0;
     double wallSeconds = 0.0;
@@ -142,7 +142,7 @@ using SweepProgress = std::function<void(const std::string& run, int index, int 
 
 struct SweepGrid
 {
-    std::vector<double> dts;     // s, coarse to fine
+    std::vector<double> dts;          // s, coarse to fine
     std::vector<run::Method> solvers; // solver and options (the integrator is taken from integrators)
     std::vector<core::IntegratorKind> integrators;
     core::ContactTolerances contact; // over the scene's in every cell (the reference keeps the scene's)
@@ -175,6 +175,8 @@ enum class Accuracy
 
 // The cell's figure of that accuracy (m).
 double accuracyOf(const SweepCell& cell, Accuracy accuracy);
+// Its name in words: "trajectory error", "joint gap", "penetration".
+const char* accuracyName(Accuracy accuracy);
 
 // Indices of the Pareto-optimal cells: survived, with a finite cost and accuracy figure, and no
 // other such cell at most as costly and at most as wrong (better in one). Sorted by cost.

@@ -175,7 +175,7 @@ void writeSweepCsv(const std::string& path, const std::string& scene, const Swee
     file.commit();
 }
 
-std::string formatSweepTable(const SweepResult& result)
+std::string formatSweepTable(const SweepResult& result, Accuracy accuracy)
 {
     std::vector<std::vector<std::string>> rows = {
         {"method", "dt (s)", "steps", "s/sim s", "us/body-step", "traj err (m)", "final err (m)",
@@ -207,18 +207,20 @@ std::string formatSweepTable(const SweepResult& result)
     {
         out += "[" + std::to_string(i + 1) + "] " + failures[i] + "\n";
     }
-    const std::vector<std::size_t> front = paretoFront(result.cells);
+    const std::vector<std::size_t> front = paretoFront(result.cells, accuracy);
+    const std::string measure = accuracyName(accuracy);
     if (front.empty())
     {
-        out += "Pareto front: empty (no cell survived)\n";
+        out += "Pareto front on " + measure + ": empty (no cell survived)\n";
         return out;
     }
-    out += "Pareto front (cheapest first; no other cell is both cheaper and more accurate):";
+    out +=
+        "Pareto front on " + measure + " (cheapest first; no other cell is both cheaper and more accurate):";
     for (std::size_t k = 0; k < front.size(); ++k)
     {
         const SweepCell& c = result.cells[front[k]];
         out += (k > 0 ? "," : "") + std::string(" ") + c.method.label() + " dt " + formatDt(c.dt) + " s (" +
-               brief(c.secondsPerSimSecond) + " s/sim s, " + brief(c.trajectoryErrorM) + " m)";
+               brief(c.secondsPerSimSecond) + " s/sim s, " + brief(accuracyOf(c, accuracy)) + " m)";
     }
     out += "\n";
     return out;

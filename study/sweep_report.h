@@ -26,8 +26,8 @@ extern const char* const cSweepCsvHeader;
 void writeSweepCsv(const std::string& path, const std::string& scene, const SweepResult& result);
 
 // The table (aligned columns, one line per cell), the failures below it (each message once) and
-// the Pareto front in one line.
-std::string formatSweepTable(const SweepResult& result);
+// the Pareto front on `accuracy` in one line (paretoFront, as the chart draws it).
+std::string formatSweepTable(const SweepResult& result, Accuracy accuracy = Accuracy::TrajectoryError);
 
 // One line describing the reference run.
 std::string describeReference(const SweepResult& result);

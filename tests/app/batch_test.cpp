@@ -1,12 +1,15 @@
 // tests/app/batch_test.cpp: `frontier batch` end to end: the plan's expansion and ids, bad plans
 // (exit 2, file:line), scene paths and seeds that change the physics as asked, resume after a
 // SIGTERM without redoing finished jobs, after a SIGKILL without its temporary files, locks,
-// shards, the merge of sharded runs equal to a single machine's, and the Slurm script's tasks.
+// shards, the merge of sharded runs equal to a single machine's, its columns per actuator, and the
+// Slurm script's tasks.
 #include "app_test_util.h"
 #include "csv_table.h"
+#include "io/stats.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -340,6 +343,89 @@ TEST(Batch, ScenePathsAndSeedsChangeTheInitialStateAsAsked)
     EXPECT_GT(std::abs(vx) + std::abs(vy), 1e-6);
     EXPECT_LE(std::abs(vx), 0.1);
     EXPECT_LE(std::abs(vy), 0.1);
+}
+
+// A batch over one servo's stiffness: batch.csv has five columns per actuator, after the stats'
+// and before `failure`, named by the joint (and by the coordinate for the cylindrical joint's
+// two), each equal to the job's stats; the shoulder's tracking error falls as its kp rises; the
+// effort actuator's tracking columns are empty.
+TEST(Batch, MergeHasColumnsPerActuator)
+{
+    TestDir dir;
+    const std::string scene = dir.write("arm.yaml", R"(
+simulation: {dt: 0.001}
+bodies:
+  - {name: arm, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 0, 2]}
+  - {name: hand, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 2, 2]}
+  - {name: sleeve, mass: 1.0, shape: {type: box, size: [0.1, 0.1, 0.1]}, position: [0, 4, 2]}
+joints:
+  - {name: shoulder, type: revolute, parent: world, child: arm, anchor: [0, 0, 2], axis: [0, 1, 0]}
+  - {name: wrist, type: revolute, parent: world, child: hand, anchor: [0, 2, 2], axis: [0, 1, 0]}
+  - {name: slider, type: cylindrical, parent: world, child: sleeve, anchor: [0, 4, 2], axis: [1, 0, 0]}
+actuators:
+  - {joint: shoulder, type: position, kp: 20, kd: 1, target: {sine: {amplitude: 0.5, frequency: 1}}}
+  - {joint: wrist, type: effort, target: 1.0}
+  - {joint: slider, coordinate: slide, type: position, kp: 100, kd: 10, target: 0.1}
+  - {joint: slider, coordinate: rotation, type: velocity, kd: 1, target: 2.0}
+)");
+    const std::string plan = dir.write("gains.yaml", "scenes: [arm.yaml]\n"
+                                                     "duration: 0.5\n"
+                                                     "vary:\n"
+                                                     "  actuators.0.kp: [20, 200, 2000]\n");
+    const std::string out = dir.out("gains");
+    Result r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --merge");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto table = readCsvTable(out + "/batch.csv");
+    const std::vector<std::string> figures = {"tracking_rms", "tracking_max", "effort_rms", "effort_max",
+                                              "limit_steps"};
+    const std::vector<std::string> prefixes = {"actuator.shoulder", "actuator.wrist", "actuator.slider.slide",
+                                               "actuator.slider.rotation"};
+    const auto failure = std::find(table.columns.begin(), table.columns.end(), "failure");
+    ASSERT_NE(failure, table.columns.end());
+    std::vector<std::string> expected;
+    for (const std::string& prefix : prefixes)
+    {
+        for (const std::string& figure : figures)
+        {
+            expected.push_back(prefix + "." + figure);
+        }
+    }
+    ASSERT_GE(failure - table.columns.begin(), static_cast<long>(expected.size()));
+    EXPECT_EQ(std::vector<std::string>(failure - static_cast<long>(expected.size()), failure), expected);
+    ASSERT_EQ(table.rows.size(), 3u);
+    const std::vector<std::string> jobs =
+        ids(dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --list").out);
+    ASSERT_EQ(jobs.size(), 3u);
+    double lastTracking = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < 3; ++j)
+    {
+        EXPECT_EQ(table.text(j, "status"), "done");
+        const frontier::io::RunStats s = frontier::io::readStats(out + "/jobs/" + jobs[j] + "/stats.json");
+        ASSERT_EQ(s.actuators.size(), 4u);
+        for (std::size_t a = 0; a < 4; ++a)
+        {
+            const frontier::io::ActuatorStats& stat = s.actuators[a];
+            const std::string& p = prefixes[a];
+            if (stat.type == "effort")
+            {
+                EXPECT_EQ(table.text(j, p + ".tracking_rms"), "");
+                EXPECT_EQ(table.text(j, p + ".tracking_max"), "");
+            }
+            else
+            {
+                EXPECT_EQ(table.number(j, p + ".tracking_rms"), stat.trackingRms) << p;
+                EXPECT_EQ(table.number(j, p + ".tracking_max"), stat.trackingMax) << p;
+            }
+            EXPECT_EQ(table.number(j, p + ".effort_rms"), stat.effortRms) << p;
+            EXPECT_EQ(table.number(j, p + ".effort_max"), stat.effortMax) << p;
+            EXPECT_EQ(table.number(j, p + ".limit_steps"), static_cast<double>(stat.limitSteps)) << p;
+        }
+        const double tracking = table.number(j, "actuator.shoulder.tracking_rms"); // rad
+        EXPECT_LT(tracking, 0.5 * lastTracking) << "kp " << table.text(j, "actuators.0.kp");
+        lastTracking = tracking;
+    }
 }
 
 // SIGTERM after the first of six jobs is complete: exit 143; the rerun leaves the finished jobs'

@@ -1,18 +1,23 @@
 // tests/app/run_outputs_test.cpp: `frontier run --joints` and `--contacts` end to end: their
-// comment and header lines, rows per recorded step; a pendulum's joint columns against the angle,
-// spin and momentum computed from the trajectory CSV; a hanging chain's joints carrying the
-// weight below them; batch names; outputs refused before the run (colliding paths, an input, links,
-// devices, folders, empty paths, too many frames); the stats' limit and actuator keys. (A failed
-// run keeps them under .failed names: run_test.cpp.)
+// comment and header lines, rows per recorded step; a resting box's contact forces against its
+// weight; a pendulum's joint columns against the angle, spin and momentum computed from the
+// trajectory CSV; a hanging chain's joints carrying the weight below them; batch names; outputs
+// refused before the run (colliding paths, an input, links, devices, folders, empty paths, too many
+// frames); the stats' limit and actuator keys, and each actuator's figures against the joints
+// file; times that are whole steps of dt. (A failed run keeps them under .failed names:
+// run_test.cpp.)
 #include "app_test_util.h"
 #include "csv_table.h"
 #include "io/stats.h"
 #include "io/trajectory.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <gtest/gtest.h>
+#include <limits>
+#include <map>
 #include <set>
 
 namespace frontier::app::test
@@ -78,14 +83,14 @@ TEST(RunOutputs, FilesHaveTheTrajectoryCommentTheirHeaderAndARowPerCoordinateOrC
     EXPECT_EQ(metadataOf(c.comment, "contacts"),
               metadataOf(readCsvTable(stackTrajectory).comment, "trajectory"));
     EXPECT_EQ(c.columns, (std::vector<std::string>{"time", "body_a", "body_b", "px", "py", "pz", "nx", "ny",
-                                                   "nz", "depth", "normal_impulse", "friction_impulse_x",
-                                                   "friction_impulse_y", "friction_impulse_z"}));
+                                                   "nz", "depth", "normal_force", "friction_force_x",
+                                                   "friction_force_y", "friction_force_z"}));
     std::set<long> steps;
     for (std::size_t k = 0; k < c.rows.size(); ++k)
     {
         ASSERT_EQ(c.rows[k].size(), c.columns.size()) << "row " << k;
         steps.insert(std::lround(c.number(k, "time") / 0.001));
-        EXPECT_GE(c.number(k, "normal_impulse"), 0.0) << "row " << k;
+        EXPECT_GE(c.number(k, "normal_force"), 0.0) << "row " << k;
         EXPECT_NEAR(std::hypot(std::hypot(c.number(k, "nx"), c.number(k, "ny")), c.number(k, "nz")), 1.0,
                     1e-12);
     }
@@ -413,6 +418,173 @@ actuators:
     const io::RunStats s = io::readStats(stats);
     EXPECT_NEAR(s.extra.at("max_actuator_effort"), 3.0, 1e-12);
     EXPECT_EQ(s.extra.at("actuator_limit_steps"), static_cast<double>(s.steps));
+}
+
+// Three 1 kg bobs on 0.5 m rods, hinged about +y, under gravity: `shoulder` a position servo
+// following a sine, `elbow` a servo stepping to 1 rad with at most 2 N m (less than the bob's
+// weight needs), `wrist` a commanded 5 N m clipped to 3 N m. The stats' actuators entries agree
+// with the joints file: the shoulder's tracking RMS and max are those of target(t) - position
+// over the rows after t = 0, to round-off; every effort RMS and max those of the effort column;
+// limit_steps the rows at the effort limit; the effort actuator has no tracking figures.
+TEST(RunOutputs, ActuatorStatsAgreeWithTheJointsFile)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("servos.yaml", R"(
+simulation: {dt: 0.001}
+bodies:
+  - {name: arm, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 0, 2]}
+  - {name: forearm, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 2, 2]}
+  - {name: hand, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 4, 2]}
+joints:
+  - {name: shoulder, type: revolute, parent: world, child: arm, anchor: [0, 0, 2], axis: [0, 1, 0]}
+  - {name: elbow, type: revolute, parent: world, child: forearm, anchor: [0, 2, 2], axis: [0, 1, 0]}
+  - {name: wrist, type: revolute, parent: world, child: hand, anchor: [0, 4, 2], axis: [0, 1, 0]}
+actuators:
+  - {joint: shoulder, type: position, kp: 60, kd: 2, target: {sine: {amplitude: 0.5, frequency: 1.5, phase: 0.3, offset: -0.2}}}
+  - {joint: elbow, type: position, kp: 200, kd: 5, target: 1.0, effort_limit: 2.0}
+  - {joint: wrist, type: effort, target: 5.0, effort_limit: 3.0}
+)");
+    const std::string joints = dir.out("j.csv");
+    const std::string stats = dir.out("s.json");
+    const Result r = dir.run("run " + shellQuote(scene) + " --quiet --duration 1 --joints " +
+                             shellQuote(joints) + " --stats " + shellQuote(stats));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const CsvTable table = readCsvTable(joints);
+    ASSERT_EQ(table.rows.size(), 3u * 1001u);
+    const io::RunStats s = io::readStats(stats);
+    ASSERT_EQ(s.actuators.size(), 3u);
+    const double limits[] = {std::numeric_limits<double>::infinity(), 2.0, 3.0}; // N m
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+        const io::ActuatorStats& stat = s.actuators[a];
+        EXPECT_EQ(stat.joint, (std::vector<std::string>{"shoulder", "elbow", "wrist"})[a]);
+        EXPECT_EQ(stat.coordinate, "rotation");
+        EXPECT_EQ(stat.type, a < 2 ? "position" : "effort");
+        double trackingSquares = 0.0, trackingMax = 0.0, effortSquares = 0.0, effortMax = 0.0;
+        long atLimit = 0, steps = 0;
+        for (std::size_t k = 3 + a; k < table.rows.size(); k += 3) // the rows after t = 0
+        {
+            ASSERT_EQ(table.text(k, "joint"), stat.joint);
+            const double t = table.number(k, "time");
+            const double target = a == 0 ? -0.2 + 0.5 * std::sin(2.0 * M_PI * 1.5 * t + 0.3) : 1.0; // rad
+            const double tracking = target - table.number(k, "position");
+            trackingSquares += tracking * tracking;
+            trackingMax = std::max(trackingMax, std::abs(tracking));
+            const double effort = table.number(k, "effort");
+            effortSquares += effort * effort;
+            effortMax = std::max(effortMax, std::abs(effort));
+            atLimit += std::abs(effort) >= limits[a] * (1.0 - 1e-12) ? 1 : 0;
+            ++steps;
+        }
+        ASSERT_EQ(steps, s.steps);
+        const double n = static_cast<double>(steps);
+        if (a < 2)
+        {
+            EXPECT_NEAR(stat.trackingRms, std::sqrt(trackingSquares / n), 1e-12 * trackingMax) << stat.joint;
+            EXPECT_NEAR(stat.trackingMax, trackingMax, 1e-12 * trackingMax) << stat.joint;
+            EXPECT_GT(trackingMax, 1e-3) << stat.joint << ": the servo lags its target";
+        }
+        else
+        {
+            EXPECT_TRUE(std::isnan(stat.trackingRms) && std::isnan(stat.trackingMax))
+                << "an effort follows nothing";
+        }
+        EXPECT_NEAR(stat.effortRms, std::sqrt(effortSquares / n), 1e-12 * effortMax) << stat.joint;
+        EXPECT_EQ(stat.effortMax, effortMax) << stat.joint;
+        EXPECT_EQ(stat.limitSteps, atLimit) << stat.joint;
+    }
+    EXPECT_EQ(s.actuators[0].limitSteps, 0);
+    EXPECT_GT(s.actuators[1].limitSteps, 100) << "the elbow cannot hold its bob up with 2 N m";
+    EXPECT_EQ(s.actuators[2].limitSteps, s.steps);
+    EXPECT_EQ(s.extra.at("max_actuator_effort"),
+              std::max({s.actuators[0].effortMax, s.actuators[1].effortMax, 3.0}));
+}
+
+// A 2 kg box resting on the floor from the start. Its contacts' forces are what holds it (the
+// floor is B, pushed down along the normal): at every step their vertical sum on the box is its
+// weight plus its momentum change, m g + m (vz_k - vz_{k-1}) / dt from the trajectory, to
+// round-off; and with the contacts solved to 1e-9 m/s (each step leaves the box's speed within
+// that, so it changes by at most 2e-9 m/s a step) the normal forces add up to m g within
+// m 2e-9 m/s / dt.
+TEST(RunOutputs, RestingBoxContactForcesCarryItsWeight)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("resting.yaml", R"(
+simulation: {dt: 0.001, gravity: [0, 0, -9.81]}
+bodies:
+  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1]}}
+  - {name: box, mass: 2.0, shape: {type: box, size: [0.4, 0.3, 0.2]}, position: [0, 0, 0.1]}
+)");
+    const double m = 2.0, g = 9.81, dt = 0.001; // kg, m/s^2, s
+    for (const std::string tolerance : {"3e-5", "1e-9"})
+    {
+        const std::string contacts = dir.out("c" + tolerance + ".csv");
+        const std::string traj = dir.out("t" + tolerance + ".csv");
+        const Result r =
+            dir.run("run " + shellQuote(scene) + " --quiet --duration 0.3 --contact-tolerance " + tolerance +
+                    " --contacts " + shellQuote(contacts) + " --trajectory " + shellQuote(traj));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const CsvTable c = readCsvTable(contacts);
+        const CsvTable t = readCsvTable(traj);
+        ASSERT_EQ(t.rows.size(), 301u);
+        std::map<long, double> normalByStep; // N, the sum of normal_force
+        std::map<long, double> onBoxByStep;  // N, the vertical force on the box
+        for (std::size_t k = 0; k < c.rows.size(); ++k)
+        {
+            ASSERT_EQ(c.text(k, "body_b"), "floor");
+            ASSERT_NEAR(c.number(k, "nz"), -1.0, 1e-12);
+            const long step = std::lround(c.number(k, "time") / dt);
+            normalByStep[step] += c.number(k, "normal_force");
+            onBoxByStep[step] -=
+                c.number(k, "normal_force") * c.number(k, "nz") + c.number(k, "friction_force_z");
+        }
+        ASSERT_EQ(normalByStep.size(), 300u) << "the box touches the floor in every step";
+        for (const auto& [step, onBox] : onBoxByStep)
+        {
+            const std::size_t k = static_cast<std::size_t>(step);
+            const double momentum = m * (t.number(k, "vz") - t.number(k - 1, "vz")) / dt; // N
+            ASSERT_NEAR(onBox, m * g + momentum, 1e-9 * m * g) << "step " << step;
+            if (tolerance == "1e-9")
+            {
+                ASSERT_NEAR(normalByStep[step], m * g, m * 2e-9 / dt) << "step " << step;
+            }
+        }
+    }
+}
+
+// Times are step * dt exactly, not a sum of dt's: after 1200 steps of 1 ms every file says 1.2
+// (a sum of 1 ms steps says 1.1999999999999786), and each recorded time is k dt to the bit.
+TEST(RunOutputs, RecordedTimesAreWholeStepsOfDt)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("clock.yaml", R"(
+simulation: {dt: 0.001}
+bodies:
+  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1]}}
+  - {name: box, mass: 1.0, shape: {type: box, size: [0.2, 0.2, 0.2]}, position: [0, 0, 0.1]}
+  - {name: bob, mass: 1.0, shape: {type: sphere, radius: 0.05}, position: [0.5, 1, 2]}
+joints:
+  - {name: pivot, type: revolute, parent: world, child: bob, anchor: [0, 1, 2], axis: [0, 1, 0]}
+)");
+    const std::string traj = dir.out("t.csv");
+    const std::string joints = dir.out("j.csv");
+    const std::string contacts = dir.out("c.csv");
+    const Result r =
+        dir.run("run " + shellQuote(scene) + " --quiet --steps 1200 --record-every 100 --trajectory " +
+                shellQuote(traj) + " --joints " + shellQuote(joints) + " --contacts " + shellQuote(contacts));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const std::string& file : {traj, joints, contacts})
+    {
+        const CsvTable table = readCsvTable(file);
+        ASSERT_FALSE(table.rows.empty()) << file;
+        EXPECT_EQ(table.text(table.rows.size() - 1, "time"), "1.2") << file;
+        for (std::size_t k = 0; k < table.rows.size(); ++k)
+        {
+            const double t = table.number(k, "time");
+            const double steps = std::round(t / 0.001);
+            ASSERT_EQ(t, steps * 0.001) << file << ", row " << k << ": " << table.text(k, "time");
+        }
+    }
 }
 
 } // namespace

@@ -1,10 +1,12 @@
 // tests/cli/sweep_cli_test.cpp: `frontier sweep` end to end: the CSV's header and rows, the
-// accuracy ordering of euler over time steps, the chart, bad input, and no gnuplot.
+// accuracy ordering of euler over time steps, the chart, the printed front on the chart's accuracy,
+// bad input, and no gnuplot.
 #include "app_test_util.h"
 #include "render/renderer.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <gtest/gtest.h>
 #include <map>
@@ -219,6 +221,76 @@ TEST(SweepCli, ChartAccuracyPutsThePenetrationOnTheYAxis)
     const Result bad = dir.run("sweep scenes/box_stack.yaml --chart-accuracy depth --out " + shellQuote(out));
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.err.find("joint-gap"), std::string::npos) << bad.err;
+}
+
+// --chart-accuracy penetration prints the Pareto front the chart draws: the one on penetration,
+// computed here from sweep.csv's columns (survived cells by seconds_per_sim_second, each kept when
+// its max_penetration_m is below every cheaper one's), each entry with its penetration.
+TEST(SweepCli, ChartAccuracyPenetrationPrintsThePenetrationFront)
+{
+    TestDir dir;
+    const std::string out = dir.out("sweep");
+    const Result r = dir.run("sweep scenes/box_stack.yaml --duration 0.2 --dt 0.004,0.002,0.001 "
+                             "--integrator euler,rattle --chart-accuracy penetration --out " +
+                             shellQuote(out));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> csv = lines(readText(out + "/sweep.csv"));
+    ASSERT_EQ(csv.size(), 2u + 6u);
+    const std::vector<std::string> header = fields(csv[1]);
+    const auto column = [&](const std::string& name)
+    { return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin()); };
+    struct FrontCell
+    {
+        double cost = 0.0;  // s per simulated s
+        double depth = 0.0; // m
+        std::string name;   // "linear/euler dt 0.002 s", as the front line names a cell
+    };
+    std::vector<FrontCell> cells;
+    for (std::size_t i = 2; i < csv.size(); ++i)
+    {
+        const std::vector<std::string> row = fields(csv[i]);
+        if (row[column("survived")] != "true")
+        {
+            continue;
+        }
+        char dt[32];
+        std::snprintf(dt, sizeof dt, "%.6g", std::stod(row[column("dt")]));
+        cells.push_back({std::stod(row[column("seconds_per_sim_second")]),
+                         std::stod(row[column("max_penetration_m")]),
+                         row[column("solver")] + "/" + row[column("integrator")] + " dt " + dt + " s"});
+    }
+    std::sort(cells.begin(), cells.end(),
+              [](const FrontCell& a, const FrontCell& b)
+              { return a.cost != b.cost ? a.cost < b.cost : a.depth < b.depth; });
+    std::vector<FrontCell> front;
+    for (const FrontCell& c : cells)
+    {
+        if (front.empty() || c.depth < front.back().depth)
+        {
+            front.push_back(c);
+        }
+    }
+    const std::string prefix = "Pareto front on penetration (";
+    std::string line;
+    for (const std::string& l : lines(r.out))
+    {
+        line = l.rfind(prefix, 0) == 0 ? l : line;
+    }
+    ASSERT_FALSE(line.empty()) << r.out;
+    // " NAME (COST s/sim s, DEPTH m)" per cell, after the colon.
+    std::string rest = line.substr(line.find("):") + 2);
+    for (const FrontCell& c : front)
+    {
+        const std::size_t at = rest.find(" " + c.name + " (");
+        ASSERT_EQ(at, rest.find_first_not_of(", ") - 1) << c.name << " is not next in: " << line;
+        const std::size_t comma = rest.find(", ", at);
+        const std::size_t metres = rest.find(" m)", comma);
+        ASSERT_NE(metres, std::string::npos) << line;
+        const double printed = std::stod(rest.substr(comma + 2, metres - comma - 2));
+        EXPECT_NEAR(printed, c.depth, 5e-3 * c.depth) << c.name << " in: " << line;
+        rest = rest.substr(metres + 3);
+    }
+    EXPECT_EQ(rest.find("dt"), std::string::npos) << "cells beyond the front in: " << line;
 }
 
 // --contact-tolerance applies to every cell but not to the reference: the same sweep of the box
