@@ -2,10 +2,10 @@
 // io/joints_file.h, io/contacts_file.h), filled from the simulator after each recorded step.
 #pragma once
 
-#include "run/actuator_efforts.h"
 #include "core/simulator.h"
 #include "io/contacts_file.h"
 #include "io/joints_file.h"
+#include "run/actuator_efforts.h"
 
 #include <array>
 #include <memory>

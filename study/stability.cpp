@@ -1,11 +1,11 @@
 // study/stability.cpp: the stability suite's runs and its markdown report.
 #include "study/stability.h"
 
-#include "run/run_loop.h"
 #include "collision/filter.h"
 #include "core/impulse_solver.h"
 #include "core/state.h"
 #include "core/step/drift_correction.h"
+#include "run/run_loop.h"
 #include "study/stability_criteria.h"
 
 #include <algorithm>
@@ -344,8 +344,9 @@ void judgeSurvivor(const StabilityLimits& limits, StabilityCell& cell)
 }
 } // namespace
 
-StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName, const run::Method& method,
-                               const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria)
+StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName,
+                               const run::Method& method, const StabilityLimits& limits,
+                               const io::SceneStabilityCriteria& criteria)
 {
     const core::Model model = cellModel(scene, method, limits);
     StabilityCell cell;
@@ -542,7 +543,8 @@ void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNa
 } // namespace
 
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames, const std::vector<run::Method>& methods,
+                              const std::vector<std::string>& sceneNames,
+                              const std::vector<run::Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine, const StabilityReportExtras& extras)
 {

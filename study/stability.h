@@ -3,9 +3,9 @@
 // drift, angular momentum, penetration, tunnelling, wall time, written as a markdown table.
 #pragma once
 
-#include "run/method.h"
 #include "core/model.h"
 #include "io/scene.h"
+#include "run/method.h"
 
 #include <optional>
 #include <string>
@@ -87,8 +87,8 @@ int denseRows(const core::Model& model);
 // limits.duration when given). Never throws for a failed run: the cell says what happened. A run
 // that survived still fails when it broke one of the scene's own `criteria`
 // (study/stability_criteria.h).
-StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName, const run::Method& method,
-                               const StabilityLimits& limits,
+StabilityCell runStabilityCell(const core::Model& model, const std::string& sceneName,
+                               const run::Method& method, const StabilityLimits& limits,
                                const io::SceneStabilityCriteria& criteria = {});
 
 // Where a method ends on a scene: the largest time step, halving from `start`, at which a run of
@@ -112,8 +112,9 @@ struct LargestDtCell
     int runs = 0;
     double wallSeconds = 0.0; // all its runs
 };
-LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName, const run::Method& method,
-                               const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria,
+LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName,
+                               const run::Method& method, const StabilityLimits& limits,
+                               const io::SceneStabilityCriteria& criteria,
                                const LargestDtOptions& options = {});
 
 // What the report says beyond the cells: each scene's own criteria (one per scene, or empty) and
@@ -129,7 +130,8 @@ struct StabilityReportExtras
 // largest time steps that hold (when searched) and the details, one row per cell; `machine`
 // names the computer the wall times were measured on.
 std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames, const std::vector<run::Method>& methods,
+                              const std::vector<std::string>& sceneNames,
+                              const std::vector<run::Method>& methods,
                               const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
                               const std::string& machine, const StabilityReportExtras& extras = {});
 

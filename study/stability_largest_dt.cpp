@@ -13,9 +13,9 @@ namespace
 constexpr int cMaxHalvings = 30; // 1/30 s / 2^30 = 3e-11 s: far below any scene's step
 }
 
-LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName, const run::Method& method,
-                               const StabilityLimits& limits, const io::SceneStabilityCriteria& criteria,
-                               const LargestDtOptions& options)
+LargestDtCell largestHoldingDt(const core::Model& model, const std::string& sceneName,
+                               const run::Method& method, const StabilityLimits& limits,
+                               const io::SceneStabilityCriteria& criteria, const LargestDtOptions& options)
 {
     LargestDtCell result;
     result.scene = sceneName;

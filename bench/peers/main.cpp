@@ -44,7 +44,6 @@
 // full buffer, a bound it cuts at; engine.h) goes into the row's note with the step it first came
 // at. MuJoCo's fixed buffers are sized from the scene; a run that still fills one is rerun with
 // them doubled (up to 8x), and the note says so.
-#include "run/scene_loading.h"
 #include "app/sweep_chart.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
@@ -53,6 +52,7 @@
 #include "bench/peers/jitter.h"
 #include "bench/peers/measures.h"
 #include "io/scene.h"
+#include "run/scene_loading.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

@@ -6,13 +6,13 @@
 // The harness: MuJoCo's buffers sized from the scene, an engine's warnings in the row's note, runs
 // that repeat exactly, the rounds' statistics, the jittered starts, and engines' settings (their
 // spellings, and that each acts).
-#include "run/scene_loading.h"
 #include "bench/peers/chain.h"
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
 #include "bench/peers/harness.h"
 #include "bench/peers/jitter.h"
 #include "bench/peers/measures.h"
+#include "run/scene_loading.h"
 
 #include <cmath>
 #include <filesystem>

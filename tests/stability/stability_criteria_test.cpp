@@ -3,13 +3,13 @@
 // each checked against the simulator stepped directly (independently of the suite's watch), each
 // criterion shown to fail when tightened below what the run does, and the largest-dt search
 // checked against single runs at its step and at twice its step.
-#include "run/run_loop.h"
-#include "run/scene_loading.h"
 #include "core/joints/coordinates.h"
 #include "core/simulator.h"
 #include "core/state.h"
 #include "core/time_function.h"
 #include "io/scene.h"
+#include "run/run_loop.h"
+#include "run/scene_loading.h"
 #include "study/stability.h"
 
 #include <algorithm>
@@ -34,8 +34,8 @@ struct Scene
 // As `frontier stability` loads it (the links of a robot that overlap at the start never collide).
 Scene load(const std::string& name)
 {
-    run::LoadedScene loaded = run::loadScene(
-        std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/" + name + ".yaml", {});
+    run::LoadedScene loaded =
+        run::loadScene(std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/" + name + ".yaml", {});
     EXPECT_TRUE(loaded.report.stability.has_value()) << name << " has no 'stability:' criteria";
     Scene scene;
     scene.model = std::move(loaded.model);

@@ -102,7 +102,8 @@ TEST(StabilityReport, MarkdownHasEveryCell)
         std::string(FRONTIER_SOURCE_DIR) + "/scenes/stability/tunnelling_small_step.yaml";
     const std::vector<core::Model> scenes{io::loadScene(path)};
     const std::vector<std::string> names{"tunnelling_small_step"};
-    const std::vector<run::Method> methods{*run::parseMethod("linear/euler"), *run::parseMethod("dense/euler")};
+    const std::vector<run::Method> methods{*run::parseMethod("linear/euler"),
+                                           *run::parseMethod("dense/euler")};
     StabilityLimits limits;
     limits.maxDenseRows = 1;
     limits.duration = 0.001;
