@@ -1,9 +1,10 @@
 // tests/app/output_safety_test.cpp: what outputs may not do. No output replaces a file the load
 // read (scene, URDF, meshes found through --package-path, a CSV target table; spelled through a
-// link or another path), in `run`, `render` and `sweep`; marker and lock files are never written
-// through a symbolic link (run and batch frames folders, a batch job's lock); --video is written
-// by ffmpeg under a temporary name, so a signal while it encodes leaves no video and exits 128 + N;
-// a run removes the temporaries a run killed outright left of its own outputs, and nothing else.
+// link or another path), in `run`, `render`, `sweep` and `stability`; marker and lock files are
+// never written through a symbolic link (run and batch frames folders, a batch job's lock);
+// --video is written by ffmpeg under a temporary name, so a signal while it encodes leaves no
+// video and exits 128 + N; a run removes the temporaries a run killed outright left of its own
+// outputs, and nothing else.
 #include "app_test_util.h"
 
 #include <csignal>
@@ -165,6 +166,24 @@ TEST(SweepOutputs, AnOutputThatIsTheReferenceIsRefused)
         EXPECT_EQ(readText(reference), rows);
         fs::remove(reference);
     }
+}
+
+// `stability --out`: not a file a scene read (here the URDF of a scene's models).
+TEST(StabilityOutputs, AnOutputThatIsAnInputOfAScenesModelIsRefused)
+{
+    const TestDir dir;
+    const std::string scene = (dir.path() / "doll_urdf_scene.yaml").string();
+    const std::string urdf = (dir.path() / "doll.urdf").string();
+    fs::copy_file(sourcePath("scenes/doll_urdf_scene.yaml"), scene);
+    fs::copy_file(sourcePath("scenes/doll.urdf"), urdf);
+    const std::string before = readText(urdf);
+    const Result r = dir.run("stability " + shellQuote(scene) +
+                             " --quiet --duration 0.002 --methods linear/euler "
+                             "--out " +
+                             shellQuote(dir.path().string() + "/./doll.urdf"));
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--out names the input " + urdf), std::string::npos) << r.err;
+    EXPECT_EQ(readText(urdf), before);
 }
 
 // A link named INCOMPLETE in the frames folder is replaced by the marker, not written through: the
