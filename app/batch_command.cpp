@@ -87,13 +87,15 @@ RunOptions runOptionsOf(const BatchPlan& plan, const PlanJob& job, const BatchOp
 }
 
 // A lock on DIR/jobs/ID/.lock (flock(2): the kernel releases it when the holder ends, even killed).
+// Never through a symbolic link: one named .lock is refused (O_NOFOLLOW), so the file it points to
+// is neither created nor locked.
 class JobLock
 {
   public:
     explicit JobLock(const std::string& folder)
     {
         const std::string path = (fs::path(folder) / ".lock").string();
-        mFd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+        mFd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
         if (mFd < 0)
         {
             throw io::OutputError(path + ": cannot open the job's lock: " + std::strerror(errno));

@@ -60,8 +60,9 @@ std::optional<io::RunStats> completeStats(const BatchPlan& plan, const JobOutput
         }
     }
     const bool framesDone =
-        !plan.outputs.frames || (fs::is_directory(files.frames, error) &&
-                                 !fs::exists(fs::path(files.frames) / cIncompleteMarker, error));
+        !plan.outputs.frames ||
+        (fs::is_directory(files.frames, error) &&
+         !fs::exists(fs::symlink_status(fs::path(files.frames) / cIncompleteMarker, error)));
     return framesDone ? std::optional<io::RunStats>(std::move(stats)) : std::nullopt;
 }
 } // namespace

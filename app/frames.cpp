@@ -9,15 +9,23 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
+#include <spawn.h>
 #include <string_view>
+#include <sys/wait.h>
 #include <thread>
+#include <unistd.h>
+
+extern char** environ;
 
 namespace frontier::app
 {
@@ -81,6 +89,12 @@ bool isFrameName(std::string_view name)
 bool onPath(const std::string& program);
 } // namespace
 
+bool isFramesFolderFile(const std::string& name)
+{
+    const std::string base = io::temporaryBase(name);
+    return isFrameName(base.empty() ? name : base) || name == cIncompleteMarker;
+}
+
 void prepareFrameFolder(const std::string& folder, const std::string& video)
 {
     if (!video.empty() && !onPath("ffmpeg"))
@@ -96,16 +110,11 @@ void prepareFrameFolder(const std::string& folder, const std::string& video)
         throw io::OutputError(folder + ": cannot create the frames folder" +
                               (error ? " (" + error.message() + ")" : std::string(" (not a folder)")));
     }
-    const std::string marker = folder + "/" + cIncompleteMarker;
-    {
-        std::ofstream out(marker);
-        out << "frontier was writing the frames of this folder and stopped before the last one "
-               "(failed, interrupted or killed): they are incomplete\n";
-        if (!out)
-        {
-            throw io::OutputError(folder + ": the frames folder is not writable");
-        }
-    }
+    // Written as a new file: a link named like the marker is replaced, never written through.
+    io::writeNewFile(folder + "/" + cIncompleteMarker,
+                     "frontier was writing the frames of this folder and stopped before the last one "
+                     "(failed, interrupted or killed): they are incomplete\n");
+    io::removeStaleTemporaries(folder, [](const std::string& base) { return isFrameName(base); });
     std::vector<std::filesystem::path> stale;
     for (const std::filesystem::directory_entry& entry : std::filesystem::directory_iterator(folder, error))
     {
@@ -227,18 +236,52 @@ bool onPath(const std::string& program)
     return false;
 }
 
-std::string shellQuote(const std::string& text)
+// Runs `argv` (argv[0] found on the PATH, stdin from /dev/null) and returns its wait status. A
+// signal that arrives meanwhile (interruptSignal) is passed on to it, and it is waited for (killed
+// when it has not ended cKillAfterPolls polls later).
+int runChild(std::vector<std::string> argv, const std::string& what)
 {
-    std::string out = "'";
-    for (char c : text)
+    std::vector<char*> pointers;
+    for (std::string& arg : argv)
     {
-        out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+        pointers.push_back(arg.data());
     }
-    return out + "'";
+    pointers.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    pid_t pid = 0;
+    const int spawned = ::posix_spawnp(&pid, pointers[0], &actions, nullptr, pointers.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0)
+    {
+        throw io::OutputError(what + ": cannot start " + argv[0] + ": " + std::strerror(spawned));
+    }
+    constexpr int cKillAfterPolls = 500; // 5 s at a poll every 10 ms
+    int status = 0;
+    int pollsSinceSignal = -1; // -1: no signal passed on yet
+    while (true)
+    {
+        const pid_t ended = ::waitpid(pid, &status, WNOHANG);
+        if (ended == pid || (ended < 0 && errno != EINTR))
+        {
+            return ended == pid ? status : -1;
+        }
+        if (const int signal = run::interruptSignal(); signal != 0 && pollsSinceSignal < 0)
+        {
+            ::kill(pid, signal);
+            pollsSinceSignal = 0;
+        }
+        else if (pollsSinceSignal >= 0 && ++pollsSinceSignal == cKillAfterPolls)
+        {
+            ::kill(pid, SIGKILL);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
 }
 } // namespace
 
-void assembleVideo(const std::string& folder, double fps, const std::string& video)
+bool assembleVideo(const std::string& folder, double fps, const std::string& video)
 {
     if (!onPath("ffmpeg")) // prepareFrameFolder checked before the run; this catches a removal since
     {
@@ -248,13 +291,42 @@ void assembleVideo(const std::string& folder, double fps, const std::string& vid
     }
     char rate[32];
     std::snprintf(rate, sizeof rate, "%.9g", fps);
-    const std::string command = "ffmpeg -y -loglevel error -framerate " + std::string(rate) + " -i " +
-                                shellQuote(folder + "/frame_%05d.png") +
-                                " -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -pix_fmt yuv420p " + shellQuote(video);
-    if (std::system(command.c_str()) != 0)
+    // ffmpeg writes the temporary file (named as AtomicFile names them, so a rerun finds it after
+    // a kill), told the container with -f (the temporary's name has no .mp4 at its end); renamed
+    // onto `video` when it succeeded, removed otherwise.
+    io::AtomicFile file(video);
+    const std::vector<std::string> argv = {"ffmpeg",
+                                           "-nostdin",
+                                           "-y",
+                                           "-loglevel",
+                                           "error",
+                                           "-framerate",
+                                           rate,
+                                           "-i",
+                                           folder + "/frame_%05d.png",
+                                           "-vf",
+                                           "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                           "-pix_fmt",
+                                           "yuv420p",
+                                           "-f",
+                                           "mp4",
+                                           "file:" + file.tempPath()};
+    const int status = runChild(argv, video);
+    if (run::interruptSignal() != 0)
     {
+        return false; // the temporary goes with `file`
+    }
+    if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    {
+        std::string command;
+        for (const std::string& arg : argv)
+        {
+            command += (command.empty() ? "" : " ") + arg;
+        }
         throw io::OutputError(video + ": ffmpeg failed (" + command + ")");
     }
+    file.commit();
+    return true;
 }
 
 std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
@@ -278,9 +350,12 @@ int writeFrames(const core::Model& model, const std::vector<core::State>& frames
         error = interruptedFramesMessage(signal, rendered, frames.size(), settings.folder);
         return run::interruptedExitCode(signal);
     }
-    if (!video.empty())
+    if (!video.empty() && !assembleVideo(settings.folder, fps, video))
     {
-        assembleVideo(settings.folder, fps, video);
+        const int signal = run::interruptSignal();
+        error = "interrupted by " + run::signalName(signal) + " while ffmpeg made " + video +
+                ": no video written (the frames in " + settings.folder + " are complete)";
+        return run::interruptedExitCode(signal);
     }
     return cExitOk;
 }

@@ -48,8 +48,14 @@ struct FrameSettings
 // was interrupted or killed before its last frame) does not look complete.
 inline constexpr const char* cIncompleteMarker = "INCOMPLETE";
 
-// Before a run or a render: creates the folder, checks it can be written, removes the frame_*.png
-// an earlier run left there (so it never mixes two runs' frames) and writes cIncompleteMarker.
+// Whether `name` (no folder) is a file a run writes or removes in its frames folder: a frame
+// (frame_00000.png), a frame's temporary (frame_00000.png.tmp-XXXXXX), cIncompleteMarker.
+bool isFramesFolderFile(const std::string& name);
+
+// Before a run or a render: creates the folder, checks it can be written, writes cIncompleteMarker
+// (as a new file: a link of that name is replaced, not written through), and removes the
+// frame_*.png an earlier run left there (so it never mixes two runs' frames) and the temporaries
+// of frames a killed run left.
 // With a `video` to make, first checks that ffmpeg is installed. Throws io::OutputError naming
 // the folder or the video.
 void prepareFrameFolder(const std::string& folder, const std::string& video);
@@ -67,14 +73,16 @@ std::size_t renderFrames(const core::Model& model, const std::vector<core::State
 std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size_t total,
                                      const std::string& folder);
 
-// Assembles folder/frame_%05d.png into an MP4 with ffmpeg; throws io::OutputError when ffmpeg is
-// not installed or fails.
-void assembleVideo(const std::string& folder, double fps, const std::string& video);
+// Assembles folder/frame_%05d.png into an MP4 (H.264, whatever the name's extension) with ffmpeg,
+// which writes a temporary file (io/atomic_file.h) renamed onto `video` when it succeeded. Returns
+// false when a signal arrived meanwhile (interruptSignal, passed on to ffmpeg): no file is left
+// under either name. Throws io::OutputError when ffmpeg is not installed or fails.
+bool assembleVideo(const std::string& folder, double fps, const std::string& video);
 
 // What `run --frames` and `render` do with their frames: renderFrames, with "rendering D / N
 // frames" to `status` as they go, then the video at `fps` when `video` is not empty
-// (assembleVideo). Returns cExitOk (app/commands.h); when a signal stopped the rendering, its
-// interruptedExitCode (run/run_loop.h), with `error` set to interruptedFramesMessage. Throws
+// (assembleVideo). Returns cExitOk (app/commands.h); when a signal stopped the rendering or the
+// video, its interruptedExitCode (run/run_loop.h), with `error` set to say so. Throws
 // io::OutputError.
 int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
                 const FrameSettings& settings, double fps, const std::string& video,

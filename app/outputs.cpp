@@ -1,6 +1,7 @@
 // app/outputs.cpp: output paths of single and batch jobs.
 #include "app/outputs.h"
 
+#include "app/frames.h"
 #include "io/atomic_file.h"
 #include "io/scene.h"
 
@@ -43,12 +44,73 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
     {
         throw io::InputError(path, 0, 0, flag + ": " + problem);
     }
-    for (const std::string& input : inputs)
+    checkInputsKept({{flag, path, folder, ""}}, inputs);
+}
+
+std::vector<OutputPath> outputPathsOf(const JobOutputs& out)
+{
+    std::vector<OutputPath> paths;
+    const std::pair<const char*, const std::string*> files[] = {
+        {"--trajectory", &out.trajectory}, {"--stats", &out.stats}, {"--joints", &out.joints},
+        {"--contacts", &out.contacts},     {"--video", &out.video}, {"--frames", &out.frames}};
+    for (const auto& [flag, path] : files)
     {
-        if (fs::exists(input, error) && fs::exists(path, error) && fs::equivalent(input, path, error))
+        if (!path->empty())
         {
-            throw io::InputError(
-                path, 0, 0, flag + " names the input " + input + ": the run would replace the file it reads");
+            paths.push_back({flag, *path, path == &out.frames, ""});
+        }
+    }
+    for (const auto& [flag, path] : {files[0], files[2], files[3]})
+    {
+        if (!path->empty())
+        {
+            paths.push_back({flag, failedPath(*path), false, "a failed run's rows"});
+        }
+    }
+    return paths;
+}
+
+void checkInputsKept(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs)
+{
+    std::error_code error;
+    for (const OutputPath& out : outputs)
+    {
+        if (!fs::exists(out.path, error))
+        {
+            continue; // a new path: no input is there
+        }
+        for (const std::string& input : inputs)
+        {
+            if (!out.folder && fs::equivalent(input, out.path, error))
+            {
+                throw io::InputError(out.path, 0, 0,
+                                     out.flag +
+                                         (out.role.empty()
+                                              ? " names the input "
+                                              : " keeps " + out.role + " in " + out.path + ", the input ") +
+                                         input + ": the run would replace the file it reads");
+            }
+            const fs::path file(input);
+            if (out.folder && isFramesFolderFile(file.filename().string()) &&
+                fs::equivalent(file.parent_path().empty() ? fs::path(".") : file.parent_path(), out.path,
+                               error))
+            {
+                throw io::InputError(out.path, 0, 0,
+                                     out.flag + " names the folder of the input " + input +
+                                         ": the run would replace or remove that file (frames and " +
+                                         cIncompleteMarker + " are its own)");
+            }
+        }
+    }
+}
+
+void removeStaleOutputTemporaries(const JobOutputs& out)
+{
+    for (const OutputPath& path : outputPathsOf(out))
+    {
+        if (!path.folder && path.role.empty())
+        {
+            io::removeStaleTemporariesOf(path.path);
         }
     }
 }
@@ -62,20 +124,18 @@ namespace
 void checkOutputs(const JobOutputs& job, const std::vector<std::string>& inputs,
                   std::map<fs::path, std::string>& written)
 {
-    const std::pair<const char*, const std::string*> files[] = {
-        {"--trajectory", &job.trajectory}, {"--stats", &job.stats}, {"--joints", &job.joints},
-        {"--contacts", &job.contacts},     {"--video", &job.video}, {"--frames", &job.frames}};
-    for (const auto& [flag, path] : files)
+    for (const OutputPath& out : outputPathsOf(job))
     {
-        if (path->empty())
+        if (!out.role.empty())
         {
             continue;
         }
-        checkOutputPath(flag, *path, inputs, path == &job.frames);
-        const auto [at, added] = written.emplace(canonicalOutput(*path), flag);
+        checkOutputPath(out.flag, out.path, inputs, out.folder);
+        const auto [at, added] = written.emplace(canonicalOutput(out.path), out.flag);
         if (!added)
         {
-            throw io::InputError(*path, 0, 0, at->second + " and " + flag + " would write the same file");
+            throw io::InputError(out.path, 0, 0,
+                                 at->second + " and " + out.flag + " would write the same file");
         }
     }
 }

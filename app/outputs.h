@@ -37,4 +37,30 @@ void checkOutputPath(const std::string& flag, const std::string& path, const std
 
 std::vector<JobOutputs> planOutputs(const std::vector<std::string>& inputs, const JobOutputs& given);
 
+// A path a command writes, with the flag that names it: a file, or a folder it writes files into
+// (--frames: frames and the INCOMPLETE marker, app/frames.h). `role` says what the flag keeps
+// there when it is not the output itself ("a failed run's rows"), "" for the output.
+struct OutputPath
+{
+    std::string flag;
+    std::string path;
+    bool folder = false;
+    std::string role;
+};
+
+// The paths `out` writes: each output given, and the failedPath names of the row files.
+std::vector<OutputPath> outputPathsOf(const JobOutputs& out);
+
+// Throws io::InputError (exit 2) naming the flag, the output and the input when an output would
+// replace a file the command read: a file output that is one of `inputs` (compared as files, so a
+// symbolic link, a hard link or another spelling of the path counts), or a folder that holds one
+// of them under a name the command writes or removes there (isFramesFolderFile). Called after the
+// load (io::LoadReport::inputFiles lists every file it read: scene, URDFs, meshes and the files
+// they name, CSV tables) and before anything is written.
+void checkInputsKept(const std::vector<OutputPath>& outputs, const std::vector<std::string>& inputs);
+
+// Removes the temporaries (io::removeStaleTemporariesOf) of the file outputs of `out` that a run
+// killed outright (SIGKILL) left; the frames folder's are prepareFrameFolder's.
+void removeStaleOutputTemporaries(const JobOutputs& out);
+
 } // namespace frontier::app

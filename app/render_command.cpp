@@ -5,6 +5,7 @@
 #include "app/outputs.h"
 #include "app/progress.h"
 #include "io/atomic_file.h"
+#include "io/file_util.h"
 #include "io/scene.h"
 #include "io/trajectory.h"
 #include "run/run_loop.h"
@@ -86,6 +87,7 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
 {
     try
     {
+        const io::detail::InputFileLog reads; // the trajectory, the scene and every file it reads
         const io::Trajectory trajectory = io::readTrajectory(path);
         std::string scenePath = options.scene;
         if (scenePath.empty())
@@ -120,6 +122,8 @@ int renderOne(const RenderCommandOptions& options, const std::string& path, cons
             }
         }
         checkFrameCount(states.back().time, options.fps, static_cast<double>(frames.size()), path);
+        checkInputsKept(outputPathsOf(out), io::inputPaths(reads.files())); // before anything is written
+        removeStaleOutputTemporaries(out);
         prepareFrameFolder(out.frames, out.video);
         if (const int code = writeFrames(model, frames, {out.frames, options.width, options.height, threads},
                                          options.fps, out.video, status, error);

@@ -162,10 +162,8 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     try
     {
         run::LoadedScene loaded = load ? load() : run::loadScene(scene, options.urdf);
-        for (const io::InputFile& file : loaded.report.inputFiles)
-        {
-            inputFiles.push_back(file.path);
-        }
+        inputFiles = io::inputPaths(loaded.report.inputFiles);
+        checkInputsKept(outputPathsOf(out), inputFiles); // before anything is written
         if (options.strict && loaded.startPenetration)
         {
             throw io::InputError(scene, 0, 0, "--strict: " + run::startPenetrationText(loaded));
@@ -198,6 +196,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
                 makeFolderFor(*file);
             }
         }
+        removeStaleOutputTemporaries(out); // of a run killed outright (SIGKILL)
         if (!out.stats.empty())
         {
             io::AtomicFile probe(out.stats); // the stats can be written (removed again, never committed)

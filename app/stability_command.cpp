@@ -3,6 +3,7 @@
 #include "app/model_overrides.h"
 #include "app/outputs.h"
 #include "io/atomic_file.h"
+#include "io/file_util.h"
 #include "io/scene.h"
 #include "run/scene_loading.h"
 #include "study/study.h"
@@ -42,6 +43,7 @@ int stabilityCommand(const StabilityOptions& options)
         {
             checkOutputPath("--out", options.out, options.scenes);
         }
+        const io::detail::InputFileLog reads; // the scenes and every file they read
         for (const std::string& path : options.scenes)
         {
             // As `frontier run` loads it: the links of a robot that overlap at the start never collide.
@@ -52,6 +54,11 @@ int stabilityCommand(const StabilityOptions& options)
             names.push_back(std::filesystem::path(path).stem().string());
             const core::SimulationSettings& sim = scenes.back().simulation;
             checkedStepCount(options.duration.value_or(sim.duration), options.dt.value_or(sim.dt), path);
+        }
+        if (!options.out.empty())
+        {
+            checkInputsKept({{"--out", options.out, false, ""}}, io::inputPaths(reads.files()));
+            io::removeStaleTemporariesOf(options.out); // of a run killed outright (SIGKILL)
         }
     }
     catch (const io::InputError& e)

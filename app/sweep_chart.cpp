@@ -27,9 +27,9 @@ namespace
 {
 namespace fs = std::filesystem;
 
-constexpr const char* cScript = "sweep.gp";
-constexpr const char* cData = "sweep.dat";
-constexpr const char* cChart = "sweep.png";
+constexpr const char* cScript = cSweepChartFiles[0];
+constexpr const char* cData = cSweepChartFiles[1];
+constexpr const char* cChart = cSweepChartFiles[2];
 
 } // namespace
 

@@ -80,6 +80,10 @@ bool drawGnuplotChart(const std::string& folder, const GnuplotChart& chart);
 // gnuplot on the PATH, or empty when it is not installed.
 std::string findGnuplot();
 
+// The files drawSweepChart writes in its folder: the script, its data, the chart, and the name
+// gnuplot draws the chart under before it is renamed (drawGnuplotChart).
+inline constexpr const char* cSweepChartFiles[] = {"sweep.gp", "sweep.dat", "sweep.png", "sweep.png.tmp"};
+
 // Writes folder/sweep.gp and folder/sweep.dat and, when gnuplot is installed, runs it to draw
 // folder/sweep.png. Returns false when gnuplot is not installed (no PNG; an older sweep.png is
 // removed so it cannot pass for this sweep's). Throws io::OutputError when a file cannot be

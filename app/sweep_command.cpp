@@ -2,10 +2,12 @@
 // DIR/sweep.csv, print the table, draw DIR/sweep.png (app/sweep_chart.h).
 #include "app/commands.h"
 #include "app/model_overrides.h"
+#include "app/outputs.h"
 #include "app/progress.h"
 #include "app/sweep_chart.h"
 #include "core/simulator.h"
 #include "io/atomic_file.h"
+#include "io/file_util.h"
 #include "io/scene.h"
 #include "run/scene_loading.h"
 #include "study/study.h"
@@ -40,6 +42,7 @@ int sweepCommand(const SweepOptions& options)
     const fs::path folder(options.out);
     try
     {
+        const io::detail::InputFileLog reads; // the scene, every file it reads, the reference CSV
         run::LoadedScene loaded = run::loadScene(options.scene, options.urdf);
         run::printLoadWarnings(loaded.report);
         model = std::move(loaded.model);
@@ -60,7 +63,18 @@ int sweepCommand(const SweepOptions& options)
         checkedStepCount(schedule.durationS(),
                          *std::min_element(grid.dts.begin(), grid.dts.end()) / study::cReferenceRefinement,
                          options.scene);
-        // The folder must take our files before minutes of simulation are spent.
+        // None of our files may be one the sweep read; the folder must take them before minutes of
+        // simulation are spent.
+        std::vector<OutputPath> written = {{"--out", (folder / "sweep.csv").string(), false, ""}};
+        for (const char* name : cSweepChartFiles)
+        {
+            written.push_back({"--out", (folder / name).string(), false, ""});
+        }
+        checkInputsKept(written, io::inputPaths(reads.files()));
+        for (const OutputPath& file : written)
+        {
+            io::removeStaleTemporariesOf(file.path); // of a sweep killed outright (SIGKILL)
+        }
         fs::create_directories(folder);
         io::AtomicFile probe((folder / "sweep.csv").string()); // removed again, never committed
     }

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -48,25 +49,78 @@ std::string outputPathProblem(const std::string& path)
 
 bool isTemporaryName(const std::string& fileName)
 {
-    const std::size_t infix = std::char_traits<char>::length(cTemporaryInfix);
-    const std::size_t tail = infix + cTemporaryRandomChars;
-    return fileName.size() > tail && fileName.compare(fileName.size() - tail, infix, cTemporaryInfix) == 0;
+    return !temporaryBase(fileName).empty();
 }
 
-std::size_t removeStaleTemporaries(const std::string& folder)
+std::string temporaryBase(const std::string& fileName)
+{
+    const std::size_t infix = std::char_traits<char>::length(cTemporaryInfix);
+    const std::size_t tail = infix + cTemporaryRandomChars;
+    if (fileName.size() <= tail || fileName.compare(fileName.size() - tail, infix, cTemporaryInfix) != 0)
+    {
+        return std::string();
+    }
+    return fileName.substr(0, fileName.size() - tail);
+}
+
+std::size_t removeStaleTemporaries(const std::string& folder,
+                                   const std::function<bool(const std::string&)>& ofName)
 {
     namespace fs = std::filesystem;
     std::error_code error;
     std::size_t removed = 0;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
     {
-        if (entry.is_regular_file(error) && isTemporaryName(entry.path().filename().string()) &&
+        const std::string base = temporaryBase(entry.path().filename().string());
+        if (!base.empty() && (!ofName || ofName(base)) && entry.is_regular_file(error) &&
             fs::remove(entry.path(), error))
         {
             ++removed;
         }
     }
     return removed;
+}
+
+std::size_t removeStaleTemporariesOf(const std::string& path)
+{
+    const std::filesystem::path file(path);
+    const std::string name = file.filename().string();
+    const std::filesystem::path folder = file.parent_path();
+    return removeStaleTemporaries(folder.empty() ? std::string(".") : folder.string(),
+                                  [&](const std::string& base) { return base == name; });
+}
+
+void writeNewFile(const std::string& path, const std::string& text)
+{
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT)
+    {
+        throw OutputError(path + ": cannot replace file: " + errnoText());
+    }
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0)
+    {
+        throw OutputError(path + ": cannot create file: " + errnoText());
+    }
+    std::size_t done = 0;
+    while (done < text.size())
+    {
+        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR)
+        {
+            continue;
+        }
+        if (n <= 0)
+        {
+            const std::string problem = errnoText();
+            ::close(fd);
+            throw OutputError(path + ": cannot write: " + problem);
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    if (::close(fd) != 0)
+    {
+        throw OutputError(path + ": cannot write: " + errnoText());
+    }
 }
 
 AtomicFile::AtomicFile(std::string path) : mPath(std::move(path))

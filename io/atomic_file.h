@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -29,10 +30,23 @@ inline constexpr const char* cTemporaryInfix = ".tmp-";
 inline constexpr std::size_t cTemporaryRandomChars = 6; // mkstemp's XXXXXX
 // Whether the file name (no folder) is such a temporary.
 bool isTemporaryName(const std::string& fileName);
+// The name a temporary stands in for ("out.csv" for "out.csv.tmp-Ab3dEf"), "" when it is none.
+std::string temporaryBase(const std::string& fileName);
 // Removes the temporaries left in `folder` (not its subfolders) by a process killed with them open
-// (SIGKILL: no destructor ran), and returns how many. Only for a folder that no running process
-// writes into (a batch job's folder under its lock). A missing folder holds none.
-std::size_t removeStaleTemporaries(const std::string& folder);
+// (SIGKILL: no destructor ran), and returns how many; with `ofName`, only those whose
+// temporaryBase it accepts. Only for a folder that no running process writes into (a batch job's
+// folder under its lock). A missing folder holds none.
+std::size_t removeStaleTemporaries(const std::string& folder,
+                                   const std::function<bool(const std::string&)>& ofName = {});
+// Removes the temporaries of the one output file `path` ("PATH.tmp-XXXXXX", nothing else of its
+// folder) that a killed run left, and returns how many: a run does so before it writes `path`.
+std::size_t removeStaleTemporariesOf(const std::string& path);
+
+// Writes `text` to `path` as a new file, in place (not atomically): for marker files in an output
+// folder. What was at `path` is removed first (a symbolic link itself, never the file it points
+// to), and the file is created with O_EXCL | O_NOFOLLOW, so nothing is ever written through a link.
+// Throws OutputError.
+void writeNewFile(const std::string& path, const std::string& text);
 
 class AtomicFile
 {

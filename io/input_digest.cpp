@@ -102,6 +102,17 @@ std::string computeProgramIdentity()
 
 } // namespace
 
+std::vector<std::string> inputPaths(const std::vector<InputFile>& files)
+{
+    std::vector<std::string> paths;
+    paths.reserve(files.size());
+    for (const InputFile& file : files)
+    {
+        paths.push_back(file.path);
+    }
+    return paths;
+}
+
 std::string sha256Hex(std::string_view bytes)
 {
     Sha256 hash;

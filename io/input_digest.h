@@ -18,6 +18,9 @@ struct InputFile
     std::string sha256;
 };
 
+// The paths of `files`, in order.
+std::vector<std::string> inputPaths(const std::vector<InputFile>& files);
+
 // SHA-256 (FIPS 180-4, computed by OpenSSL's libcrypto) of `bytes`: 64 lower-case hex digits.
 std::string sha256Hex(std::string_view bytes);
 

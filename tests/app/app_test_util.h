@@ -186,4 +186,22 @@ inline bool waitForHandler(pid_t pid, int signal, double seconds)
     return false;
 }
 
+// Sets PATH for the lifetime of the object (the child inherits it).
+class ScopedPath
+{
+  public:
+    explicit ScopedPath(const std::string& path)
+    {
+        const char* old = std::getenv("PATH");
+        mOld = old != nullptr ? old : "";
+        setenv("PATH", path.c_str(), 1);
+    }
+    ~ScopedPath() { setenv("PATH", mOld.c_str(), 1); }
+    ScopedPath(const ScopedPath&) = delete;
+    ScopedPath& operator=(const ScopedPath&) = delete;
+
+  private:
+    std::string mOld;
+};
+
 } // namespace frontier::app::test

@@ -16,6 +16,7 @@ namespace
 {
 using frontier::app::test::readText;
 using frontier::app::test::Result;
+using frontier::app::test::ScopedPath;
 using frontier::app::test::shellQuote;
 using frontier::app::test::TestDir;
 namespace fs = std::filesystem;
@@ -52,24 +53,6 @@ std::vector<std::string> fields(const std::string& line)
     }
     return out;
 }
-
-// Sets PATH for the lifetime of the object (the child inherits it).
-class ScopedPath
-{
-  public:
-    explicit ScopedPath(const std::string& path)
-    {
-        const char* old = std::getenv("PATH");
-        mOld = old != nullptr ? old : "";
-        setenv("PATH", path.c_str(), 1);
-    }
-    ~ScopedPath() { setenv("PATH", mOld.c_str(), 1); }
-    ScopedPath(const ScopedPath&) = delete;
-    ScopedPath& operator=(const ScopedPath&) = delete;
-
-  private:
-    std::string mOld;
-};
 
 // The double pendulum over 0.5 s at 4, 2 and 1 ms, euler and rattle: one row per cell, the
 // documented header, euler's trajectory error shrinking with dt (first order: about 5x from 4 ms

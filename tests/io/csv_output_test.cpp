@@ -1,7 +1,8 @@
 // tests/io/csv_output_test.cpp: what the run's CSV files share (io/csv_output.h): names quoted only
 // when they must be, and read back whole by an RFC 4180 reader; metadata fields encoded and
 // decoded back; a file appears with its comment and header lines on commit, and not at all
-// without it; the temporaries a killed process left are told apart from other files and removed.
+// without it; the temporaries a killed process left are told apart from other files and removed;
+// a marker file is never written through a link.
 #include "csv_table.h"
 #include "io/atomic_file.h"
 #include "io/csv_output.h"
@@ -93,6 +94,44 @@ TEST(CsvOutput, StaleTemporariesAreRemovedAndNothingElse)
     EXPECT_EQ(filesIn(dir.path()), 6u); // the five others and frames/
     EXPECT_EQ(removeStaleTemporaries(dir.file("frames")), 1u);
     EXPECT_EQ(removeStaleTemporaries(dir.file("missing")), 0u);
+}
+
+// removeStaleTemporariesOf removes the temporaries of one output and no other file of its folder.
+TEST(CsvOutput, StaleTemporariesOfOneOutputAreRemovedAndNothingElse)
+{
+    TempDir dir;
+    EXPECT_EQ(temporaryBase("out.csv.tmp-Ab3dEf"), "out.csv");
+    EXPECT_EQ(temporaryBase("out.csv.tmp-Ab3dE"), "");
+    for (const char* name : {"out.csv.tmp-Ab3dEf", "out.csv.tmp-000000", "out.csv", "out.csv.tmp-1234567",
+                             "xout.csv.tmp-Ab3dEf", "other.csv.tmp-Ab3dEf", "out.tmp-Ab3dEf"})
+    {
+        std::ofstream(dir.file(name)) << "x";
+    }
+    EXPECT_EQ(removeStaleTemporariesOf(dir.file("out.csv")), 2u);
+    EXPECT_EQ(filesIn(dir.path()), 5u);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out.csv.tmp-Ab3dEf")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out.csv")));
+    EXPECT_EQ(removeStaleTemporariesOf(dir.file("missing/out.csv")), 0u);
+}
+
+// writeNewFile replaces a symbolic link at its path (the file it points to keeps its bytes, a
+// missing one is not created) and an earlier file; a folder at the path is an OutputError.
+TEST(CsvOutput, NewFileIsNeverWrittenThroughALink)
+{
+    TempDir dir;
+    std::ofstream(dir.file("victim")) << "keep me\n";
+    std::filesystem::create_symlink(dir.file("victim"), dir.file("marker"));
+    std::filesystem::create_symlink(dir.file("nowhere"), dir.file("dangling"));
+    writeNewFile(dir.file("marker"), "marked\n");
+    writeNewFile(dir.file("dangling"), "marked\n");
+    writeNewFile(dir.file("dangling"), "again\n");
+    EXPECT_EQ(readTextOf(dir.file("victim")), "keep me\n");
+    EXPECT_FALSE(std::filesystem::exists(dir.file("nowhere")));
+    EXPECT_FALSE(std::filesystem::is_symlink(dir.file("marker")));
+    EXPECT_EQ(readTextOf(dir.file("marker")), "marked\n");
+    EXPECT_EQ(readTextOf(dir.file("dangling")), "again\n");
+    std::filesystem::create_directory(dir.file("folder"));
+    EXPECT_THROW(writeNewFile(dir.file("folder"), "x"), OutputError);
 }
 
 } // namespace
