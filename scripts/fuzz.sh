@@ -2,8 +2,10 @@
 # Fuzzes the input readers with libFuzzer under AddressSanitizer and UndefinedBehaviorSanitizer.
 # Usage: scripts/fuzz.sh TARGET|all SECONDS
 #   TARGET: yaml_scene (YAML scenes), urdf (URDF models), mesh (mesh files through assimp),
-#   trajectory (the trajectory reader of `check` and `render`); all: each of them for SECONDS,
-#   FUZZ_JOBS (default 2) at a time.
+#   trajectory (the trajectory reader of `check` and `render`), scene_steps (a YAML scene loaded,
+#   its simulation built and stepped: the whole path of `frontier run`), batch_plan (batch plans
+#   and their first jobs' scenes, stepped); all: each of them for SECONDS, FUZZ_JOBS (default 2)
+#   at a time.
 # Builds fuzz/ in build-fuzz/ (FUZZ_BUILD_DIR) with clang (cmake -DFRONTIER_FUZZ=ON; only the io and
 # core libraries and the targets), seeds build-fuzz/seeds/TARGET from scenes/ and tests/ (fuzz/seeds.sh) and
 # grows build-fuzz/corpus/TARGET. An io::InputError is the readers' answer to bad input; a crash,
@@ -15,7 +17,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-targets=(yaml_scene urdf mesh trajectory)
+targets=(yaml_scene urdf mesh trajectory scene_steps batch_plan)
 if [[ $# -ne 2 || ! $2 =~ ^[1-9][0-9]*$ ]]; then
   echo "usage: scripts/fuzz.sh TARGET|all SECONDS   (TARGET: ${targets[*]})" >&2
   exit 2
@@ -54,6 +56,9 @@ export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
+# scene_steps reads what yaml_scene reads: the same words.
+declare -A dictionary=([scene_steps]=yaml_scene)
+
 # One target for `seconds`; its exit status.
 # The target writes each input to a file under TMPDIR (fuzz/fuzz_input.h): a folder of the build's,
 # emptied first, so a crashed run leaves nothing in /tmp.
@@ -62,7 +67,7 @@ run_one() {
   mkdir -p "$build/corpus/$t"
   rm -rf "$build/tmp/$t" && mkdir -p "$build/tmp/$t"
   TMPDIR=$(cd "$build/tmp/$t" && pwd) "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout="${FUZZ_TIMEOUT:-5}" -rss_limit_mb=2048 -max_len=65536 \
-    -dict="fuzz/$t.dict" -artifact_prefix="$build/findings/$t-" -print_final_stats=1 \
+    -dict="fuzz/${dictionary[$t]:-$t}.dict" -artifact_prefix="$build/findings/$t-" -print_final_stats=1 \
     "$build/corpus/$t" "$build/seeds/$t" >"$build/logs/$t.log" 2>&1
 }
 
