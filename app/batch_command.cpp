@@ -51,30 +51,25 @@ std::string describeVariation(const PlanJob& job)
     return text;
 }
 
-// The flags of `frontier run` that the job's settings stand for.
+// The flags of `frontier run` that the job's settings stand for (their values as the plan's reader
+// checked them; throws io::InputError at the value otherwise).
 RunOptions runOptionsOf(const BatchPlan& plan, const PlanJob& job, const BatchOptions& options)
 {
     RunOptions run;
     run.scenes = {job.scenePath};
-    if (const std::string* v = findSetting(job, "dt"))
+    run.dt = numberSetting(plan, job, "dt");
+    run.duration = numberSetting(plan, job, "duration");
+    if (const BatchSetting* s = findSetting(job, "solver"))
     {
-        run.dt = std::stod(*v);
+        run.solver = s->value;
     }
-    if (const std::string* v = findSetting(job, "duration"))
+    if (const BatchSetting* s = findSetting(job, "integrator"))
     {
-        run.duration = std::stod(*v);
+        run.integrator = s->value;
     }
-    if (const std::string* v = findSetting(job, "solver"))
+    if (const std::optional<double> n = numberSetting(plan, job, "pgs_iterations"))
     {
-        run.solver = *v;
-    }
-    if (const std::string* v = findSetting(job, "integrator"))
-    {
-        run.integrator = *v;
-    }
-    if (const std::string* v = findSetting(job, "pgs_iterations"))
-    {
-        run.pgsIterations = std::stoi(*v);
+        run.pgsIterations = static_cast<int>(*n); // a whole number from 1 to 1000000 (readBatchPlan)
     }
     run.recordEvery = plan.recordEvery;
     run.fps = plan.fps;
@@ -171,9 +166,9 @@ int batchCommand(const BatchOptions& options)
     try
     {
         plan = readBatchPlan(options.plan);
-        if (!options.shard.empty())
+        if (options.shard)
         {
-            shard = parseShard(options.shard);
+            shard = parseShard(*options.shard);
         }
         else if (options.shardFromEnv)
         {
@@ -286,11 +281,7 @@ int batchCommand(const BatchOptions& options)
                         }
                     }
                 }
-                catch (const io::OutputError& e)
-                {
-                    message = e.what();
-                }
-                catch (const fs::filesystem_error& e)
+                catch (const std::exception& e) // an output or folder error, ...: this job fails
                 {
                     message = e.what();
                 }

@@ -7,6 +7,7 @@
 #include "io/stats.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 namespace frontier::app
@@ -16,19 +17,25 @@ namespace
 {
 namespace fs = std::filesystem;
 
-// A whole number in [low, high] from text, or nullopt.
-std::optional<long long> wholeNumber(const char* text, long long low, long long high)
+// The whole number in [low, high] of the environment variable `name`; nullopt when it is not set (or
+// set to ""). Any other value is refused: a shard index of -1 is no shard.
+std::optional<long long> envNumber(const std::string& name, long long low = 0, long long high = 1000000000)
 {
-    if (text == nullptr)
+    const char* text = std::getenv(name.c_str());
+    if (text == nullptr || *text == '\0')
     {
         return std::nullopt;
     }
-    return io::detail::parseWholeNumber(text, low, high);
-}
-
-std::optional<long long> envNumber(const char* name)
-{
-    return wholeNumber(std::getenv(name), 0, 1000000000);
+    const std::optional<long long> value = io::detail::parseWholeNumber(text, low, high);
+    if (!value)
+    {
+        const std::string shown = std::string(text).substr(0, 40);
+        throw io::InputError("--shard-from-env", 0, 0,
+                             "expected a whole number from " + std::to_string(low) + " to " +
+                                 std::to_string(high) + " in the environment variable " + name + ", got '" +
+                                 shown + (shown.size() < std::strlen(text) ? "...'" : "'"));
+    }
+    return value;
 }
 
 // The stats of a complete job (see JobState), else nullopt.
@@ -125,7 +132,7 @@ Shard shardFromEnvironment(const std::string& variable, std::optional<int> shard
         {
             return *planShards;
         }
-        if (const std::optional<long long> n = wholeNumber(std::getenv("FRONTIER_SHARD_COUNT"), 1, 1000000))
+        if (const std::optional<long long> n = envNumber("FRONTIER_SHARD_COUNT", 1, 1000000))
         {
             return static_cast<int>(*n);
         }
@@ -146,14 +153,12 @@ Shard shardFromEnvironment(const std::string& variable, std::optional<int> shard
     };
     if (!variable.empty())
     {
-        const std::optional<long long> index = envNumber(variable.c_str());
+        const std::optional<long long> index = envNumber(variable);
         if (!index)
         {
             throw io::InputError("--shard-from-env", 0, 0,
                                  "expected a whole number >= 0 in the environment variable " + variable +
-                                     (std::getenv(variable.c_str())
-                                          ? ", got '" + std::string(std::getenv(variable.c_str())) + "'"
-                                          : std::string(", which is not set")));
+                                     ", which is not set");
         }
         return make(*index, countFrom(variable), variable);
     }

@@ -3,14 +3,17 @@
 #include "app/batch_plan.h"
 
 #include "app/batch_scene.h"
+#include "app/model_overrides.h"
 #include "io/file_util.h"
 #include "io/scene.h"
 #include "io/yaml_util.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <glob.h>
+#include <limits>
 #include <map>
 #include <yaml-cpp/yaml.h>
 
@@ -85,13 +88,24 @@ std::string flowText(const YamlNode& node)
     return out.c_str();
 }
 
-// Checks one value of a run setting (the same ranges as the flags of `frontier run`).
+// Checks one value of a run setting (the same ranges as the flags of `frontier run`; a time is a
+// normal double: a subnormal one has lost its precision, and no run takes that many steps).
 void checkRunValue(const YamlSource& source, const std::string& key, const YamlNode& value)
 {
     const std::string what = "'" + key + "'";
     if (key == "dt" || key == "duration")
     {
-        io::detail::toPositive(source, value, what + " (s)");
+        const double seconds = io::detail::toPositive(source, value, what + " (s)");
+        const double most = key == "dt" ? cMaxTimeStepS : cMaxDurationS;
+        if (!(seconds >= std::numeric_limits<double>::min() && seconds <= most))
+        {
+            char range[96];
+            std::snprintf(range, sizeof range, "a number from %.17g to %.6g",
+                          std::numeric_limits<double>::min(), most);
+            failAt(source, value,
+                   "expected " + std::string(range) + " for " + what + " (s), got " +
+                       io::detail::describeNode(value));
+        }
     }
     else if (key == "solver" || key == "integrator")
     {
@@ -181,24 +195,129 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
             scenes.emplace_back(label, path);
         }
     }
-    for (std::size_t i = 0; i < scenes.size(); ++i)
+    std::vector<const std::string*> labels; // sorted: a label named twice sits next to itself
+    labels.reserve(scenes.size());
+    for (const auto& scene : scenes)
     {
-        for (std::size_t j = 0; j < i; ++j)
-        {
-            if (scenes[i].first == scenes[j].first)
-            {
-                failAt(source, node, "the scene '" + scenes[i].first + "' is named twice in 'scenes'");
-            }
-        }
+        labels.push_back(&scene.first);
+    }
+    std::sort(labels.begin(), labels.end(),
+              [](const std::string* a, const std::string* b) { return *a < *b; });
+    const auto twice = std::adjacent_find(
+        labels.begin(), labels.end(), [](const std::string* a, const std::string* b) { return *a == *b; });
+    if (twice != labels.end())
+    {
+        failAt(source, node, "the scene '" + **twice + "' is named twice in 'scenes'");
     }
     return scenes;
+}
+
+// Numbers for values such that equal values share one: a number by its value (0.001 and 1e-3, 2
+// and 2.0), another scalar by its text (and tag), a list by its items' numbers, a map by its pairs'
+// in any order. Each distinct value is numbered once, so a value built of aliases costs its node
+// count, not its size; a value that contains itself equals only itself.
+class ValueNumbers
+{
+  public:
+    std::size_t of(const YamlNode& node)
+    {
+        if (const auto known = mOfNode.find(node.id()); known != mOfNode.end())
+        {
+            return known->second;
+        }
+        mOfNode[node.id()] = mNext++; // while its items are numbered: a value of its own
+        const std::string& tag = node.tag();
+        std::string key;
+        if (node.isScalar())
+        {
+            const bool numeric = tag == "?" || tag == "!" || tag == "tag:yaml.org,2002:int" ||
+                                 tag == "tag:yaml.org,2002:float";
+            const std::optional<double> number =
+                numeric ? io::detail::parseFiniteNumber(node.scalar()) : std::nullopt;
+            if (number)
+            {
+                char text[32];
+                const double value = *number == 0.0 ? 0.0 : *number; // -0 is 0
+                key = "n" + std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+            }
+            else
+            {
+                const bool plain = tag == "?" || tag == "!" || tag == "tag:yaml.org,2002:str";
+                key = "s" + (plain ? std::string() : tag) + "\n" + node.scalar();
+            }
+        }
+        else if (node.isSequence() || node.isMap())
+        {
+            std::vector<std::string> items;
+            for (std::size_t i = 0; i < node.size(); ++i)
+            {
+                items.push_back(node.isSequence() ? std::to_string(of(node[i]))
+                                                  : std::to_string(of(node.key(i))) + ":" +
+                                                        std::to_string(of(node.value(i))));
+            }
+            if (node.isMap())
+            {
+                std::sort(items.begin(), items.end());
+            }
+            key = (node.isSequence() ? "l" : "m") + tag + "\n";
+            for (const std::string& item : items)
+            {
+                key += item + ",";
+            }
+        }
+        else
+        {
+            key = "~";
+        }
+        const std::size_t number = mOfKey.emplace(key, mNext++).first->second;
+        mOfNode[node.id()] = number;
+        return number;
+    }
+
+  private:
+    std::map<std::string, std::size_t> mOfKey;
+    std::map<std::uint32_t, std::size_t> mOfNode;
+    std::size_t mNext = 0;
+};
+
+// A setting with its value as a job keeps it: a run setting's plain text (checked by
+// checkRunValue: a tag or quotes are not part of it), a scene path's YAML flow text (its tags too:
+// the scene loader reads them).
+BatchSetting makeSetting(const std::string& key, const YamlNode& value)
+{
+    const YAML::Mark at = value.mark();
+    return {key, isRunSetting(key) ? value.scalar() : flowText(value), at.line + 1, at.column + 1};
 }
 
 struct Axis
 {
     std::string key;
     std::vector<YamlNode> values;
+    std::vector<BatchSetting> settings; // one per value
 };
+
+// When the plan gives both dt and duration: the most steps it asks for is a number a run takes
+// (checkedStepCount), else an error at the smallest dt.
+void checkStepCount(const YamlSource& source, const std::vector<YamlNode>& dts,
+                    const std::vector<YamlNode>& durations)
+{
+    if (dts.empty() || durations.empty())
+    {
+        return;
+    }
+    auto value = [](const YamlNode& node) { return *io::detail::parseFiniteNumber(node.scalar()); };
+    auto smaller = [&](const YamlNode& a, const YamlNode& b) { return value(a) < value(b); };
+    const YamlNode& dt = *std::min_element(dts.begin(), dts.end(), smaller);
+    const YamlNode& duration = *std::max_element(durations.begin(), durations.end(), smaller);
+    try
+    {
+        checkedStepCount(value(duration), value(dt), source.file);
+    }
+    catch (const io::InputError& e)
+    {
+        failAt(source, dt, "'dt' " + dt.scalar() + " is too small: " + e.message());
+    }
+}
 
 // A key of `vary:` or `set:`: a run setting, or a scene path (at least two parts joined by '.').
 void checkSettingKey(const YamlSource& source, const YAML::Mark& mark, const std::string& key,
@@ -261,16 +380,32 @@ bool isRunSetting(const std::string& key)
     return std::find(cRunSettings.begin(), cRunSettings.end(), key) != cRunSettings.end();
 }
 
-const std::string* findSetting(const PlanJob& job, const std::string& key)
+const BatchSetting* findSetting(const PlanJob& job, const std::string& key)
 {
     for (const BatchSetting& s : job.settings)
     {
         if (s.key == key)
         {
-            return &s.value;
+            return &s;
         }
     }
     return nullptr;
+}
+
+std::optional<double> numberSetting(const BatchPlan& plan, const PlanJob& job, const std::string& key)
+{
+    const BatchSetting* s = findSetting(job, key);
+    if (s == nullptr)
+    {
+        return std::nullopt;
+    }
+    const std::optional<double> value = io::detail::parseFiniteNumber(s->value);
+    if (!value)
+    {
+        throw io::InputError(plan.file, s->line, s->column,
+                             "expected a number for '" + key + "', got '" + s->value + "'");
+    }
+    return value;
 }
 
 BatchPlan readBatchPlan(const std::string& path)
@@ -307,7 +442,7 @@ BatchPlan readBatchPlan(const std::string& path)
         if (map.has(key))
         {
             checkRunValue(source, key, map.get(key));
-            fixed.push_back({key, flowText(map.get(key))});
+            fixed.push_back(makeSetting(key, map.get(key)));
             fixedNodes.push_back(map.get(key));
         }
     }
@@ -333,12 +468,13 @@ BatchPlan readBatchPlan(const std::string& path)
             {
                 failAt(source, keyNode, "'" + key + "' is given twice");
             }
-            fixed.push_back({key, flowText(set.node().value(i))});
+            fixed.push_back(makeSetting(key, set.node().value(i)));
             fixedNodes.push_back(set.node().value(i));
         }
     }
 
     std::vector<Axis> axes;
+    ValueNumbers numbers;
     if (map.has("vary"))
     {
         const YamlNode vary = map.get("vary");
@@ -362,8 +498,8 @@ BatchPlan readBatchPlan(const std::string& path)
             {
                 failAt(source, values, "expected a non-empty list of values for " + what);
             }
-            Axis axis{key, {}};
-            std::vector<std::string> texts;
+            Axis axis{key, {}, {}};
+            std::map<std::size_t, YamlNode> given; // by ValueNumbers: equal values are given twice
             for (std::size_t v = 0; v < values.size(); ++v)
             {
                 const YamlNode value = values[v];
@@ -371,18 +507,40 @@ BatchPlan readBatchPlan(const std::string& path)
                 {
                     checkRunValue(source, key, value);
                 }
-                const std::string valueText = flowText(value);
-                if (std::find(texts.begin(), texts.end(), valueText) != texts.end())
-                {
-                    failAt(source, value, "the value " + valueText + " is given twice for " + what);
-                }
-                texts.push_back(valueText);
                 axis.values.push_back(value);
+                axis.settings.push_back(makeSetting(key, value));
+                const auto [first, fresh] = given.emplace(numbers.of(value), value);
+                if (!fresh)
+                {
+                    const YAML::Mark at = first->second.mark();
+                    failAt(source, value,
+                           "the value " + axis.settings.back().value + " is given twice for " + what +
+                               " (equal to the one at line " + std::to_string(at.line + 1) + ", column " +
+                               std::to_string(at.column + 1) + ")");
+                }
             }
             plan.varyKeys.push_back(key);
             axes.push_back(std::move(axis));
         }
     }
+
+    auto givenValues = [&](const std::string& key)
+    {
+        std::vector<YamlNode> given;
+        if (map.has(key))
+        {
+            given.push_back(map.get(key));
+        }
+        for (const Axis& axis : axes)
+        {
+            if (axis.key == key)
+            {
+                given = axis.values;
+            }
+        }
+        return given;
+    };
+    checkStepCount(source, givenValues("dt"), givenValues("duration"));
 
     if (map.has("outputs"))
     {
@@ -429,6 +587,20 @@ BatchPlan readBatchPlan(const std::string& path)
         plan.perturbPositionM = perturb.optNonNegative("position", "(m)").value_or(plan.perturbPositionM);
         plan.perturbVelocityMps =
             perturb.optNonNegative("velocity", "(m/s)").value_or(plan.perturbVelocityMps);
+    }
+
+    if (scenes.size() > 1000000)
+    {
+        failAt(source, map.keyMark("scenes"), "the plan makes more than 1000000 jobs");
+    }
+    std::size_t cells = 1; // of the grid of `vary`
+    for (const Axis& axis : axes)
+    {
+        cells *= axis.values.size();
+        if (cells * scenes.size() > 1000000)
+        {
+            failAt(source, map.keyMark("vary"), "the plan makes more than 1000000 jobs");
+        }
     }
 
     // Scene paths are checked against every scene: a path no scene has is a mistake of the plan.
@@ -479,15 +651,7 @@ BatchPlan readBatchPlan(const std::string& path)
     }
 
     // The grid: scenes outer, then the vary keys in the plan's order, the last one fastest.
-    std::size_t cells = 1;
-    for (const Axis& axis : axes)
-    {
-        cells *= axis.values.size();
-        if (cells * scenes.size() > 1000000)
-        {
-            failAt(source, map.keyMark("vary"), "the plan makes more than 1000000 jobs");
-        }
-    }
+    plan.jobs.reserve(cells * scenes.size());
     for (const auto& [label, file] : scenes)
     {
         for (std::size_t cell = 0; cell < cells; ++cell)
@@ -496,17 +660,17 @@ BatchPlan readBatchPlan(const std::string& path)
             job.index = plan.jobs.size();
             job.scene = label;
             job.scenePath = file;
-            job.settings = fixed;
             std::size_t rest = cell;
-            std::vector<BatchSetting> variation(axes.size());
+            job.variation.resize(axes.size());
             for (std::size_t a = axes.size(); a-- > 0;)
             {
                 const std::size_t n = axes[a].values.size();
-                variation[a] = {axes[a].key, flowText(axes[a].values[rest % n])};
+                job.variation[a] = axes[a].settings[rest % n];
                 rest /= n;
             }
-            job.variation = variation;
-            job.settings.insert(job.settings.end(), variation.begin(), variation.end());
+            job.settings.reserve(fixed.size() + axes.size());
+            job.settings = fixed;
+            job.settings.insert(job.settings.end(), job.variation.begin(), job.variation.end());
             job.id = jobId(job.index, label, job.settings);
             plan.jobs.push_back(std::move(job));
         }

@@ -11,12 +11,15 @@
 namespace frontier::app
 {
 
-// One setting of a job: a run setting (dt, duration, solver, integrator, pgs_iterations, seed) or
-// a scene path ("bodies.ball.position"), with its value as YAML flow text ("0.001", "[0, 0, 2]").
+// One setting of a job: a run setting (dt, duration, solver, integrator, pgs_iterations, seed) with
+// its value's plain text as checked ("0.001", "pgs"; without a tag or quotes), or a scene path
+// ("bodies.ball.position") with its value as YAML flow text ("0.001", "[0, 0, 2]").
 struct BatchSetting
 {
     std::string key;
     std::string value;
+    int line = 0; // where the plan gives the value (1-based; 0: not known)
+    int column = 0;
 };
 
 struct PlanJob
@@ -57,8 +60,12 @@ struct BatchPlan
 // expected (also for a scene path that no scene of the plan has).
 BatchPlan readBatchPlan(const std::string& path);
 
-// The value of a setting of the job, or nullptr.
-const std::string* findSetting(const PlanJob& job, const std::string& key);
+// The setting `key` of the job, or nullptr.
+const BatchSetting* findSetting(const PlanJob& job, const std::string& key);
+// The value of a numeric run setting of the job (dt, duration, pgs_iterations, seed) as
+// readBatchPlan checked it, nullopt when the job has none; throws io::InputError at the plan's value
+// when it is no finite number.
+std::optional<double> numberSetting(const BatchPlan& plan, const PlanJob& job, const std::string& key);
 
 // Settings that are not scene paths.
 bool isRunSetting(const std::string& key);

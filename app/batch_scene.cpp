@@ -105,6 +105,109 @@ std::string jobRunText(const BatchPlan& plan, const PlanJob& job, const std::str
     }
     return text;
 }
+
+// A scene path's value as set in the scene's tree (its nodes; the setting of the plan).
+struct AppliedSetting
+{
+    YAML::Node value;
+    const BatchSetting* setting;
+};
+
+// Where a node of the scene as written after setting the scene paths comes from.
+struct NodeOrigin
+{
+    YAML::Mark written;                // its place in the written text
+    YAML::Mark original;               // its place in the scene file (null: not from the file)
+    const BatchSetting* set = nullptr; // the setting whose value it is part of
+};
+
+// Pairs the nodes of `made` (the scene's tree with the settings applied: the file's nodes keep the
+// marks of its parse, the values set are `applied`) with those of `read` (the written text parsed
+// again: the same tree), in document order. A node seen before (an alias) is not entered again.
+void collectOrigins(const YAML::Node& made, const YAML::Node& read,
+                    const std::vector<AppliedSetting>& applied, const BatchSetting* set,
+                    std::vector<NodeOrigin>& out)
+{
+    for (const AppliedSetting& a : applied)
+    {
+        set = made.is(a.value) ? a.setting : set;
+    }
+    const YAML::Mark written = read.Mark();
+    if (!out.empty() && written.pos < out.back().written.pos)
+    {
+        return; // an alias of a node of the text before
+    }
+    out.push_back({written, set != nullptr ? YAML::Mark::null_mark() : made.Mark(), set});
+    if (made.Type() != read.Type() || made.size() != read.size())
+    {
+        return;
+    }
+    if (made.IsSequence())
+    {
+        for (std::size_t i = 0; i < made.size(); ++i)
+        {
+            collectOrigins(made[i], read[i], applied, set, out);
+        }
+    }
+    else if (made.IsMap())
+    {
+        for (auto m = made.begin(), r = read.begin(); m != made.end() && r != read.end(); ++m, ++r)
+        {
+            collectOrigins(m->first, r->first, applied, set, out);
+            collectOrigins(m->second, r->second, applied, set, out);
+        }
+    }
+}
+
+// The scene loader's error `e` about the scene as written after setting the job's scene paths
+// (`text`, from `made`), at the place it names in the user's files instead: in the scene file, or,
+// for a value the plan set, at that value in the plan.
+io::InputError relocatedError(const io::InputError& e, const BatchPlan& plan, const PlanJob& job,
+                              const YAML::Node& made, const std::vector<AppliedSetting>& applied,
+                              const std::string& text)
+{
+    if (e.file() != job.scenePath || e.line() <= 0)
+    {
+        return e;
+    }
+    std::vector<NodeOrigin> origins;
+    try
+    {
+        collectOrigins(made, YAML::Load(text), applied, nullptr, origins);
+    }
+    catch (const YAML::Exception&)
+    {
+        return io::InputError(job.scenePath, 0, 0, e.message()); // (text written by yaml-cpp: not expected)
+    }
+    // The node the error names: the last one that starts at or before its place; a node the
+    // settings made (a new key) counts as the next one (its value).
+    const int line = e.line() - 1, column = std::max(0, e.column() - 1);
+    std::size_t at = origins.size();
+    for (std::size_t i = 0; i < origins.size(); ++i)
+    {
+        const YAML::Mark& w = origins[i].written;
+        if (w.line > line || (w.line == line && w.column > column))
+        {
+            break;
+        }
+        at = i;
+    }
+    while (at < origins.size() && origins[at].set == nullptr && origins[at].original.is_null())
+    {
+        ++at;
+    }
+    if (at == origins.size())
+    {
+        return io::InputError(job.scenePath, 0, 0, e.message());
+    }
+    if (const BatchSetting* s = origins[at].set)
+    {
+        return io::InputError(plan.file, s->line, s->column,
+                              "'" + s->key + "' set for " + job.scene + ": " + e.message());
+    }
+    return io::InputError(job.scenePath, origins[at].original.line + 1, origins[at].original.column + 1,
+                          e.message());
+}
 } // namespace
 
 std::string applySceneSetting(YAML::Node root, const std::string& path, const YAML::Node& value)
@@ -238,26 +341,36 @@ BatchScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::U
     else
     {
         YAML::Node root = parseScene(job.scenePath);
+        std::vector<AppliedSetting> applied;
         for (const BatchSetting& s : job.settings)
         {
             if (!isRunSetting(s.key))
             {
-                const std::string problem = applySceneSetting(root, s.key, YAML::Load(s.value));
+                applied.push_back({YAML::Load(s.value), &s});
+                const std::string problem = applySceneSetting(root, s.key, applied.back().value);
                 if (!problem.empty())
                 {
-                    throw io::InputError(job.scenePath, 0, 0, "'" + s.key + "': " + problem);
+                    throw io::InputError(plan.file, s.line, s.column,
+                                         "'" + s.key + "' does not fit " + job.scene + ": " + problem);
                 }
             }
         }
         YAML::Emitter text;
         text << root;
         sceneText = text.c_str();
-        scene.loaded = run::loadSceneText(sceneText, job.scenePath, urdf);
+        try
+        {
+            scene.loaded = run::loadSceneText(sceneText, job.scenePath, urdf);
+        }
+        catch (const io::InputError& e)
+        {
+            throw relocatedError(e, plan, job, root, applied, sceneText);
+        }
     }
-    if (const std::string* seed = findSetting(job, "seed"))
+    if (const std::optional<double> seed = numberSetting(plan, job, "seed"))
     {
-        perturbInitialState(scene.loaded.model, std::stoull(*seed), plan.perturbPositionM,
-                            plan.perturbVelocityMps);
+        perturbInitialState(scene.loaded.model, static_cast<std::uint64_t>(*seed), plan.perturbPositionM,
+                            plan.perturbVelocityMps); // a whole number from 0 to 1000000 (readBatchPlan)
         run::checkFiniteEnergy(scene.loaded.model, job.scenePath);
     }
     scene.loaded.report.inputFiles = reads.files();

@@ -114,9 +114,10 @@ struct SweepOptions
 struct BatchOptions
 {
     std::string plan;
-    std::string out;                // DIR: DIR/jobs/ID/, DIR/batch.csv, DIR/summary.md, DIR/slurm/
-    bool list = false;              // print the jobs, run nothing
-    std::string shard;              // "I/N": only jobs whose index mod N is I
+    std::string out;   // DIR: DIR/jobs/ID/, DIR/batch.csv, DIR/summary.md, DIR/slurm/
+    bool list = false; // print the jobs, run nothing
+    // --shard "I/N": only jobs whose index mod N is I
+    std::optional<std::string> shard;
     bool shardFromEnv = false;      // the shard from Slurm, Kubernetes or `shardVariable`
     std::string shardVariable;      // --shard-from-env VAR: the index's variable
     std::optional<int> shards;      // shard count (--slurm's array; --shard-from-env's fallback)

@@ -1,5 +1,6 @@
 // app/main.cpp: command-line parsing (CLI11) and exit codes of `frontier`.
 #include "app/commands.h"
+#include "app/model_overrides.h"
 #include "app/sweep_chart.h"
 #include "io/input_digest.h"
 #include "io/suggest.h"
@@ -49,8 +50,8 @@ CLI::Validator numberIn(double low, double high, bool positive, bool count, cons
 
 // Ranges (README "Commands"): times in seconds, counts bounded where a larger one could only be a
 // typo (a run's step count is bounded again from --duration / --dt, run/run_loop.h).
-const CLI::Validator cTimeStep = numberIn(0.0, 1e6, true, false);       // s
-const CLI::Validator cDuration = numberIn(0.0, 1e12, true, false);      // s
+const CLI::Validator cTimeStep = numberIn(0.0, cMaxTimeStepS, true, false); // s
+const CLI::Validator cDuration = numberIn(0.0, cMaxDurationS, true, false); // s
 const CLI::Validator cStepCount = numberIn(1.0, 1e12, false, true);     // steps (run/run_loop.h cMaxSteps)
 const CLI::Validator cIterations = numberIn(1.0, 1e6, false, true);     // solver sweeps
 const CLI::Validator cEvery = numberIn(1.0, 2147483647.0, false, true); // steps between rows

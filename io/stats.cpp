@@ -23,6 +23,55 @@ Json number(double value)
     return std::isfinite(value) ? Json(value) : Json(nullptr);
 }
 
+// A value of a stats file for a message: a scalar as JSON, at most 40 characters of it; an array
+// or an object by its size (a value of a damaged file may be nested deep or megabytes long).
+std::string shown(const nlohmann::json& v)
+{
+    if (v.is_array())
+    {
+        return "an array of " + std::to_string(v.size()) + " items";
+    }
+    if (v.is_object())
+    {
+        return "an object of " + std::to_string(v.size()) + " keys";
+    }
+    const std::string text = v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return text.size() <= 40 ? text : text.substr(0, 40) + "...";
+}
+
+// The byte offset of the first '[' or '{' of `text` (JSON) nested deeper than `most`, or npos.
+// nlohmann-json parses any depth, but a deep value can overflow the stack of what walks it.
+std::size_t tooDeep(const std::string& text, int most)
+{
+    int depth = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < text.size(); ++i)
+    {
+        const char c = text[i];
+        if (inString)
+        {
+            i += c == '\\' ? 1 : 0;
+            inString = c != '"';
+        }
+        else if (c == '"')
+        {
+            inString = true;
+        }
+        else if (c == '[' || c == '{')
+        {
+            if (++depth > most)
+            {
+                return i;
+            }
+        }
+        else if (c == ']' || c == '}')
+        {
+            --depth;
+        }
+    }
+    return std::string::npos;
+}
+
 class Reader
 {
   public:
@@ -42,7 +91,7 @@ class Reader
         const nlohmann::json& v = at(key);
         if (!v.is_string())
         {
-            throw InputError(mPath, 0, 0, "expected a string for '" + key + "', got " + v.dump());
+            throw InputError(mPath, 0, 0, "expected a string for '" + key + "', got " + shown(v));
         }
         return v.get<std::string>();
     }
@@ -55,7 +104,7 @@ class Reader
         }
         if (!v.is_number())
         {
-            throw InputError(mPath, 0, 0, "expected a number for '" + key + "', got " + v.dump());
+            throw InputError(mPath, 0, 0, "expected a number for '" + key + "', got " + shown(v));
         }
         return v.get<double>();
     }
@@ -64,7 +113,7 @@ class Reader
         const nlohmann::json& v = at(key);
         if (!v.is_number_integer())
         {
-            throw InputError(mPath, 0, 0, "expected an integer for '" + key + "', got " + v.dump());
+            throw InputError(mPath, 0, 0, "expected an integer for '" + key + "', got " + shown(v));
         }
         return v.get<long>();
     }
@@ -74,7 +123,7 @@ class Reader
         if (!v.is_array() ||
             !std::all_of(v.begin(), v.end(), [](const nlohmann::json& item) { return item.is_string(); }))
         {
-            throw InputError(mPath, 0, 0, "expected an array of strings for '" + key + "', got " + v.dump());
+            throw InputError(mPath, 0, 0, "expected an array of strings for '" + key + "', got " + shown(v));
         }
         std::vector<std::string> out;
         for (const nlohmann::json& item : v)
@@ -88,7 +137,7 @@ class Reader
         const nlohmann::json& v = at(key);
         if (!v.is_boolean())
         {
-            throw InputError(mPath, 0, 0, "expected true or false for '" + key + "', got " + v.dump());
+            throw InputError(mPath, 0, 0, "expected true or false for '" + key + "', got " + shown(v));
         }
         return v.get<bool>();
     }
@@ -102,14 +151,14 @@ std::vector<ActuatorStats> readActuators(const std::string& path, const nlohmann
 {
     if (!array.is_array())
     {
-        throw InputError(path, 0, 0, "expected an array of objects for 'actuators', got " + array.dump());
+        throw InputError(path, 0, 0, "expected an array of objects for 'actuators', got " + shown(array));
     }
     std::vector<ActuatorStats> out;
     for (const nlohmann::json& entry : array)
     {
         if (!entry.is_object())
         {
-            throw InputError(path, 0, 0, "expected an object in 'actuators', got " + entry.dump());
+            throw InputError(path, 0, 0, "expected an object in 'actuators', got " + shown(entry));
         }
         const Reader r(path, entry);
         ActuatorStats a;
@@ -243,6 +292,13 @@ void writeStats(const std::string& path, const RunStats& stats)
 RunStats readStats(const std::string& path)
 {
     const std::string text = detail::readTextFile(path);
+    if (const std::size_t deep = tooDeep(text, cMaxStatsDepth); deep != std::string::npos)
+    {
+        const detail::TextPosition at = detail::positionOf(text, deep);
+        throw InputError(path, at.line, at.column,
+                         "JSON nested deeper than " + std::to_string(cMaxStatsDepth) +
+                             " levels; expected a stats file (3 levels)");
+    }
     nlohmann::json json;
     try
     {
@@ -251,7 +307,9 @@ RunStats readStats(const std::string& path)
     catch (const nlohmann::json::parse_error& e)
     {
         const detail::TextPosition at = detail::positionOf(text, e.byte > 0 ? e.byte - 1 : 0);
-        throw InputError(path, at.line, at.column, std::string("invalid JSON: ") + e.what());
+        const std::string what = e.what(); // quotes the token read last: keep a long one short
+        throw InputError(path, at.line, at.column,
+                         "invalid JSON: " + (what.size() <= 200 ? what : what.substr(0, 200) + "..."));
     }
     if (!json.is_object())
     {

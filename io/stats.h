@@ -74,8 +74,10 @@ void fillModelCounts(RunStats& stats, const core::Model& model);
 // Writes pretty JSON atomically (temporary file + rename); throws OutputError (io/atomic_file.h).
 void writeStats(const std::string& path, const RunStats& stats);
 
-// Reads a stats file; throws InputError for unreadable JSON (with line and column), missing keys
-// or values of the wrong type. Unknown numeric keys go to `extra`.
+// Reads a stats file; throws InputError for unreadable JSON (with line and column), JSON nested
+// deeper than cMaxStatsDepth (at the bracket that goes deeper), missing keys or values of the wrong
+// type (the value shown shortened). Unknown numeric keys go to `extra`.
+inline constexpr int cMaxStatsDepth = 64; // a stats file written by writeStats is 3 deep
 RunStats readStats(const std::string& path);
 
 } // namespace frontier::io

@@ -250,6 +250,42 @@ TEST_F(BatchInputs, StatsWithoutADigestAreRedone)
     EXPECT_EQ(stats(1).at("inputs_digest"), stats(0).at("inputs_digest"));
 }
 
+// A stats file nested 200 000 deep (in its scene or its warnings) is a damaged result: the merge
+// names the file and counts the job missing, the batch runs it again; a long value is shown short.
+TEST_F(BatchInputs, DeeplyNestedOrHugeStatsAreADamagedResult)
+{
+    const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+    std::ofstream(statsPath(1)) << "{\"scene\": " << deep << "}\n";
+    std::string withWarnings = readText(statsPath(2));
+    const std::size_t warnings = withWarnings.find("\"warnings\": []");
+    ASSERT_NE(warnings, std::string::npos) << withWarnings;
+    withWarnings.replace(warnings, 15, "\"warnings\": " + deep);
+    std::ofstream(statsPath(2)) << withWarnings;
+    std::string longSteps = readText(statsPath(3));
+    const std::size_t steps = longSteps.find("\"steps\": ");
+    ASSERT_NE(steps, std::string::npos) << longSteps;
+    longSteps.insert(steps + 9, "\"" + std::string(100000, 'z') + "\", \"old_steps\": ");
+    std::ofstream(statsPath(3)) << longSteps;
+
+    const Result merged = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --merge");
+    EXPECT_EQ(merged.exitCode, 1) << merged.err;
+    for (const std::size_t job : {1U, 2U, 3U})
+    {
+        EXPECT_NE(merged.err.find(statsPath(job).string() + ":"), std::string::npos) << merged.err;
+        EXPECT_NE(merged.err.find("job " + ids[job] + " missing"), std::string::npos) << merged.err;
+    }
+    EXPECT_NE(merged.err.find("error: JSON nested deeper than 64 levels"), std::string::npos) << merged.err;
+    EXPECT_NE(merged.err.find("expected an integer for 'steps', got \"" + std::string(39, 'z') + "...\n"),
+              std::string::npos)
+        << merged.err;
+    EXPECT_LT(merged.err.size(), 4000U);
+
+    const Result r = batch();
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find(": 3 run, 1 complete before"), std::string::npos) << r.out;
+    expectAllSkipped();
+}
+
 TEST_F(BatchInputs, AnEditedUrdfRedoesTheJobsOfItsScene)
 {
     const auto changed = editAndRerun("arm.urdf", armUrdf(1.5), {0, 1});

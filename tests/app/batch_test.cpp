@@ -165,6 +165,22 @@ TEST(Batch, ListExpandsTheGridWithStableDistinctIds)
     EXPECT_FALSE(fs::exists(dir.out("b")));
 }
 
+// For each case (a plan's text, written as plan.yaml, and a message): `batch plan.yaml --out b
+// ARGS` exits with `exitCode` and its stderr holds `prefix` and the message.
+void expectBatchMessages(const TestDir& dir, const std::vector<std::pair<std::string, std::string>>& cases,
+                         const std::string& args, int exitCode, const std::string& prefix)
+{
+    for (const auto& [text, expected] : cases)
+    {
+        const std::string plan = dir.write("plan.yaml", text);
+        const Result r =
+            dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")) + " " + args);
+        EXPECT_EQ(r.exitCode, exitCode) << text << r.err;
+        EXPECT_NE(r.err.find(prefix + expected), std::string::npos) << text << "\n" << r.err;
+        fs::remove_all(dir.out("b"));
+    }
+}
+
 TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
 {
     TestDir dir;
@@ -182,15 +198,110 @@ TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
          ":3:10: error: no scene file"},
         {"duration: 1\nvary: {dt: [0.001]}\nscenes: ['*.nothing']\n",
          ":3:10: error: the glob '*.nothing' matches no file"},
+        // A time step that is no normal double, or too small for the duration.
+        {"scenes: [ball.yaml]\nduration: 0.1\ndt: 5e-324\n",
+         ":3:5: error: expected a number from 2.2250738585072014e-308 to 1e+06 for 'dt' (s), got '5e-324'"},
+        {"scenes: [ball.yaml]\nduration: 1\ndt: 1e-300\n",
+         ":3:5: error: 'dt' 1e-300 is too small: duration 1 s at dt 1e-300 s makes 1e+300 steps"},
+        {"scenes: [ball.yaml]\nvary: {duration: [1, 1e9]}\ndt: 1e-4\n",
+         ":3:5: error: 'dt' 1e-4 is too small: duration 1e+09 s at dt 0.0001 s makes 1e+13 steps"},
+        // Tags other than the standard ones of the value's type.
+        {"scenes: [ball.yaml]\nduration: 0.1\ndt: !!str 0.001\n",
+         ":3:5: error: expected a number for 'dt' (s), got one tagged 'tag:yaml.org,2002:str'"},
+        {"scenes: [ball.yaml]\nduration: 0.1\nseed: !!float 2.5\n",
+         ":3:7: error: expected an integer for 'seed', got '2.5'"},
+        // Values of a vary key are compared as what they are: 1e-3 is 0.001.
+        {"scenes: [ball.yaml]\nvary:\n  dt: [0.001, 1e-3]\n",
+         ":3:15: error: the value 1e-3 is given twice for 'dt' in 'vary' (equal to the one at line 3, "
+         "column 8)"},
+        {"scenes: [ball.yaml]\nvary:\n  bodies.ball.position: [[0, 0, 1], [0.0, 0, 1.0]]\n",
+         ":3:37: error: the value [0.0, 0, 1.0] is given twice for 'bodies.ball.position' in 'vary'"},
+        {"scenes: [ball.yaml]\nvary:\n  seed: [!!int 7, 7]\n",
+         ":3:19: error: the value 7 is given twice for 'seed' in 'vary'"},
     };
-    for (const auto& [text, expected] : cases)
+    expectBatchMessages(dir, cases, "--list", 2, "plan.yaml");
+}
+
+// Standard YAML tags on a plan's values (!!float, !!int, !!str where the value is of that type)
+// are the values without them: the same jobs (ids) as the plain plan, run with those settings.
+TEST(Batch, TaggedValuesAreThePlainValues)
+{
+    TestDir dir;
+    dir.write("ball.yaml", readText(scenesDir() + "/bouncing_ball.yaml"));
+    const std::string tagged =
+        dir.write("tagged.yaml", "scenes: [ball.yaml]\nduration: !!float 0.01\ndt: !!float 0.001\n"
+                                 "pgs_iterations: !!int 5\nsolver: !!str pgs\n"
+                                 "vary: {seed: [!!int 3, 4], integrator: [!!str euler, rattle]}\n");
+    const std::string plain = dir.write("plain.yaml", "scenes: [ball.yaml]\nduration: 0.01\ndt: 0.001\n"
+                                                      "pgs_iterations: 5\nsolver: pgs\n"
+                                                      "vary: {seed: [3, 4], integrator: [euler, rattle]}\n");
+    const Result listed = dir.run("batch " + shellQuote(tagged) + " --out x --list");
+    ASSERT_EQ(listed.exitCode, 0) << listed.err;
+    EXPECT_EQ(listed.out, dir.run("batch " + shellQuote(plain) + " --out x --list").out);
+    EXPECT_NE(listed.out.find("seed=3 integrator=euler"), std::string::npos) << listed.out;
+
+    const std::string out = dir.out("t");
+    const Result r = dir.run("batch " + shellQuote(tagged) + " --out " + shellQuote(out) + " --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<std::string> jobs = ids(listed.out);
+    ASSERT_EQ(jobs.size(), 4U);
+    for (const std::string& id : jobs)
     {
-        const std::string plan = dir.write("plan.yaml", text);
-        const Result r =
-            dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")) + " --list");
-        EXPECT_EQ(r.exitCode, 2) << text;
-        EXPECT_NE(r.err.find("plan.yaml" + expected), std::string::npos) << text << "\n" << r.err;
+        const std::string stats = readText(fs::path(out) / "jobs" / id / "stats.json");
+        EXPECT_NE(stats.find("\"completed\": true"), std::string::npos) << id << "\n" << stats;
+        EXPECT_NE(stats.find("\"solver\": \"pgs\""), std::string::npos) << stats;
+        EXPECT_NE(stats.find("\"pgs_iterations\": 5,"), std::string::npos) << stats;
+        EXPECT_NE(stats.find("\"steps\": 10,"), std::string::npos) << stats;
     }
+
+    // A tagged scene path's value reaches the scene as tagged (the scene loader reads its tags).
+    const std::string scenePath = dir.write(
+        "scene_path.yaml", "scenes: [ball.yaml]\nduration: 0.01\nset: {bodies.ball.mass: !!float 2}\n");
+    const Result set = dir.run("batch " + shellQuote(scenePath) + " --out " + shellQuote(dir.out("s")));
+    EXPECT_EQ(set.exitCode, 0) << set.err;
+}
+
+// Errors of the scene loader in a job with scene paths name the user's files: a line of the scene
+// file where the scene gives the value, the plan's value where the plan sets it (also for a key the
+// plan adds), never a line of the scene as written after setting the paths.
+TEST(Batch, ScenePathJobErrorsNameTheUsersFiles)
+{
+    TestDir dir;
+    std::string ball = readText(scenesDir() + "/bouncing_ball.yaml");
+    dir.write("ball.yaml", ball);
+    ball.replace(ball.find("mass: 0.5"), 9, "mass: -1 ");
+    dir.write("bad_ball.yaml", ball); // line 15: "    mass: -1 ..."
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"scenes: [bad_ball.yaml]\nduration: 0.01\nset: {bodies.ball.position: [0, 0, 2]}\n",
+         "bad_ball.yaml:15:11: error: expected a positive number for 'mass' in body 'ball'"},
+        {"scenes: [ball.yaml]\nduration: 0.01\nvary:\n  bodies.ball.mass: [1, -2]\n",
+         "plan.yaml:4:25: error: 'bodies.ball.mass' set for ball.yaml: expected a positive number for "
+         "'mass' in body 'ball'"},
+        {"scenes: [ball.yaml]\nduration: 0.01\nset: {bodies.ball.colour: [1, 0, 0]}\n",
+         "plan.yaml:3:27: error: 'bodies.ball.colour' set for ball.yaml: unknown key 'colour'"},
+    };
+    expectBatchMessages(dir, cases, "--quiet", 1, "");
+}
+
+// --shard "" is no shard (not every job), and a shard index of -1 in the environment is refused,
+// not read as missing.
+TEST(Batch, AnEmptyShardOrANegativeTaskIdIsRefused)
+{
+    TestDir dir;
+    const std::string plan = dir.write("plan.yaml", smallPlan());
+    const Result empty = dir.run("batch " + shellQuote(plan) + " --out x --list --shard ''");
+    EXPECT_EQ(empty.exitCode, 2) << empty.out;
+    EXPECT_NE(empty.err.find("--shard: error: expected I/N with 0 <= I < N (shard I of N), got ''"),
+              std::string::npos)
+        << empty.err;
+    ::setenv("SLURM_ARRAY_TASK_ID", "-1", 1);
+    const Result negative = dir.run("batch " + shellQuote(plan) + " --out x --list --shard-from-env");
+    ::unsetenv("SLURM_ARRAY_TASK_ID");
+    EXPECT_EQ(negative.exitCode, 2) << negative.out;
+    EXPECT_NE(negative.err.find("expected a whole number from 0 to 1000000000 in the environment variable "
+                                "SLURM_ARRAY_TASK_ID, got '-1'"),
+              std::string::npos)
+        << negative.err;
 }
 
 // A plan of `scene` (a box on a 20 degree incline) at contact.friction 0.5 and 0.1 for 0.5 s: the
