@@ -92,7 +92,9 @@ int sweepCommand(const SweepOptions& options)
                          options.scene);
         // None of our files may be one the sweep read; the folder must take them before minutes of
         // simulation are spent.
-        std::vector<OutputPath> written = {{"--out", (folder / "sweep.csv").string(), false, ""}};
+        const std::string csv = (folder / "sweep.csv").string();
+        std::vector<OutputPath> written = {{"--out", csv, false, ""},
+                                           {"--out", failedPath(csv), false, "a stopped sweep's cells"}};
         for (const char* name : cSweepChartFiles)
         {
             written.push_back({"--out", (folder / name).string(), false, ""});
