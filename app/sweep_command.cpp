@@ -9,6 +9,7 @@
 #include "io/atomic_file.h"
 #include "io/file_util.h"
 #include "io/scene.h"
+#include "run/run_loop.h"
 #include "run/scene_loading.h"
 #include "study/study.h"
 
@@ -30,6 +31,31 @@ int fail(const std::string& message, int code)
     std::cerr << "frontier: " << message << "\n";
     return code;
 }
+
+// A sweep stopped by a signal: the finished cells go to DIR/sweep.failed.csv (the name a stopped
+// run's rows take, app/outputs.h), so that nothing under the final names passes for a finished
+// sweep; no chart. Returns 128 + the signal.
+int interrupted(const SweepOptions& options, const study::SweepResult& result, std::size_t cellCount)
+{
+    const std::string csv = failedPath((fs::path(options.out) / "sweep.csv").string());
+    try
+    {
+        study::writeSweepCsv(csv, options.scene, result);
+    }
+    catch (const io::OutputError& e)
+    {
+        return fail(e.what(), cExitBadInput);
+    }
+    if (!result.cells.empty())
+    {
+        std::printf("%s\n", study::formatSweepTable(result, options.chartAccuracy).c_str());
+        std::fflush(stdout);
+    }
+    return fail(run::signalName(result.interruptedBy) + ": the sweep stopped after " +
+                    std::to_string(result.cells.size()) + " of " + std::to_string(cellCount) +
+                    " cells; the finished ones are in " + csv + " (no chart: a finished sweep draws it)",
+                run::interruptedExitCode(result.interruptedBy));
+}
 } // namespace
 
 int sweepCommand(const SweepOptions& options)
@@ -40,6 +66,7 @@ int sweepCommand(const SweepOptions& options)
     double requestedS = 0.0;
     std::optional<study::ExternalReference> external;
     const fs::path folder(options.out);
+    run::installInterruptHandlers();
     try
     {
         const io::detail::InputFileLog reads; // the scene, every file it reads, the reference CSV
@@ -65,7 +92,9 @@ int sweepCommand(const SweepOptions& options)
                          options.scene);
         // None of our files may be one the sweep read; the folder must take them before minutes of
         // simulation are spent.
-        std::vector<OutputPath> written = {{"--out", (folder / "sweep.csv").string(), false, ""}};
+        const std::string csv = (folder / "sweep.csv").string();
+        std::vector<OutputPath> written = {{"--out", csv, false, ""},
+                                           {"--out", failedPath(csv), false, "a stopped sweep's cells"}};
         for (const char* name : cSweepChartFiles)
         {
             written.push_back({"--out", (folder / name).string(), false, ""});
@@ -145,11 +174,17 @@ int sweepCommand(const SweepOptions& options)
     {
         std::fprintf(stderr, "\r\033[K");
     }
+    if (result.interruptedBy != 0)
+    {
+        return interrupted(options, result, grid.integrators.size() * grid.solvers.size() * grid.dts.size());
+    }
 
     const std::string csv = (folder / "sweep.csv").string();
     try
     {
         study::writeSweepCsv(csv, options.scene, result);
+        std::error_code ignored; // the cells of an earlier sweep of this folder that was stopped
+        fs::remove(failedPath(csv), ignored);
     }
     catch (const io::OutputError& e)
     {

@@ -167,19 +167,22 @@ std::string percentDecoded(const std::string& text)
     return out;
 }
 
+PackagePathEntry splitPackagePathEntry(const std::string& entry)
+{
+    const std::size_t eq = entry.find('=');
+    if (eq != std::string::npos && eq > 0 && entry.find('/') > eq)
+    {
+        return {entry.substr(0, eq), entry.substr(eq + 1)};
+    }
+    return {"", entry};
+}
+
 PackagePaths::PackagePaths(std::vector<std::string> packagePaths)
 {
     for (const std::string& entry : packagePaths)
     {
-        const std::size_t eq = entry.find('=');
-        if (eq != std::string::npos && eq > 0 && entry.find('/') > eq)
-        {
-            mRoots.push_back({"--package-path", entry.substr(0, eq), entry.substr(eq + 1)});
-        }
-        else
-        {
-            mRoots.push_back({"--package-path", "", entry});
-        }
+        PackagePathEntry split = splitPackagePathEntry(entry);
+        mRoots.push_back({"--package-path", std::move(split.name), std::move(split.dir)});
     }
     for (const char* variable :
          {"ROS_PACKAGE_PATH", "GAZEBO_MODEL_PATH", "GZ_SIM_RESOURCE_PATH", "IGN_GAZEBO_RESOURCE_PATH"})

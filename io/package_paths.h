@@ -31,6 +31,15 @@ struct ResolvedUri
     std::string notFound; // when path is empty: what was missing and every place looked in
 };
 
+// A --package-path entry as PackagePaths reads it: `NAME=DIR` when a '=' follows a non-empty NAME
+// without '/', else a folder (a package or a folder of packages) with an empty name.
+struct PackagePathEntry
+{
+    std::string name;
+    std::string dir;
+};
+PackagePathEntry splitPackagePathEntry(const std::string& entry);
+
 class PackagePaths
 {
   public:

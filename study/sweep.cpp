@@ -308,7 +308,8 @@ using RunFraction = std::function<void(double)>;
 // The reference: rattle linear (rattle4 when the grid has rattle4) at the finest dt /
 // cReferenceRefinement, euler when that fails
 // (reference.fallback says why). work leaves with the reference's settings. Throws
-// SweepReferenceError when euler fails too.
+// SweepReferenceError when euler fails too. Returns no samples when a signal stopped it
+// (run::interruptSignal).
 Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedule& schedule,
                      const std::vector<int>& bodies,
                      const std::function<RunFraction(const std::string&)>& report, SweepReference& reference)
@@ -335,6 +336,10 @@ Samples runReference(core::Model& work, const SweepGrid& grid, const SweepSchedu
                 report("reference " + reference.method.label() + " dt " + formatSeconds(reference.dt) + " s"),
                 {});
             reference.wallSeconds = run.summary.wallSeconds;
+            if (run.summary.interruptedBy != 0)
+            {
+                return {};
+            }
             if (run.summary.finite && run.samples.size() == schedule.sampleUnits.size() &&
                 allFinite(run.samples))
             {
@@ -427,8 +432,10 @@ void finishCell(double trajectoryError, SweepCell& cell)
 }
 
 // One cell: work run with the cell's method and dt, compared with the reference at every sample,
-// then timed again (up to cMaxTimingRuns runs in cTimingSeconds) when it was short.
-void runCell(core::Model& work, const core::Model& model, const SweepSchedule& schedule,
+// then timed again (up to cMaxTimingRuns runs in cTimingSeconds) when it was short. False when a
+// signal stopped its run (run::interruptSignal): the cell has no result; one that stops a repeat
+// leaves the fastest of the repeats before it.
+bool runCell(core::Model& work, const core::Model& model, const SweepSchedule& schedule,
              const std::vector<int>& bodies, const Samples& referenceSamples, const RunFraction& fraction,
              SweepCell& cell)
 {
@@ -458,6 +465,10 @@ void runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
     try
     {
         const SampledRun run = runSampled(work, schedule, bodies, fraction, compare);
+        if (run.summary.interruptedBy != 0)
+        {
+            return false;
+        }
         takeSummary(run.summary, compared, schedule.sampleUnits.size(), trajectoryError, cell);
         // Repeats give the same trajectory (the runs are deterministic); only the time differs.
         double spent = run.summary.wallSeconds;
@@ -465,7 +476,12 @@ void runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
         again.steps = cell.steps;
         for (int repeat = 1; cell.survived && repeat < cMaxTimingRuns && spent < cTimingSeconds; ++repeat)
         {
-            const double wall = run::runSimulation(work, again, {}).wallSeconds;
+            const RunSummary repeated = run::runSimulation(work, again, {});
+            if (repeated.interruptedBy != 0)
+            {
+                break;
+            }
+            const double wall = repeated.wallSeconds;
             cell.wallSeconds = std::min(cell.wallSeconds, wall);
             spent += wall;
         }
@@ -476,6 +492,7 @@ void runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
         cell.survived = false;
     }
     finishCell(trajectoryError, cell);
+    return true;
 }
 } // namespace
 
@@ -511,6 +528,11 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     else
     {
         referenceSamples = runReference(work, grid, schedule, bodies, report, result.reference);
+        if (const int signal = run::interruptSignal(); signal != 0)
+        {
+            result.interruptedBy = signal;
+            return result;
+        }
     }
 
     // The cells, one after another.
@@ -528,8 +550,12 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
                 cell.dt = dt;
                 cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
                 cell.bodies = result.bodies;
-                runCell(work, model, schedule, compared, referenceSamples,
-                        report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell);
+                if (!runCell(work, model, schedule, compared, referenceSamples,
+                             report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell))
+                {
+                    result.interruptedBy = run::interruptSignal();
+                    return result;
+                }
                 result.cells.push_back(std::move(cell));
             }
         }

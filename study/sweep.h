@@ -134,6 +134,9 @@ struct SweepResult
     std::vector<SweepCell> cells;    // integrators x solvers x time steps (coarse to fine)
     int bodies = 0;                  // moving bodies
     core::ContactTolerances contact; // the cells' contact tolerances over the scene's (SweepGrid)
+    // The signal that stopped the sweep (run::interruptSignal), 0: none. Then `cells` holds the
+    // cells finished before it, in grid order (none when it came during the reference run).
+    int interruptedBy = 0;
 };
 
 // Progress of the sweep: the run being done ("reference" or a cell's label), its index among
@@ -162,6 +165,8 @@ double sweepDuration(const core::Model& model, std::optional<double> duration);
 // fails with euler too, core::UnsupportedModelError when the scene cannot be simulated at all.
 // With `external`, no reference run: the errors are those of its body against it; throws
 // SweepInputError when its body is not a moving body of the model or a sample time is outside it.
+// SIGINT, SIGTERM and SIGHUP, once run::installInterruptHandlers caught them, stop the run under way
+// between steps; that run is dropped and the sweep returns with interruptedBy set.
 SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
                      const SweepProgress& progress, const ExternalReference* external = nullptr);
 

@@ -2,6 +2,7 @@
 #include "study/sweep_report.h"
 
 #include "io/atomic_file.h"
+#include "run/run_loop.h"
 
 #include <algorithm>
 #include <charconv>
@@ -138,6 +139,10 @@ void writeSweepCsv(const std::string& path, const std::string& scene, const Swee
     if (result.contact.relativeTolerance)
     {
         text += " contact_relative_tolerance=" + exact(*result.contact.relativeTolerance);
+    }
+    if (result.interruptedBy != 0) // the cells finished before the signal, not the whole grid
+    {
+        text += " interrupted=" + run::signalName(result.interruptedBy);
     }
     text += "\n";
     text += cSweepCsvHeader;

@@ -1,6 +1,8 @@
 // tests/app/app_test_util.h: running the `frontier` executable in a per-test folder.
 #pragma once
 
+#include "app/shell_quote.h"
+
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -29,16 +31,8 @@ inline std::string readText(const std::filesystem::path& path)
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-// Single quotes for /bin/sh.
-inline std::string shellQuote(const std::string& s)
-{
-    std::string out = "'";
-    for (char c : s)
-    {
-        out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-    }
-    return out + "'";
-}
+// One word for /bin/sh: the quoting of the scripts `frontier` writes.
+using frontier::app::shellQuote;
 
 struct Result
 {

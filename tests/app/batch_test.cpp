@@ -787,11 +787,14 @@ TEST(Batch, SlurmScriptTaskRunsItsShardAlsoWhenSubmittedAlone)
     const Result written =
         dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(out) + " --slurm --shards 3");
     ASSERT_EQ(written.exitCode, 0) << written.err;
-    EXPECT_NE(written.out.find("sbatch --parsable " + out + "/slurm/batch.sbatch"), std::string::npos)
+    EXPECT_NE(written.out.find("sbatch --parsable " + shellQuote(out + "/slurm/batch.sbatch")),
+              std::string::npos)
         << written.out;
     const std::string script = readText(out + "/slurm/batch.sbatch");
     EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
-    EXPECT_NE(script.find("#SBATCH --output=" + out + "/slurm/shard-%a.out\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("#SBATCH " + shellQuote("--output=" + out + "/slurm/shard-%a.out") + "\n"),
+              std::string::npos)
+        << script;
     EXPECT_NE(readText(out + "/slurm/merge.sbatch").find(" --merge"), std::string::npos);
 
     const std::string log = (dir.path() / "task.txt").string();

@@ -1,6 +1,6 @@
 // tests/cli/sweep_cli_test.cpp: `frontier sweep` end to end: the CSV's header and rows, the
 // accuracy ordering of euler over time steps, the chart, the printed front on the chart's accuracy,
-// bad input, and no gnuplot.
+// bad input, no gnuplot, and a sweep stopped by SIGTERM.
 #include "app_test_util.h"
 #include "render/renderer.h"
 
@@ -18,7 +18,10 @@ using frontier::app::test::readText;
 using frontier::app::test::Result;
 using frontier::app::test::ScopedPath;
 using frontier::app::test::shellQuote;
+using frontier::app::test::spawnFrontier;
 using frontier::app::test::TestDir;
+using frontier::app::test::waitForExit;
+using frontier::app::test::waitForHandler;
 namespace fs = std::filesystem;
 
 // The documented header (README.md, "Speed against accuracy"): a change here is a change of the
@@ -379,4 +382,74 @@ TEST(SweepCli, ExternalReferenceCsvMeasuresTheMethodsOwnError)
     EXPECT_EQ(wrong.exitCode, 2) << wrong.err;
     EXPECT_NE(wrong.err.find("wrong_body.yaml:6:"), std::string::npos) << wrong.err;
     EXPECT_NE(wrong.err.find("'lid'"), std::string::npos) << wrong.err;
+}
+
+// SIGTERM a second into a long sweep (its cells from a thousand steps to millions, against an
+// external reference so that they start at once): exit 143; the cells finished before it in
+// sweep.failed.csv, in grid order, its first line saying interrupted=SIGTERM; nothing under the
+// names of a finished sweep (sweep.csv, the chart) and no temporary file. A finished sweep of the
+// same folder then removes it.
+TEST(SweepCli, SigtermKeepsTheFinishedCellsUnderAFailedName)
+{
+    const TestDir dir;
+    std::string samples = "t,x,y,z\n"; // bob's positions: any will do for this test
+    for (int t = 0; t <= 60; t += 10)
+    {
+        samples += std::to_string(t) + ",0.8,0,1.5\n";
+    }
+    const std::string reference = dir.write("bob.csv", samples);
+    std::vector<double> dts; // 0.05 s halved 14 times: 1 000 to 16 million steps of 50 s
+    std::string dtList;
+    for (int k = 0; k < 15; ++k)
+    {
+        dts.push_back(0.05 / static_cast<double>(1 << k));
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", dts.back());
+        dtList += (k == 0 ? "" : ",") + std::string(text);
+    }
+    const std::size_t cellCount = 2 * dts.size(); // euler and rattle
+    const std::string out = dir.out("sweep");
+    const pid_t pid = spawnFrontier(dir, {"sweep", "scenes/pendulum.yaml", "--duration", "50", "--dt", dtList,
+                                          "--integrator", "euler,rattle", "--reference-csv", reference,
+                                          "--reference-body", "bob", "--out", out});
+    ASSERT_GT(pid, 0);
+    ASSERT_TRUE(waitForHandler(pid, SIGTERM, 30.0)) << readText(dir.path() / "stderr.txt");
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    ::kill(pid, SIGTERM);
+    ASSERT_EQ(waitForExit(pid, 60.0), 143) << readText(dir.path() / "stderr.txt");
+
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(out))
+    {
+        names.push_back(entry.path().filename().string());
+    }
+    EXPECT_EQ(names, std::vector<std::string>{"sweep.failed.csv"});
+    const std::vector<std::string> rows = lines(readText(out + "/sweep.failed.csv"));
+    ASSERT_GE(rows.size(), 3u) << "no cell finished in a second; make the first cells shorter";
+    ASSERT_LT(rows.size(), 2 + cellCount) << "the sweep finished before the signal; make it longer";
+    EXPECT_EQ(rows[0].rfind("# frontier sweep: scene=scenes/pendulum.yaml ", 0), 0u) << rows[0];
+    const std::string marker = " interrupted=SIGTERM";
+    EXPECT_EQ(rows[0].substr(rows[0].size() - std::min(rows[0].size(), marker.size())), marker) << rows[0];
+    EXPECT_EQ(rows[1], cHeader);
+    for (std::size_t k = 2; k < rows.size(); ++k)
+    {
+        const std::vector<std::string> cell = fields(rows[k]);
+        const std::size_t index = k - 2; // integrators, then solvers, then time steps coarse to fine
+        EXPECT_EQ(cell[1], index < dts.size() ? "euler" : "rattle") << rows[k];
+        EXPECT_EQ(std::stod(cell[4]), dts[index % dts.size()]) << rows[k];
+        EXPECT_EQ(cell[7], "true") << rows[k];
+    }
+    const std::string err = readText(dir.path() / "stderr.txt");
+    EXPECT_NE(err.find("frontier: SIGTERM: the sweep stopped after " + std::to_string(rows.size() - 2) +
+                       " of " + std::to_string(cellCount) + " cells; the finished ones are in " + out +
+                       "/sweep.failed.csv"),
+              std::string::npos)
+        << err;
+
+    const Result finished = dir.run("sweep scenes/pendulum.yaml --duration 0.1 --dt 0.01 --integrator euler "
+                                    "--reference-csv " +
+                                    shellQuote(reference) + " --reference-body bob --out " + shellQuote(out));
+    ASSERT_EQ(finished.exitCode, 0) << finished.err;
+    EXPECT_TRUE(fs::exists(out + "/sweep.csv"));
+    EXPECT_FALSE(fs::exists(out + "/sweep.failed.csv")) << "the stopped sweep's cells outlive a finished one";
 }
