@@ -34,6 +34,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <urdf_parser/urdf_parser.h>
 
 namespace frontier::io::detail
@@ -295,7 +296,7 @@ class UrdfConverter
             {
                 names.push_back(jointName);
             }
-            throw JointPositionError(name, "the URDF has no joint '" + name + "'" +
+            throw JointPositionError(name, "the URDF has no joint " + quotedName(name) +
                                                suggestionSuffix(name, names, names.size() <= 12));
         }
     }
@@ -372,18 +373,29 @@ class UrdfConverter
                 stack.push_back(&child);
             }
         }
-        // Welded links in document order after their top (the walk above visits them depth first).
+        // Welded links in document order after their top (the walk above visits them depth first):
+        // sorted by their place in the file, O(n log n) over all groups.
+        std::map<std::string_view, std::size_t> documentOrder;
+        for (std::size_t k = 0; k < mIndex.linkNames().size(); ++k)
+        {
+            documentOrder.emplace(mIndex.linkNames()[k], k);
+        }
         for (LinkGroup& g : mGroups)
         {
-            std::vector<std::string> ordered{g.top};
-            for (const std::string& name : mIndex.linkNames())
+            std::vector<std::pair<std::size_t, std::string>> welded;
+            for (std::size_t k = 1; k < g.links.size(); ++k)
             {
-                if (name != g.top && std::find(g.links.begin(), g.links.end(), name) != g.links.end())
+                if (const auto at = documentOrder.find(g.links[k]); at != documentOrder.end())
                 {
-                    ordered.push_back(name);
+                    welded.emplace_back(at->second, std::move(g.links[k]));
                 }
             }
-            g.links = std::move(ordered);
+            std::sort(welded.begin(), welded.end());
+            g.links.resize(1);
+            for (auto& [order, name] : welded)
+            {
+                g.links.push_back(std::move(name));
+            }
         }
     }
 

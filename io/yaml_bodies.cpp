@@ -439,7 +439,7 @@ int resolveBodyName(const SceneBuilder& builder, const YamlNode& node, const std
             names.emplace_back("world");
         }
         failAt(builder.source, node,
-               "unknown body '" + name + "' for " + what + suggestionSuffix(name, names, false));
+               "unknown body " + quotedName(name) + " for " + what + suggestionSuffix(name, names, false));
     }
     return index;
 }
