@@ -1,6 +1,7 @@
 // io/mesh_file.cpp: mesh files through assimp, flattened into one triangle list in the shape frame.
 #include "io/mesh_file.h"
 
+#include "core/interrupt.h"
 #include "io/file_util.h"
 #include "io/scene.h"
 #include "io/xml_scan.h"
@@ -8,14 +9,21 @@
 #include <algorithm>
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/ProgressHandler.hpp>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <cctype>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
 #include <fstream>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <sys/stat.h>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 
@@ -27,10 +35,11 @@ namespace
 
 // What a mesh file may expand to (scenes/README.md "Meshes"): a file a few KB long can instance
 // its nodes into billions (COLLADA <instance_node>), or nest them deeper than a reader's recursion.
-constexpr std::size_t cMaxNodeDepth = 256;      // levels of nodes, instances included
-constexpr std::size_t cMaxNodes = 100000;       // nodes, every instance counted
-constexpr std::size_t cMaxVertices = 30000000;  // vertices of all mesh instances (before merging)
-constexpr std::size_t cMaxTriangles = 30000000; // faces of all mesh instances
+constexpr std::size_t cMaxNodeDepth = 256;         // levels of nodes, instances included
+constexpr std::size_t cMaxNodes = 100000;          // nodes, every instance counted
+constexpr std::size_t cMaxVertices = 30000000;     // vertices of all mesh instances (before merging)
+constexpr std::size_t cMaxTriangles = 30000000;    // faces of all mesh instances
+constexpr std::size_t cCheckpointVertices = 65536; // vertices collected between interrupt checks
 
 // A COLLADA file's <node> elements as written: their nesting and <instance_node> references.
 class ColladaNodes
@@ -402,6 +411,10 @@ class MeshCollector
         std::vector<int> index(mesh.mNumVertices);
         for (unsigned v = 0; v < mesh.mNumVertices; ++v)
         {
+            if (v % cCheckpointVertices == 0)
+            {
+                core::throwIfInterrupted();
+            }
             const aiVector3D& p = mesh.mVertices[v];
             const core::Vec3 p_S = (mesh_FM * core::Vec3(p.x, p.y, p.z)).cwiseProduct(mScale);
             if (!p_S.allFinite())
@@ -489,13 +502,17 @@ class CheckedIOSystem final : public Assimp::DefaultIOSystem
             }
             return nullptr;
         }
+        mOpened.emplace_back(file);
         return Assimp::DefaultIOSystem::Open(file, mode);
     }
 
     const std::optional<InputError>& refused() const { return mRefused; }
+    // The files opened, in order (the mesh file itself included).
+    const std::vector<std::string>& opened() const { return mOpened; }
 
   private:
     std::optional<InputError> mRefused;
+    std::vector<std::string> mOpened;
 };
 
 // The 1-based line of `path`'s text where `name` first appears after "mtllib" (0 when none).
@@ -515,6 +532,95 @@ int mtllibLine(const std::string& path, const std::string& name)
     return 0;
 }
 
+// Stops assimp between its steps once a signal has come (core/interrupt.h).
+class InterruptCheck final : public Assimp::ProgressHandler
+{
+  public:
+    bool Update(float) override { return core::interruptSignal() == 0; }
+};
+
+// Assimp reading `path` on a thread of its own: its readers have no checkpoint inside (a binary
+// STL of millions of triangles is one call), so the caller waits for it, checking for a signal
+// every 50 ms, and leaves it behind (to end with the process) when one comes.
+class BackgroundImport
+{
+  public:
+    explicit BackgroundImport(const std::string& path) : mState(std::make_shared<State>())
+    {
+        auto* io = new CheckedIOSystem; // the importer owns it
+        mState->io = io;
+        mState->importer.SetIOHandler(io);
+        mState->importer.SetProgressHandler(new InterruptCheck); // the importer owns it
+        // Robot files give a link's COLLADA and STL meshes in the same frame: a COLLADA file's
+        // coordinates are used as written, whatever its <up_axis>, not rotated into y-up.
+        mState->importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+        mState->importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                            aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+        std::thread(
+            [state = mState, path]
+            {
+                // No aiProcess_JoinIdenticalVertices: it keeps apart corners whose normals differ
+                // (every STL corner) and took 2 s per million triangles; MeshCollector merges
+                // positions exactly instead.
+                const aiScene* scene = nullptr;
+                std::exception_ptr failure;
+                try
+                {
+                    scene = state->importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
+                                                               aiProcess_ValidateDataStructure);
+                }
+                catch (...)
+                {
+                    failure = std::current_exception(); // out of memory
+                }
+                const std::lock_guard lock(state->mutex);
+                state->scene = scene;
+                state->failure = failure;
+                state->done = true;
+                state->finished.notify_all();
+            })
+            .detach();
+    }
+
+    // The scene assimp returned (null: see importer().GetErrorString()); throws core::Interrupted
+    // when a signal comes first.
+    const aiScene* wait()
+    {
+        std::unique_lock lock(mState->mutex);
+        while (!mState->finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return mState->done; }))
+        {
+            core::throwIfInterrupted();
+        }
+        core::throwIfInterrupted();
+        if (mState->failure)
+        {
+            std::rethrow_exception(mState->failure);
+        }
+        // The files assimp opened on its thread are this thread's inputs (InputFileLog).
+        for (const std::string& file : mState->io->opened())
+        {
+            checkInputFile(file, "file named in a mesh file");
+        }
+        return mState->scene;
+    }
+
+    const Assimp::Importer& importer() const { return mState->importer; }
+    const CheckedIOSystem& io() const { return *mState->io; }
+
+  private:
+    struct State
+    {
+        Assimp::Importer importer;
+        CheckedIOSystem* io = nullptr;
+        std::mutex mutex;
+        std::condition_variable finished;
+        bool done = false;
+        const aiScene* scene = nullptr;
+        std::exception_ptr failure;
+    };
+    std::shared_ptr<State> mState; // shared with the thread, which may outlive this
+};
+
 } // namespace
 
 core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
@@ -524,17 +630,10 @@ core::Shape loadMeshFile(const std::string& path, const core::Vec3& scale)
     // limits while it reads (checkBeforeReading).
     checkInputFile(path, "mesh file");
     checkBeforeReading(path);
-    Assimp::Importer importer;
-    auto* io = new CheckedIOSystem; // the importer owns it
-    importer.SetIOHandler(io);
-    // Robot files give a link's COLLADA and STL meshes in the same frame: a COLLADA file's
-    // coordinates are used as written, whatever its <up_axis>, not rotated into y-up.
-    importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    // No aiProcess_JoinIdenticalVertices: it keeps apart corners whose normals differ (every STL
-    // corner) and took 2 s per million triangles; MeshCollector merges positions exactly instead.
-    const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
-                                                       aiProcess_ValidateDataStructure);
+    BackgroundImport import(path);
+    const aiScene* scene = import.wait();
+    const CheckedIOSystem* io = &import.io();
+    const Assimp::Importer& importer = import.importer();
     if (io->refused())
     {
         const InputError& refused = *io->refused();

@@ -17,6 +17,7 @@
 //   visual one a warning (that link is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
+#include "core/interrupt.h"
 #include "io/file_util.h"
 #include "io/mass_properties.h"
 #include "io/mesh_file.h"
@@ -660,6 +661,7 @@ class UrdfConverter
         const Pose topInBody = inverse(g.bodyInTop);
         for (const std::string& name : g.links)
         {
+            core::throwIfInterrupted(); // a checkpoint between links (core/interrupt.h)
             const urdf::Link& l = link(name);
             const std::optional<Pose>& inTop = mPlaces[name].inTop;
             const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
