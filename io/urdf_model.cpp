@@ -921,6 +921,28 @@ void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
     }
 }
 
+// urdfdom's links own their child links through shared pointers, so releasing a model freed a
+// chain of links one nested call per link (a chain of 300 000 overflowed the stack). Cutting
+// those edges first leaves every link to the model's own map, freed one after the other.
+struct ShallowRelease
+{
+    explicit ShallowRelease(urdf::ModelInterface* released) : model(released) {}
+    ShallowRelease(const ShallowRelease&) = delete;
+    ShallowRelease& operator=(const ShallowRelease&) = delete;
+    ~ShallowRelease()
+    {
+        if (model != nullptr)
+        {
+            for (auto& [name, link] : model->links_)
+            {
+                link->child_links.clear();
+                link->child_joints.clear();
+            }
+        }
+    }
+    urdf::ModelInterface* model;
+};
+
 // `text` with ` attribute` inserted after the "<robot" of the <robot> element at `robotAt`, on
 // the same line, so that every line keeps its number.
 std::string withRobotAttribute(const std::string& text, TextPosition robotAt, const std::string& attribute)
@@ -1000,6 +1022,7 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
     const std::string text = nameTheRobot(path, original, index, warnings);
     CapturedLog log;
     const urdf::ModelInterfaceSharedPtr robot = parseCapturingErrors(text, log);
+    const ShallowRelease release(robot.get());
     if (!log.errors.empty() || !robot)
     {
         std::string message = "invalid URDF";

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <pthread.h>
 
 namespace frontier::io::test
 {
@@ -717,6 +718,37 @@ TEST(UrdfWelding, LongChainsLoadWithEveryLink)
         EXPECT_EQ(report.robots[0].welded[static_cast<std::size_t>(k)].first,
                   "l" + std::to_string(n - 1 - k));
     }
+}
+
+// Releasing urdfdom's model of a long chain used one nested call per link (a chain of 300 000
+// links overflowed the 8 MB stack): loaded on a thread with a 256 KiB stack, a chain of 20 000
+// links must not need more.
+TEST(UrdfWelding, LongChainIsReleasedWithoutDeepRecursion)
+{
+    TempDir dir;
+    const std::string path = dir.write("fixed.urdf", longChainUrdf(20000, "fixed"));
+    struct Job
+    {
+        std::string path;
+        std::size_t bodies = 0;
+    } job{path};
+    pthread_attr_t attr;
+    ASSERT_EQ(pthread_attr_init(&attr), 0);
+    ASSERT_EQ(pthread_attr_setstacksize(&attr, 256 * 1024), 0);
+    pthread_t thread;
+    ASSERT_EQ(pthread_create(
+                  &thread, &attr,
+                  [](void* arg) -> void*
+                  {
+                      Job& j = *static_cast<Job*>(arg);
+                      j.bodies = loadScene(j.path).bodies.size();
+                      return nullptr;
+                  },
+                  &job),
+              0);
+    pthread_join(thread, nullptr);
+    pthread_attr_destroy(&attr);
+    EXPECT_EQ(job.bodies, 2u);
 }
 
 } // namespace
