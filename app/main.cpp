@@ -2,6 +2,7 @@
 #include "app/commands.h"
 #include "app/model_overrides.h"
 #include "app/sweep_chart.h"
+#include "core/interrupt.h"
 #include "io/input_digest.h"
 #include "io/suggest.h"
 
@@ -466,29 +467,39 @@ int main(int argc, char** argv)
         app.exit(e);
         return cExitBadInput;
     }
-    if (run->parsed())
+    // A signal at a checkpoint outside the step loop (while loading, core/interrupt.h), where the
+    // command has nothing to clean up.
+    try
     {
-        return runCommand(runOptions);
+        if (run->parsed())
+        {
+            return runCommand(runOptions);
+        }
+        if (check->parsed())
+        {
+            return checkCommand(checkOptions);
+        }
+        if (stability->parsed())
+        {
+            return stabilityCommand(stabilityOptions);
+        }
+        if (render->parsed())
+        {
+            return renderCommand(renderOptions);
+        }
+        if (sweep->parsed())
+        {
+            return sweepCommand(sweepOptions);
+        }
+        if (batch->parsed())
+        {
+            return batchCommand(batchOptions);
+        }
+        return infoCommand(infoOptions);
     }
-    if (check->parsed())
+    catch (const frontier::core::Interrupted& e)
     {
-        return checkCommand(checkOptions);
+        std::cerr << "frontier: " << e.what() << "\n";
+        return frontier::core::interruptedExitCode(e.signal());
     }
-    if (stability->parsed())
-    {
-        return stabilityCommand(stabilityOptions);
-    }
-    if (render->parsed())
-    {
-        return renderCommand(renderOptions);
-    }
-    if (sweep->parsed())
-    {
-        return sweepCommand(sweepOptions);
-    }
-    if (batch->parsed())
-    {
-        return batchCommand(batchOptions);
-    }
-    return infoCommand(infoOptions);
 }

@@ -229,6 +229,11 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         error = e.what();
         return cExitBadInput;
     }
+    catch (const core::Interrupted& e) // a signal while loading: no output was begun
+    {
+        error = std::string(e.what()) + " while loading " + scene + "; nothing written";
+        return run::interruptedExitCode(e.signal());
+    }
 
     std::vector<core::State> frames;
     FrameSampler sampler(options.fps);
@@ -279,6 +284,12 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
     {
         summary.completed = false;
         summary.failure = e.what();
+    }
+    catch (const core::Interrupted& e) // a signal while setting up, before the first step
+    {
+        summary.completed = false;
+        summary.interruptedBy = e.signal();
+        summary.failure = std::string(e.what()) + " before the first step";
     }
     catch (const io::OutputError& e) // an output file could not be written on (a full disk)
     {

@@ -7,44 +7,70 @@
 namespace frontier::io::detail
 {
 
+namespace
+{
+constexpr std::size_t cMaxSuggestedLength = 100; // characters: longer words and names get no suggestion
+constexpr std::size_t cSuggestionCells = std::size_t{1} << 25; // distance-table cells one suggestion may fill
+constexpr std::size_t cMaxQuotedLength = 80;                   // bytes of a name quoted in a message
+
+char folded(char c)
+{
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+}
+} // namespace
+
 int editDistance(std::string_view a, std::string_view b)
 {
-    const std::size_t n = a.size();
     const std::size_t m = b.size();
-    // d[i][j]: distance between the first i characters of a and the first j of b.
-    std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
-    for (std::size_t i = 0; i <= n; ++i)
-    {
-        d[i][0] = static_cast<int>(i);
-    }
+    // Rows i - 2, i - 1 and i of the table d[i][j]: the distance between the first i characters
+    // of a and the first j of b.
+    std::vector<int> before(m + 1), previous(m + 1), current(m + 1);
     for (std::size_t j = 0; j <= m; ++j)
     {
-        d[0][j] = static_cast<int>(j);
+        previous[j] = static_cast<int>(j);
     }
-    for (std::size_t i = 1; i <= n; ++i)
+    for (std::size_t i = 1; i <= a.size(); ++i)
     {
+        current[0] = static_cast<int>(i);
         for (std::size_t j = 1; j <= m; ++j)
         {
-            const int cost = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                                     std::tolower(static_cast<unsigned char>(b[j - 1]))
-                                 ? 0
-                                 : 1;
-            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            const int cost = folded(a[i - 1]) == folded(b[j - 1]) ? 0 : 1;
+            current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
             if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
             {
-                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+                current[j] = std::min(current[j], before[j - 2] + 1);
             }
         }
+        std::swap(before, previous);
+        std::swap(previous, current);
     }
-    return d[n][m];
+    return previous[m];
 }
 
 std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates)
 {
+    if (word.size() > cMaxSuggestedLength)
+    {
+        return {};
+    }
     std::string best;
     int bestDistance = 1 << 30;
+    std::size_t cells = 0;
     for (const std::string& candidate : candidates)
     {
+        // The difference in length is a lower bound of the distance: such a candidate cannot be
+        // closer than the best so far.
+        const std::size_t longer = std::max(word.size(), candidate.size());
+        const std::size_t shorter = std::min(word.size(), candidate.size());
+        if (candidate.size() > cMaxSuggestedLength || static_cast<int>(longer - shorter) > bestDistance)
+        {
+            continue;
+        }
+        cells += (word.size() + 1) * (candidate.size() + 1);
+        if (cells > cSuggestionCells)
+        {
+            break; // very many names: the best of those compared so far
+        }
         const int distance = editDistance(word, candidate);
         if (distance < bestDistance)
         {
@@ -64,6 +90,20 @@ std::string closestMatch(std::string_view word, const std::vector<std::string>& 
         return best;
     }
     return {};
+}
+
+std::string quotedName(std::string_view name)
+{
+    if (name.size() <= cMaxQuotedLength)
+    {
+        return "'" + std::string(name) + "'";
+    }
+    std::size_t keep = cMaxQuotedLength - 20;
+    while (keep > 0 && (static_cast<unsigned char>(name[keep]) & 0xC0) == 0x80)
+    {
+        --keep; // not inside a UTF-8 character
+    }
+    return "'" + std::string(name.substr(0, keep)) + "...' (" + std::to_string(name.size()) + " bytes)";
 }
 
 std::string joinNames(const std::vector<std::string>& names)

@@ -87,8 +87,8 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
             if (valueIndex < 0)
             {
                 throw InputError(path, lineNumber, 1,
-                                 "no column '" + column + "' in the header (columns: " + joinNames(header) +
-                                     ")" + suggestionSuffix(column, header, false));
+                                 "no column " + quotedName(column) + " in the header (columns: " +
+                                     joinNames(header) + ")" + suggestionSuffix(column, header, false));
             }
             continue;
         }

@@ -17,6 +17,7 @@
 //   visual one a warning (that link is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
+#include "core/interrupt.h"
 #include "io/file_util.h"
 #include "io/mass_properties.h"
 #include "io/mesh_file.h"
@@ -34,6 +35,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <urdf_parser/urdf_parser.h>
 
 namespace frontier::io::detail
@@ -295,7 +297,7 @@ class UrdfConverter
             {
                 names.push_back(jointName);
             }
-            throw JointPositionError(name, "the URDF has no joint '" + name + "'" +
+            throw JointPositionError(name, "the URDF has no joint " + quotedName(name) +
                                                suggestionSuffix(name, names, names.size() <= 12));
         }
     }
@@ -372,18 +374,29 @@ class UrdfConverter
                 stack.push_back(&child);
             }
         }
-        // Welded links in document order after their top (the walk above visits them depth first).
+        // Welded links in document order after their top (the walk above visits them depth first):
+        // sorted by their place in the file, O(n log n) over all groups.
+        std::map<std::string_view, std::size_t> documentOrder;
+        for (std::size_t k = 0; k < mIndex.linkNames().size(); ++k)
+        {
+            documentOrder.emplace(mIndex.linkNames()[k], k);
+        }
         for (LinkGroup& g : mGroups)
         {
-            std::vector<std::string> ordered{g.top};
-            for (const std::string& name : mIndex.linkNames())
+            std::vector<std::pair<std::size_t, std::string>> welded;
+            for (std::size_t k = 1; k < g.links.size(); ++k)
             {
-                if (name != g.top && std::find(g.links.begin(), g.links.end(), name) != g.links.end())
+                if (const auto at = documentOrder.find(g.links[k]); at != documentOrder.end())
                 {
-                    ordered.push_back(name);
+                    welded.emplace_back(at->second, std::move(g.links[k]));
                 }
             }
-            g.links = std::move(ordered);
+            std::sort(welded.begin(), welded.end());
+            g.links.resize(1);
+            for (auto& [order, name] : welded)
+            {
+                g.links.push_back(std::move(name));
+            }
         }
     }
 
@@ -648,6 +661,7 @@ class UrdfConverter
         const Pose topInBody = inverse(g.bodyInTop);
         for (const std::string& name : g.links)
         {
+            core::throwIfInterrupted(); // a checkpoint between links (core/interrupt.h)
             const urdf::Link& l = link(name);
             const std::optional<Pose>& inTop = mPlaces[name].inTop;
             const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
@@ -907,6 +921,28 @@ void checkJointTree(const std::string& file, const UrdfXmlIndex& index)
     }
 }
 
+// urdfdom's links own their child links through shared pointers, so releasing a model freed a
+// chain of links one nested call per link (a chain of 300 000 overflowed the stack). Cutting
+// those edges first leaves every link to the model's own map, freed one after the other.
+struct ShallowRelease
+{
+    explicit ShallowRelease(urdf::ModelInterface* released) : model(released) {}
+    ShallowRelease(const ShallowRelease&) = delete;
+    ShallowRelease& operator=(const ShallowRelease&) = delete;
+    ~ShallowRelease()
+    {
+        if (model != nullptr)
+        {
+            for (auto& [name, link] : model->links_)
+            {
+                link->child_links.clear();
+                link->child_joints.clear();
+            }
+        }
+    }
+    urdf::ModelInterface* model;
+};
+
 // `text` with ` attribute` inserted after the "<robot" of the <robot> element at `robotAt`, on
 // the same line, so that every line keeps its number.
 std::string withRobotAttribute(const std::string& text, TextPosition robotAt, const std::string& attribute)
@@ -986,6 +1022,7 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
     const std::string text = nameTheRobot(path, original, index, warnings);
     CapturedLog log;
     const urdf::ModelInterfaceSharedPtr robot = parseCapturingErrors(text, log);
+    const ShallowRelease release(robot.get());
     if (!log.errors.empty() || !robot)
     {
         std::string message = "invalid URDF";

@@ -2,6 +2,7 @@
 #include "io/urdf_xml_index.h"
 
 #include "io/scene.h"
+#include "io/xml_scan.h"
 
 #include <algorithm>
 #include <string_view>
@@ -12,8 +13,6 @@ namespace frontier::io::detail
 
 namespace
 {
-constexpr int cMaxXmlDepth = 1000; // nesting levels of elements accepted in a URDF file
-
 // Child elements under each of `prefixes`: "prefix/name" for the first of each name, and for the
 // direct children of a <link> or <joint> (numbered) also "prefix/name#k" for the k-th (0-based).
 void indexChildren(const TiXmlElement& parent, const std::vector<std::string>& prefixes, bool numbered,
@@ -39,92 +38,13 @@ void indexChildren(const TiXmlElement& parent, const std::vector<std::string>& p
         indexChildren(*child, keys, false, out);
     }
 }
-[[noreturn]] void failAtOffset(const std::string& file, const std::string& text, std::size_t offset,
-                               const std::string& message)
-{
-    const TextPosition at = positionOf(text, offset);
-    throw InputError(file, at.line, at.column, message);
-}
-
 // A linear scan of the text before any XML parser sees it: TinyXML (the index's and urdfdom's
 // parser) recurses once per nesting level, so thousands of nested elements overflow the stack or
 // take seconds; and it reports an unclosed comment or a DOCTYPE without a usable location.
 void checkXmlShape(const std::string& file, const std::string& text)
 {
-    int depth = 0;
-    std::size_t i = 0;
-    const auto closeOf = [&](std::size_t from, const char* open, const char* close, const char* what)
-    {
-        const std::size_t end = text.find(close, from + std::char_traits<char>::length(open));
-        if (end == std::string::npos)
-        {
-            failAtOffset(file, text, from,
-                         std::string("invalid XML: ") + what + " '" + open + "' is never closed; expected '" +
-                             close + "'");
-        }
-        return end + std::char_traits<char>::length(close);
-    };
-    while ((i = text.find('<', i)) != std::string::npos)
-    {
-        const std::string_view rest(text.data() + i, text.size() - i);
-        if (rest.starts_with("<!--"))
-        {
-            i = closeOf(i, "<!--", "-->", "the comment");
-        }
-        else if (rest.starts_with("<![CDATA["))
-        {
-            i = closeOf(i, "<![CDATA[", "]]>", "the CDATA section");
-        }
-        else if (rest.starts_with("<?"))
-        {
-            i = closeOf(i, "<?", "?>", "the processing instruction");
-        }
-        else if (rest.starts_with("<!DOCTYPE") || rest.starts_with("<!ENTITY"))
-        {
-            failAtOffset(file, text, i,
-                         "a <!DOCTYPE> declaration (and the entities it may define) is not supported in a "
-                         "URDF file; expected the <robot> element with plain text");
-        }
-        else if (rest.starts_with("</") || rest.starts_with("<!"))
-        {
-            depth -= rest[1] == '/' ? 1 : 0;
-            const std::size_t end = text.find('>', i);
-            i = end == std::string::npos ? text.size() : end + 1;
-        }
-        else
-        {
-            // A start tag: up to its '>' outside quoted attribute values; "/>" opens nothing.
-            const std::size_t start = i;
-            char quote = 0;
-            for (++i; i < text.size(); ++i)
-            {
-                const char c = text[i];
-                if (quote != 0)
-                {
-                    quote = c == quote ? 0 : quote;
-                }
-                else if (c == '"' || c == '\'')
-                {
-                    quote = c;
-                }
-                else if (c == '>')
-                {
-                    break;
-                }
-            }
-            if (i >= text.size())
-            {
-                return; // an unfinished tag: the parser reports it
-            }
-            if (text[i - 1] != '/' && ++depth > cMaxXmlDepth)
-            {
-                failAtOffset(file, text, start,
-                             "elements nested more than " + std::to_string(cMaxXmlDepth) +
-                                 " levels deep; a URDF needs a few");
-            }
-            ++i;
-        }
-    }
+    XmlDepthCheck depth(file, text, "a URDF needs a few");
+    scanXmlTags(file, text, "URDF file", "the <robot> element", [&](const XmlTag& tag) { depth.visit(tag); });
 }
 
 // <link><contact><lateral_friction value=".."/><restitution value=".."/></contact> (PyBullet's).

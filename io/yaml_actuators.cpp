@@ -33,7 +33,7 @@ core::ActuatorKind readKind(const MapNode& map)
     if (name != "effort")
     {
         failAt(map.source(), node,
-               "unknown actuator type '" + name + "' for " + map.what("type") +
+               "unknown actuator type " + quotedName(name) + " for " + map.what("type") +
                    suggestionSuffix(name, cActuatorTypes, true));
     }
     return core::ActuatorKind::Effort;
@@ -140,7 +140,7 @@ int resolveJointName(const SceneBuilder& builder, const YamlNode& node, const st
         names.push_back(joint.name);
     }
     failAt(builder.source, node,
-           "unknown joint '" + name + "' for " + what + suggestionSuffix(name, names, false));
+           "unknown joint " + quotedName(name) + " for " + what + suggestionSuffix(name, names, false));
 }
 
 void readActuators(SceneBuilder& builder, const YamlNode& actuators)

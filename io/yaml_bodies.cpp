@@ -8,6 +8,7 @@
 // When the mass comes from the shapes, the body's position is shifted to their centre of mass and
 // the shapes are moved by the opposite amount, so they stay where the scene put them (this matters
 // for meshes and for shapes placed off the body origin).
+#include "core/interrupt.h"
 #include "io/file_util.h"
 #include "io/mass_properties.h"
 #include "io/mesh_file.h"
@@ -303,6 +304,7 @@ core::Vec3 readColor(const MapNode& map)
 
 void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
 {
+    core::throwIfInterrupted(); // a checkpoint between bodies (core/interrupt.h)
     const YamlSource& source = builder.source;
     MapNode map(source, node, "body #" + std::to_string(index + 1));
     if (map.get("name").isScalar())
@@ -439,7 +441,7 @@ int resolveBodyName(const SceneBuilder& builder, const YamlNode& node, const std
             names.emplace_back("world");
         }
         failAt(builder.source, node,
-               "unknown body '" + name + "' for " + what + suggestionSuffix(name, names, false));
+               "unknown body " + quotedName(name) + " for " + what + suggestionSuffix(name, names, false));
     }
     return index;
 }

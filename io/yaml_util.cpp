@@ -239,7 +239,7 @@ void MapNode::checkKeys(const std::vector<std::string>& known) const
         if (!isKnown)
         {
             failAt(*mSource, entry.keyMark,
-                   "unknown key '" + entry.key + "' in " + mContext +
+                   "unknown key " + quotedName(entry.key) + " in " + mContext +
                        suggestionSuffix(entry.key, known, true));
         }
     }

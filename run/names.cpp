@@ -25,7 +25,7 @@ int indexByName(const std::vector<Item>& items, std::string_view name, const cha
         }
         names.push_back(items[i].name);
     }
-    throw NameError("no " + std::string(what) + " '" + std::string(name) + "' in the model" +
+    throw NameError("no " + std::string(what) + " " + io::detail::quotedName(name) + " in the model" +
                     io::detail::suggestionSuffix(name, names, names.size() <= 12));
 }
 

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <limits>
 #include <span>
@@ -16,49 +15,6 @@
 
 namespace frontier::run
 {
-
-namespace
-{
-volatile std::sig_atomic_t gSignal = 0;
-
-extern "C" void onInterrupt(int signal)
-{
-    gSignal = signal;
-}
-} // namespace
-
-void installInterruptHandlers()
-{
-    struct sigaction action
-    {
-    };
-    action.sa_handler = onInterrupt;
-    sigemptyset(&action.sa_mask);
-    for (int signal : {SIGINT, SIGTERM, SIGHUP})
-    {
-        sigaction(signal, &action, nullptr);
-    }
-}
-
-int interruptSignal()
-{
-    return gSignal;
-}
-
-std::string signalName(int signal)
-{
-    switch (signal)
-    {
-    case SIGINT:
-        return "SIGINT";
-    case SIGTERM:
-        return "SIGTERM";
-    case SIGHUP:
-        return "SIGHUP";
-    default:
-        return "signal " + std::to_string(signal);
-    }
-}
 
 bool isPassive(const core::Model& model)
 {

@@ -1,6 +1,7 @@
 // run/run_loop.h: drives a Simulator over a run, recording trajectory rows and statistics.
 #pragma once
 
+#include "core/interrupt.h"
 #include "core/model.h"
 #include "core/simulator.h"
 #include "core/state.h"
@@ -91,19 +92,11 @@ double passiveEnergyRise(const core::Model& model, const RunSummary& summary);
 // (a position like -1e308 m: its potential overflows), or -1.
 int bodyWithInfiniteEnergy(const core::Model& model);
 
-// SIGINT, SIGTERM and SIGHUP set a flag instead of killing the process, so a run stops between
-// steps and removes its temporary files (README "Exit codes"). Installed by the commands that
-// read the flag (run, render, check).
-void installInterruptHandlers();
-// The signal received since installInterruptHandlers, 0: none.
-int interruptSignal();
-// "SIGINT", "SIGTERM", "SIGHUP".
-std::string signalName(int signal);
-// The exit code of a process stopped by `signal`: 128 + its number (130, 143, 129).
-inline int interruptedExitCode(int signal)
-{
-    return 128 + signal;
-}
+// The interrupt flag (core/interrupt.h), read between steps.
+using core::installInterruptHandlers;
+using core::interruptedExitCode;
+using core::interruptSignal;
+using core::signalName;
 
 long stepsFor(double duration, double dt);
 

@@ -69,6 +69,7 @@ namespace
 LoadedScene finishLoading(LoadedScene out, const std::string& path)
 {
     checkFiniteEnergy(out.model, path);
+    core::throwIfInterrupted(); // checkpoints between the phases (core/interrupt.h)
     for (const auto& [a, b] : collision::startingOverlaps(out.model))
     {
         out.model.contact.ignore.push_back({a, b});
@@ -83,6 +84,7 @@ LoadedScene finishLoading(LoadedScene out, const std::string& path)
             }
         }
     }
+    core::throwIfInterrupted();
     warnDeepStart(out);
     return out;
 }

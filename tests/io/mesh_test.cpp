@@ -5,6 +5,7 @@
 #include "io/scene.h"
 #include "io_test_util.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <gtest/gtest.h>
@@ -539,6 +540,119 @@ TEST(Mesh, ObjMaterialFileThatIsNotARegularFileIsRefused)
     // A material file that is missing is not an error (assimp reads the geometry without it).
     const std::string obj = dir.write("tetra.obj", "mtllib missing.mtl\n" + faces);
     EXPECT_EQ(loadMeshFile(obj, core::Vec3::Ones()).triangles.size(), 4u);
+}
+
+// The 1-based line of the first `needle` in `text`.
+int lineOfText(const std::string& text, const std::string& needle)
+{
+    const std::size_t at = text.find(needle);
+    return at == std::string::npos
+               ? 0
+               : 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+// Hostile COLLADA node trees are refused before assimp reads them, at the node or reference that
+// goes beyond the limits (scenes/README.md "Meshes"): assimp recursed into a node that instances
+// itself and into 10 000 nested nodes until the stack overflowed, and expanded 30 levels of
+// doubling instances until memory ran out.
+TEST(Mesh, ColladaThatInstancesItselfIsRefusedAtTheReference)
+{
+    TempDir dir;
+    const std::string text =
+        colladaTetra("1", "Z_UP",
+                     std::string("\n<node id=\"a\">") + cInstance +
+                         "\n<node id=\"b\">\n<instance_node url=\"#a\"/>\n</node></node>\n");
+    const std::string path = dir.write("self.dae", text);
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, lineOfText(text, "<instance_node"), 1,
+                          "instances a node that contains it");
+    // Through a scene: the mesh file's own line is kept.
+    const InputError s = captureInputError([&] { loadMeshScene(dir, "self.dae"); });
+    EXPECT_EQ(s.file(), path);
+    EXPECT_EQ(s.line(), lineOfText(text, "<instance_node"));
+}
+
+TEST(Mesh, ColladaWithTenThousandNestedNodesIsRefused)
+{
+    TempDir dir;
+    std::string nodes = "\n";
+    for (int k = 0; k < 10000; ++k)
+    {
+        nodes += "<node id=\"n" + std::to_string(k) + "\">\n";
+    }
+    nodes += cInstance;
+    for (int k = 0; k < 10000; ++k)
+    {
+        nodes += "</node>\n";
+    }
+    const std::string text = colladaTetra("1", "Z_UP", nodes);
+    const std::string path = dir.write("deep.dae", text);
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, lineOfText(text, "<node id=\"n256\">"), 1,
+                          "nodes nested more than 256 levels deep, the limit for a mesh file");
+}
+
+TEST(Mesh, ColladaThatDoublesItsNodesThirtyTimesIsRefused)
+{
+    TempDir dir;
+    // n0 holds the tetrahedron; n1..n29 each instance the one before twice: 2^30 instances.
+    std::string library = "<library_nodes>\n<node id=\"n0\">" + std::string(cInstance) + "</node>\n";
+    for (int k = 1; k < 30; ++k)
+    {
+        const std::string before = "<instance_node url=\"#n" + std::to_string(k - 1) + "\"/>";
+        library += "<node id=\"n" + std::to_string(k) + "\">" + before + before + "</node>\n";
+    }
+    library += "</library_nodes>\n";
+    std::string text = colladaTetra("1", "Z_UP", "<node id=\"top\"><instance_node url=\"#n29\"/></node>");
+    text.insert(text.find("<library_visual_scenes>"), library);
+    const std::string path = dir.write("doubling.dae", text);
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    // n16 is the first to expand to more than 100 000 nodes (2^17 - 1).
+    EXPECT_INPUT_ERROR_AT(e, path, lineOfText(text, "<node id=\"n16\">"), 1,
+                          "expands to more than 100000 nodes (instances counted), the limit for a mesh file");
+}
+
+// Instances within the limits load as before; beyond the vertex limit the file is refused after
+// assimp reads it (10 000 instances of a geometry of 3 300 vertices: 33 million).
+TEST(Mesh, ColladaInstancesAreCountedAgainstTheVertexLimit)
+{
+    TempDir dir;
+    std::string text =
+        colladaTetra("1", "Z_UP",
+                     "<node id=\"a\"><instance_node url=\"#part\"/></node>"
+                     "<node id=\"b\"><translate>1000 0 0</translate><instance_node url=\"#part\"/></node>");
+    text.insert(text.find("<library_visual_scenes>"),
+                "<library_nodes><node id=\"part\">" + std::string(cInstance) + "</node></library_nodes>\n");
+    const std::string twice = dir.write("twice.dae", text);
+    const core::Shape shape = loadMeshFile(twice, core::Vec3::Ones());
+    EXPECT_EQ(shape.vertices.size(), 8u);
+    EXPECT_EQ(shape.triangles.size(), 8u);
+
+    std::string indices;
+    for (int k = 0; k < 1100; ++k)
+    {
+        indices += "0 2 1 ";
+    }
+    std::string wide = colladaTetra("1", "Z_UP", "<node id=\"top\"><instance_node url=\"#w4\"/></node>");
+    const std::size_t p = wide.find("<p>");
+    wide.replace(p, wide.find("</p>") - p, "<p>" + indices);
+    wide.replace(wide.find("<triangles count=\"4\">"), 21, "<triangles count=\"1100\">");
+    std::string library = "<library_nodes><node id=\"w0\">" + std::string(cInstance) + "</node>\n";
+    for (int k = 1; k <= 4; ++k)
+    {
+        library += "<node id=\"w" + std::to_string(k) + "\">";
+        for (int c = 0; c < 10; ++c)
+        {
+            library += "<instance_node url=\"#w" + std::to_string(k - 1) + "\"/>";
+        }
+        library += "</node>\n";
+    }
+    wide.insert(wide.find("<library_visual_scenes>"), library + "</library_nodes>\n");
+    const std::string path = dir.write("wide.dae", wide);
+    const InputError e = captureInputError([&] { loadMeshFile(path, core::Vec3::Ones()); });
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0,
+                          "mesh file expands to more than 30000000 vertices (every instance of its meshes "
+                          "counted), the limit for a mesh file");
 }
 
 TEST(Mesh, TooLargeFileIsRefused)

@@ -28,6 +28,29 @@ TEST(Suggest, ClosestMatch)
     EXPECT_EQ(suggestionSuffix("qqqqqqq", {"a", "b"}, true), " (known: a, b)");
 }
 
+// A name of megabytes is compared with nothing and quoted cut short; among many candidates the
+// closest is still found.
+TEST(Suggest, LongWordsAndManyCandidates)
+{
+    const std::string huge(4 << 20, 'x');
+    std::vector<std::string> names(100000);
+    for (std::size_t i = 0; i < names.size(); ++i)
+    {
+        names[i] = "link_" + std::to_string(i);
+    }
+    names.push_back(huge);
+    EXPECT_EQ(closestMatch(huge, names), "");
+    EXPECT_EQ(closestMatch("link_9999x", names), "link_9999");
+    EXPECT_EQ(editDistance(huge.substr(0, 1000), huge.substr(0, 999)), 1);
+    EXPECT_EQ(quotedName("pelvis"), "'pelvis'");
+    const std::string quoted = quotedName(huge);
+    EXPECT_LT(quoted.size(), 100u);
+    EXPECT_NE(quoted.find("...' (4194304 bytes)"), std::string::npos) << quoted;
+    // Not cut inside a UTF-8 character: the kept bytes end before the two-byte "é" at 59..60.
+    EXPECT_EQ(quotedName(std::string(59, 'a') + "\xc3\xa9" + std::string(40, 'b')),
+              "'" + std::string(59, 'a') + "...' (101 bytes)");
+}
+
 TEST(Suggest, InvalidNames)
 {
     EXPECT_EQ(invalidNameReason("pelvis"), "");

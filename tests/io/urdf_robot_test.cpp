@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <numbers>
+#include <pthread.h>
 
 namespace frontier::io::test
 {
@@ -658,6 +659,96 @@ TEST(UrdfJoints, NegativeDampingIsAnError)
 )"));
     const InputError e = captureInputError([&] { loadScene(urdf); });
     EXPECT_INPUT_ERROR_AT(e, urdf, 5, 5, "joint 'j' has <dynamics damping=\"-1\" friction=\"0\">");
+}
+
+} // namespace
+} // namespace frontier::io::test
+
+namespace frontier::io::test
+{
+namespace
+{
+// A chain of `n` links on joints of `type` ("revolute" or "fixed"), each 0.1 m after its parent;
+// the links are written in reverse order (the joints in chain order), so that the welded links'
+// document order is the reverse of the walk from the root.
+std::string longChainUrdf(int n, const std::string& type)
+{
+    std::string text = "<robot name=\"chain\">\n";
+    for (int i = n - 1; i >= 0; --i)
+    {
+        text += "<link name=\"l" + std::to_string(i) +
+                "\"><inertial><mass value=\"0.1\"/><inertia ixx=\"1e-5\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" "
+                "iyz=\"0\" izz=\"1e-4\"/></inertial><collision><geometry><box size=\"0.08 0.02 0.02\"/>"
+                "</geometry></collision></link>\n";
+    }
+    for (int i = 1; i < n; ++i)
+    {
+        text += "<joint name=\"j" + std::to_string(i) + "\" type=\"" + type + "\"><parent link=\"l" +
+                std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+                "\"/><origin xyz=\"0.1 0 0\"/>" +
+                (type == "fixed"
+                     ? ""
+                     : "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" effort=\"1\" velocity=\"1\"/>") +
+                "</joint>\n";
+    }
+    return text + "</robot>\n";
+}
+
+// A long chain loads whole (its cost is benchmarked in bench/load_scaling.sh): 2 000 links on
+// revolute joints are 2 000 bodies; on fixed joints, one body with the 1 999 welded links listed
+// in document order.
+TEST(UrdfWelding, LongChainsLoadWithEveryLink)
+{
+    constexpr int n = 2000;
+    TempDir dir;
+    const core::Model revolute = loadScene(dir.write("revolute.urdf", longChainUrdf(n, "revolute")));
+    EXPECT_EQ(revolute.bodies.size(), static_cast<std::size_t>(n) + 1); // and the floor
+    EXPECT_EQ(revolute.joints.size(), static_cast<std::size_t>(n) - 1);
+
+    LoadReport report;
+    const core::Model fixed = loadScene(dir.write("fixed.urdf", longChainUrdf(n, "fixed")), {}, &report);
+    ASSERT_EQ(fixed.bodies.size(), 2u);
+    EXPECT_EQ(fixed.bodies[0].name, "l0");
+    EXPECT_EQ(fixed.bodies[0].shapes.size(), static_cast<std::size_t>(n));
+    EXPECT_NEAR(fixed.bodies[0].mass, 0.1 * n, 1e-9);
+    ASSERT_EQ(report.robots.size(), 1u);
+    ASSERT_EQ(report.robots[0].welded.size(), static_cast<std::size_t>(n) - 1);
+    for (int k = 0; k < n - 1; ++k)
+    {
+        EXPECT_EQ(report.robots[0].welded[static_cast<std::size_t>(k)].first,
+                  "l" + std::to_string(n - 1 - k));
+    }
+}
+
+// Releasing urdfdom's model of a long chain used one nested call per link (a chain of 300 000
+// links overflowed the 8 MB stack): loaded on a thread with a 256 KiB stack, a chain of 20 000
+// links must not need more.
+TEST(UrdfWelding, LongChainIsReleasedWithoutDeepRecursion)
+{
+    TempDir dir;
+    const std::string path = dir.write("fixed.urdf", longChainUrdf(20000, "fixed"));
+    struct Job
+    {
+        std::string path;
+        std::size_t bodies = 0;
+    } job{path};
+    pthread_attr_t attr;
+    ASSERT_EQ(pthread_attr_init(&attr), 0);
+    ASSERT_EQ(pthread_attr_setstacksize(&attr, 256 * 1024), 0);
+    pthread_t thread;
+    ASSERT_EQ(pthread_create(
+                  &thread, &attr,
+                  [](void* arg) -> void*
+                  {
+                      Job& j = *static_cast<Job*>(arg);
+                      j.bodies = loadScene(j.path).bodies.size();
+                      return nullptr;
+                  },
+                  &job),
+              0);
+    pthread_join(thread, nullptr);
+    pthread_attr_destroy(&attr);
+    EXPECT_EQ(job.bodies, 2u);
 }
 
 } // namespace

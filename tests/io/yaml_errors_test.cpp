@@ -172,6 +172,24 @@ TEST(YamlErrors, JointReferencesMissingBody)
                           "unknown body 'lowr' for the child of joint 'j'; did you mean 'lower'?");
 }
 
+// A name of 4 MB is reported at once (no edit distance over megabytes) and quoted cut short.
+TEST(YamlErrors, HugeUnknownBodyNameIsQuotedShort)
+{
+    const std::string joints = R"(
+  - name: j
+    type: ball
+    parent: world
+    child: )" + std::string(4 << 20, 'q') +
+                               R"(
+    anchor: [0, 0, 1]
+)";
+    const InputError e = yamlError(withJoints(joints.c_str()));
+    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 15, 12, "unknown body 'qqqq");
+    EXPECT_NE(e.message().find("...' (4194304 bytes) for the child of joint 'j'"), std::string::npos)
+        << e.message().substr(0, 200);
+    EXPECT_LT(e.message().size(), 200u);
+}
+
 TEST(YamlErrors, UnknownJointTypeListsKnownTypes)
 {
     const InputError e = yamlError(withJoints(R"(
