@@ -38,7 +38,7 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         }
         load.frame = frame == "body" ? core::LoadFrame::Body : core::LoadFrame::World;
     }
-    load.point = map.optVec3("at");
+    load.point = map.optPosition("at");
     if (map.has("impulse"))
     {
         for (const char* key : {"force", "torque", "from", "to"})

@@ -212,6 +212,8 @@ const BadInput cBadInputs[] = {
      "expected 'to' > 'from' for the load on body 'arm', got from = 2 s, to = 1 s"},
     {"UnknownFrame", "loads:\n  - {body: arm, force: [1, 0, 0], frame: local}\n", 14, 42,
      "expected 'world' or 'body' for 'frame'"},
+    {"LoadPointFarAway", "loads:\n  - {body: arm, force: [1, 0, 0], at: [0, 0, 2.0e6]}\n", 14, 39,
+     "expected a point within 1e6 m of the origin for 'at' in the load on body 'arm', got [0, 0, 2e+06]"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cases, ActuatorYamlError, ::testing::ValuesIn(cBadInputs),
