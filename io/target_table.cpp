@@ -121,6 +121,7 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
         }
         out.times.push_back(numbers[0]);
         out.values.push_back(numbers[1]);
+        out.lines.push_back(lineNumber);
     }
     if (header.empty())
     {

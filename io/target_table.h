@@ -16,6 +16,7 @@ struct TargetColumn
 {
     std::vector<double> times;  // s, strictly increasing
     std::vector<double> values; // the column's values at those times
+    std::vector<int> lines;     // the line of each row in the file (1-based)
 };
 
 // The `time` column and the named one; throws InputError naming the file and line of a problem

@@ -212,6 +212,17 @@ const BadInput cBadInputs[] = {
      "expected 'to' > 'from' for the load on body 'arm', got from = 2 s, to = 1 s"},
     {"UnknownFrame", "loads:\n  - {body: arm, force: [1, 0, 0], frame: local}\n", 14, 42,
      "expected 'world' or 'body' for 'frame'"},
+    // Finite parameters whose values or rates are not: refused at their line, not at step 1.
+    {"SineWhoseRateOverflows",
+     "actuators:\n  - {joint: hinge, type: effort, target: {sine: {amplitude: 1, frequency: 1.0e308}}}\n", 14,
+     49, "2 pi x frequency x t overflows within a run (t up to 1e+12 s)"},
+    {"KeyframesWhoseSpanOverflows",
+     "actuators:\n  - {joint: hinge, type: effort, target: {smooth: true, keyframes: [[-1.0e308, 0], "
+     "[1.0e308, "
+     "1]]}}\n",
+     14, 84,
+     "keyframe 2 of 'keyframes' of 'target' in the actuator on joint 'hinge': the time from the keyframe "
+     "before overflows"},
     {"LoadPointFarAway", "loads:\n  - {body: arm, force: [1, 0, 0], at: [0, 0, 2.0e6]}\n", 14, 39,
      "expected a point within 1e6 m of the origin for 'at' in the load on body 'arm', got [0, 0, 2e+06]"},
 };
@@ -237,6 +248,10 @@ TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
         {"", "time,hinge\n0,0\n1,1\n1,2\n", 4, "times must increase: time 1 after 1"},
         {"", "hinge\n0\n", 1, "the header has no 'time' column"},
         {"", "time,hinge\n0,1,2\n", 2, "expected 2 comma-separated values"},
+        {"", "time,hinge\n-1e308,0\n1e308,1\n", 3,
+         "the row of column 'hinge' for 'target' in the actuator on joint 'hinge': the time from the "
+         "keyframe "
+         "before overflows"},
     };
     TempDir dir;
     for (const BadCsv& bad : cases)
