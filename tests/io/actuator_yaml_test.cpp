@@ -223,6 +223,11 @@ const BadInput cBadInputs[] = {
      14, 84,
      "keyframe 2 of 'keyframes' of 'target' in the actuator on joint 'hinge': the time from the keyframe "
      "before overflows"},
+    // A load cannot act before the run starts (it used to be ignored without a word).
+    {"ImpulseBeforeTheStart", "loads:\n  - {body: arm, impulse: [1, 0, 0], time: -1}\n", 14, 43,
+     "expected a number >= 0 for 'time' in the load on body 'arm' (s; the run starts at t = 0), got '-1'"},
+    {"WindowBeforeTheStart", "loads:\n  - {body: arm, force: [1, 0, 0], from: -0.5, to: 1}\n", 14, 41,
+     "expected a number >= 0 for 'from' in the load on body 'arm'"},
     {"LoadPointFarAway", "loads:\n  - {body: arm, force: [1, 0, 0], at: [0, 0, 2.0e6]}\n", 14, 39,
      "expected a point within 1e6 m of the origin for 'at' in the load on body 'arm', got [0, 0, 2e+06]"},
 };
