@@ -20,7 +20,8 @@ struct TargetColumn
 };
 
 // The `time` column and the named one; throws InputError naming the file and line of a problem
-// (a missing column names the columns there are and the closest one).
+// (a missing column names the columns there are and the closest one; a column named twice is
+// refused).
 TargetColumn readTargetColumn(const std::string& path, const std::string& column);
 
 } // namespace frontier::io::detail

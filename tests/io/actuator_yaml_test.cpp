@@ -253,6 +253,8 @@ TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
         {"", "time,hinge\n0,0\n1,1\n1,2\n", 4, "times must increase: time 1 after 1"},
         {"", "hinge\n0\n", 1, "the header has no 'time' column"},
         {"", "time,hinge\n0,1,2\n", 2, "expected 2 comma-separated values"},
+        {"", "time,hinge,hinge\n0,0,1\n", 1,
+         "column 'hinge' appears twice in the header (fields 2 and 3); expected each column name once"},
         {"", "time,hinge\n-1e308,0\n1e308,1\n", 3,
          "the row of column 'hinge' for 'target' in the actuator on joint 'hinge': the time from the "
          "keyframe "
