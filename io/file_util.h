@@ -83,8 +83,13 @@ struct TextPosition
 };
 TextPosition positionOf(const std::string& text, std::size_t pos);
 
+// `text` with each byte that would not print as text (a control character, a line break
+// included, or a byte outside well-formed UTF-8) written as \xNN.
+std::string printable(std::string_view text);
+
 // "FILE:LINE:COL: SEVERITY: TEXT" (line and column left out when 0): the one format of every
-// error and warning about an input file.
+// error and warning about an input file. FILE and TEXT go through printable(): a message quoting
+// a file's bytes (a binary header, a name with control characters) cannot reach the terminal raw.
 std::string diagnostic(const std::string& file, TextPosition at, const char* severity,
                        const std::string& message);
 

@@ -274,5 +274,23 @@ TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
     }
 }
 
+// A message that quotes a file's bytes (here a binary CSV header) escapes those that would not print
+// (\xNN), so that nothing reaches the terminal raw; well-formed UTF-8 is kept.
+TEST(ActuatorYaml, BinaryBytesInAQuotedHeaderAreEscaped)
+{
+    TempDir dir;
+    const std::string yaml =
+        scene("actuators:\n  - {joint: hinge, type: position, kp: 1, target: {csv: {file: t.csv}}}\n");
+    const std::string scenePath = dir.write("scene.yaml", yaml);
+    dir.write("t.csv", std::string("time,\x1b]0;pwned\x07\xff\xfe,r\xc3\xa9glage\r\n0,0,0\n"));
+    const InputError e = captureInputError([&] { load(yaml, scenePath); });
+    const std::string what = e.what();
+    EXPECT_NE(what.find("\\x1b]0;pwned\\x07\\xff\\xfe, r\xc3\xa9glage"), std::string::npos) << what;
+    for (const char c : what)
+    {
+        EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << what;
+    }
+}
+
 } // namespace
 } // namespace frontier::io::test
