@@ -231,6 +231,23 @@ TEST(UrdfPackages, UnresolvedPackageNamesFileLinePackageAndWhereItLooked)
         << what;
 }
 
+// A package:// path stays inside its package folder: '..' above it (or a package named '..') is
+// refused at the mesh's line, even where the file it would reach exists.
+TEST(UrdfPackages, DotDotCannotLeaveThePackage)
+{
+    TempDir dir;
+    mkdirs(dir, "pkgs/my_robot/urdf");
+    dir.write("pkgs/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("pkgs/secret.obj", cCubeObj);
+    for (const char* uri : {"package://my_robot/../secret.obj", "package://../../secret.obj",
+                            "package://my_robot/meshes/../../../secret.obj", "model://..%2f..%2fsecret.obj"})
+    {
+        const std::string urdf = dir.write("pkgs/my_robot/urdf/r.urdf", meshRobot(uri));
+        EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(urdf); }), urdf, 4, 26,
+                              "'" + std::string(uri) + "' leads out of its package folder");
+    }
+}
+
 // A mesh scaled beyond the ranges of core/model.h is refused at its `scale` (YAML) or its <mesh>
 // element (URDF): its vertices would be far beyond what the collision detection can take.
 TEST(UrdfPackages, MeshScaledOutOfRangeIsRefused)
