@@ -17,7 +17,9 @@ namespace frontier::io::detail
 // FIFO or a huge file named by mistake fails at once instead of hanging or filling memory.
 
 // Bytes an input file may have: FRONTIER_MAX_INPUT_BYTES when set (a positive whole number; anything
-// else throws InputError naming the variable), else 256 MiB.
+// else throws InputError naming the variable), else cDefaultMaxInputBytes (README.md and
+// scenes/README.md say it).
+inline constexpr std::uintmax_t cDefaultMaxInputBytes = std::uintmax_t{256} << 20; // 256 MiB
 std::uintmax_t maxInputBytes();
 
 // Throws InputError(path, 0, 0, ...) unless `path` names a regular file (symbolic links followed)

@@ -1,6 +1,7 @@
 // tests/app/bad_input_test.cpp: bad scenes and bad usage exit with code 2 and a message that names
 // the file and line (scenes) or the flag (usage), and write nothing.
 #include "app_test_util.h"
+#include "io/file_util.h"
 #include "io/trajectory.h"
 
 #include <chrono>
@@ -305,6 +306,26 @@ bodies:
               std::string::npos)
         << r.err;
     EXPECT_NO_THROW(io::readTrajectory(dir.out("t.failed.csv")));
+}
+
+// scenes/README.md and README.md say the size limit of input files that the code enforces.
+TEST(BadInput, DocumentsSayTheInputSizeLimit)
+{
+    const std::string limit = std::to_string(io::detail::cDefaultMaxInputBytes >> 20) + " MiB";
+    for (const char* document : {"scenes/README.md", "README.md"})
+    {
+        const std::string text = readText(sourcePath(document));
+        std::size_t at = 0;
+        int mentions = 0;
+        while ((at = text.find(" MiB", at + 1)) != std::string::npos)
+        {
+            const std::size_t start = text.find_last_of(' ', at - 1) + 1;
+            const std::string said = text.substr(start, at + 4 - start);
+            EXPECT_EQ(said, limit) << document;
+            ++mentions;
+        }
+        EXPECT_GE(mentions, 1) << document;
+    }
 }
 
 // Input that is not a file of text (a FIFO, /dev/zero, a URDF nested 40 000 deep, a joint loop)
