@@ -371,7 +371,7 @@ BatchScene loadBatchScene(const BatchPlan& plan, const PlanJob& job, const io::U
     {
         perturbInitialState(scene.loaded.model, static_cast<std::uint64_t>(*seed), plan.perturbPositionM,
                             plan.perturbVelocityMps); // a whole number from 0 to 1000000 (readBatchPlan)
-        run::checkFiniteEnergy(scene.loaded.model, job.scenePath);
+        run::checkStartingStates(scene.loaded.model, job.scenePath);
     }
     scene.loaded.report.inputFiles = reads.files();
     scene.inputsDigest =

@@ -13,9 +13,10 @@ namespace frontier::app
 // The most steps a run may take: more could only come from a typo (1e12 steps take days at the
 // fastest step rates, and a count near 2^63 would overflow).
 inline constexpr double cMaxSteps = 1e12;
-// The largest time step and duration a run takes (s), from the flags or a batch plan.
-inline constexpr double cMaxTimeStepS = 1e6;
-inline constexpr double cMaxDurationS = 1e12;
+// The largest time step and duration a run takes (s), from the flags, a batch plan or a scene:
+// the ranges of core/model.h.
+inline constexpr double cMaxTimeStepS = core::cMaxTimeStep;
+inline constexpr double cMaxDurationS = core::cMaxDuration;
 
 // round(duration / dt), at least 1; throws io::InputError naming `source` (the scene or the flags)
 // when dt or duration is not a finite positive number or the count exceeds cMaxSteps.

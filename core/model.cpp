@@ -384,6 +384,35 @@ double shapeSupport(const Shape& shape, const Vec3& u_S)
     return 0.0;
 }
 
+double shapeReach(const Shape& shape)
+{
+    switch (shape.type)
+    {
+    case ShapeType::Box:
+        return 0.5 * shape.size.stableNorm();
+    case ShapeType::Sphere:
+        return shape.radius;
+    case ShapeType::Capsule:
+        return shape.radius + 0.5 * shape.length;
+    case ShapeType::Cylinder:
+        return std::hypot(shape.radius, 0.5 * shape.length);
+    case ShapeType::Mesh:
+    {
+        double farthest = 0.0; // NaN-safe: a non-finite vertex makes it infinite
+        for (const Vec3& v : shape.vertices)
+        {
+            const double d = v.stableNorm(); // no overflow of the squares for a huge vertex
+            farthest =
+                d <= farthest ? farthest : (std::isnan(d) ? std::numeric_limits<double>::infinity() : d);
+        }
+        return farthest;
+    }
+    case ShapeType::Plane:
+        return std::abs(shape.offset);
+    }
+    return 0.0;
+}
+
 double shapeSupportWorld(const Shape& shape, const Vec3& bodyPosition_W, const Quat& bodyOrientation_WB,
                          const Vec3& u_W)
 {

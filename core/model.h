@@ -238,6 +238,12 @@ enum class IntegratorKind
     Rattle4, // three RATTLE stages composed to fourth order (docs/method.md §11)
 };
 
+// The ranges of a run's times (a scene's `simulation:`, --dt and --duration, a batch plan): a step of
+// (0, cMaxTimeStep] s, a run of (0, cMaxDuration] s. Longer could only be a typo; a function of time
+// (an actuator's target) is checked to stay finite up to cMaxDuration.
+inline constexpr double cMaxTimeStep = 1e6;  // s
+inline constexpr double cMaxDuration = 1e12; // s
+
 struct SimulationSettings
 {
     double dt = 0.001;                // s
@@ -276,6 +282,34 @@ struct Model
     // the scene loaders resolve names through a name -> index map (io's SceneBuilder).
     int findBody(const std::string& bodyName) const;
 };
+
+// The ranges of a scene's lengths and starting motion: beyond them a value is a typo or a corrupt
+// file, and the collision detection (FCL's bounding-volume trees) breaks down long before doubles
+// overflow. A scene's positions (bodies, shapes, joint anchors, URDF origins, model placements) lie
+// within cMaxDistance of the origin, its sizes (box sides, radii, lengths, a scaled mesh's reach)
+// are positive and at most cMaxDistance, its starting speeds at most cMaxSpeed and
+// cMaxAngularSpeed. A trajectory row (io/trajectory.h) obeys the same distance, and a run stops
+// (a blow-up, docs/method.md §7) when a body passes one of them.
+inline constexpr double cMaxDistance = 1e6;     // m
+inline constexpr double cMaxSpeed = 1e5;        // m/s
+inline constexpr double cMaxAngularSpeed = 1e6; // rad/s
+// How messages say them.
+inline constexpr const char* cPositionRange = "a point within 1e6 m of the origin";
+inline constexpr const char* cLengthRange = "a length in (0, 1e6] m";
+inline constexpr const char* cSpeedRange = "a velocity of at most 1e5 m/s";
+inline constexpr const char* cAngularSpeedRange = "an angular velocity of at most 1e6 rad/s";
+// Each is false for NaN and infinities.
+inline bool isPosition(const Vec3& p_W)
+{
+    return p_W.norm() <= cMaxDistance;
+}
+inline bool isLength(double m)
+{
+    return m > 0.0 && m <= cMaxDistance;
+}
+// The farthest point of a shape from its own origin (m): a box's half diagonal, a sphere's radius, a
+// capsule's radius + half length, a cylinder's corner, a mesh's farthest vertex, a plane's |offset|.
+double shapeReach(const Shape& shape);
 
 // The friction and restitution of a contact between bodies a and b (b may be cWorld), as Box2D
 // mixes materials: friction the geometric mean sqrt(mu_a mu_b), restitution the larger, each body

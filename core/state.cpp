@@ -1,6 +1,9 @@
 // core/state.cpp: initial state, energy and momentum.
 #include "core/state.h"
 
+#include <cmath>
+#include <sstream>
+
 namespace frontier::core
 {
 
@@ -23,6 +26,56 @@ State initialState(const Model& model)
     // The joint frames are set at the model's initial pose (setJointFrames): every angle is 0.
     state.jointAngles.assign(model.joints.size(), 0.0);
     return state;
+}
+
+double bodyEnergyScale(const Model& model, std::size_t i, const BodyState& state)
+{
+    const Body& body = model.bodies[i];
+    const double kinetic =
+        0.5 * body.mass * state.velocity_W.squaredNorm() +
+        0.5 * state.angularVelocity_W.dot(worldInertia(body, state) * state.angularVelocity_W);
+    return kinetic + std::abs(body.mass * model.simulation.gravity.dot(state.position_W));
+}
+
+std::string startingStateDefect(const Model& model, std::size_t i)
+{
+    const Body& body = model.bodies[i];
+    const auto beyond = [](const char* quantity, double value, const char* range)
+    {
+        std::ostringstream text;
+        text << "its starting " << quantity << " is " << value << "; expected " << range;
+        return text.str();
+    };
+    if (!isPosition(body.position_W))
+    {
+        return beyond("distance from the origin", body.position_W.stableNorm(), cPositionRange);
+    }
+    if (body.isStatic)
+    {
+        return {};
+    }
+    if (!(body.velocity_W.norm() <= cMaxSpeed))
+    {
+        return beyond("speed", body.velocity_W.stableNorm(), cSpeedRange);
+    }
+    if (!(body.angularVelocity_W.norm() <= cMaxAngularSpeed))
+    {
+        return beyond("angular speed", body.angularVelocity_W.stableNorm(), cAngularSpeedRange);
+    }
+    BodyState s;
+    s.position_W = body.position_W;
+    s.orientation_WB = body.orientation_WB.normalized();
+    s.velocity_W = body.velocity_W;
+    s.angularVelocity_W = body.angularVelocity_W;
+    if (!std::isfinite(bodyEnergyScale(model, i, s)))
+    {
+        std::ostringstream text;
+        text << "its initial energy is not finite (mass " << body.mass << " kg, gravity "
+             << model.simulation.gravity.norm()
+             << " m/s^2: too large for doubles); no run could report its energy";
+        return text.str();
+    }
+    return {};
 }
 
 Mat3 worldInertia(const Body& body, const BodyState& state)

@@ -3,6 +3,7 @@
 
 #include "core/model.h"
 
+#include <string>
 #include <vector>
 
 namespace frontier::core
@@ -45,6 +46,16 @@ State initialState(const Model& model);
 // World-frame inertia R I_B R^T (kg m^2); R_WB: the body's rotation matrix where it is at hand.
 Mat3 worldInertia(const Body& body, const BodyState& state);
 Mat3 worldInertia(const Body& body, const Mat3& R_WB);
+
+// The kinetic energy and the magnitude of the gravitational potential (zero at the origin) of moving
+// body i in `state` (J): what a run's energy scale sums.
+double bodyEnergyScale(const Model& model, std::size_t i, const BodyState& state);
+
+// What is wrong with body i's starting state (its fields in the model): a position beyond
+// cMaxDistance from the origin, a speed beyond cMaxSpeed or cMaxAngularSpeed (core/model.h), or,
+// for a moving body, an energy (bodyEnergyScale) that doubles cannot hold, which no run could
+// report. "" when nothing is; the scene loaders name the body and its line.
+std::string startingStateDefect(const Model& model, std::size_t i);
 
 // Kinetic energy of the moving bodies, translational plus rotational (J).
 double kineticEnergy(const Model& model, const State& state);

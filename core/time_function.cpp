@@ -4,9 +4,20 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace frontier::core
 {
+
+namespace
+{
+std::string format(double value)
+{
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+} // namespace
 
 TimeFunction constantFunction(double value)
 {
@@ -54,6 +65,69 @@ TimeFunction keyframeFunction(std::vector<double> times, std::vector<double> val
         }
     }
     return f;
+}
+
+std::string overflowDefect(const TimeFunction& f, double horizon, std::size_t* keyframe)
+{
+    const auto finite = [](double x) { return std::isfinite(x); };
+    switch (f.kind)
+    {
+    case TimeFunction::Kind::Constant:
+        return {};
+    case TimeFunction::Kind::Sine:
+    {
+        const double omega = 2.0 * std::numbers::pi * f.frequency; // rad/s
+        if (!finite(omega * horizon + std::abs(f.phase)))
+        {
+            return "2 pi x frequency x t overflows within a run (t up to " + format(horizon) + " s)";
+        }
+        if (!finite(f.amplitude * omega))
+        {
+            return "its rate, amplitude x 2 pi x frequency, overflows";
+        }
+        if (!finite(std::abs(f.offset) + std::abs(f.amplitude)))
+        {
+            return "offset + amplitude overflows";
+        }
+        return {};
+    }
+    case TimeFunction::Kind::Keyframes:
+        break;
+    }
+    for (std::size_t k = 0; k + 1 < f.times.size(); ++k)
+    {
+        const double h = f.times[k + 1] - f.times[k];
+        const double step = f.values[k + 1] - f.values[k];
+        const double slope0 = f.slopes.empty() ? 0.0 : f.slopes[k];
+        const double slope1 = f.slopes.empty() ? 0.0 : f.slopes[k + 1];
+        std::string defect;
+        if (!finite(h))
+        {
+            defect = "the time from the keyframe before overflows";
+        }
+        else if (!finite(step))
+        {
+            defect = "the change of value from the keyframe before overflows";
+        }
+        else if (!finite(step / h) || !finite(1.5 * std::abs(step / h) + std::abs(slope0) + std::abs(slope1)))
+        {
+            defect = "the rate from the keyframe before (value change / time) overflows";
+        }
+        else if (!finite(std::abs(f.values[k]) + std::abs(f.values[k + 1]) + std::abs(h * slope0) +
+                         std::abs(h * slope1)))
+        {
+            defect = "the smooth curve from the keyframe before overflows";
+        }
+        if (!defect.empty())
+        {
+            if (keyframe != nullptr)
+            {
+                *keyframe = k + 1;
+            }
+            return defect;
+        }
+    }
+    return {};
 }
 
 namespace

@@ -14,6 +14,8 @@
 // rate(t) is dv/dt (the value's unit per second): a position servo damps towards it.
 #pragma once
 
+#include <cstddef>
+#include <string>
 #include <vector>
 
 namespace frontier::core
@@ -42,6 +44,13 @@ TimeFunction constantFunction(double value);
 TimeFunction sineFunction(double amplitude, double frequency, double phase, double offset);
 // Keyframes (times strictly increasing, at least one); smooth: the monotone cubic above.
 TimeFunction keyframeFunction(std::vector<double> times, std::vector<double> values, bool smooth);
+
+// Why a function of finite parameters would still give a non-finite value or rate at some time of a
+// run, t in [0, horizon] s (the longest run, core::cMaxDuration): a sine whose 2 pi f t, amplitude
+// x 2 pi f or offset + amplitude overflows; keyframes whose interval, value step, slope or curve
+// terms do. "" when it never does; for keyframes *keyframe (when given) receives the index of the
+// keyframe that ends the interval at fault.
+std::string overflowDefect(const TimeFunction& function, double horizon, std::size_t* keyframe = nullptr);
 
 double valueAt(const TimeFunction& function, double t);
 double rateAt(const TimeFunction& function, double t);

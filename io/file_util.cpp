@@ -22,7 +22,6 @@ namespace frontier::io::detail
 namespace
 {
 
-constexpr std::uintmax_t cDefaultMaxInputBytes = std::uintmax_t{256} << 20; // 256 MiB
 constexpr const char* cMaxInputVariable = "FRONTIER_MAX_INPUT_BYTES";
 
 [[noreturn]] void failTooLarge(const std::string& path, const std::string& what, std::uintmax_t bytes,

@@ -17,7 +17,9 @@ namespace frontier::io::detail
 // FIFO or a huge file named by mistake fails at once instead of hanging or filling memory.
 
 // Bytes an input file may have: FRONTIER_MAX_INPUT_BYTES when set (a positive whole number; anything
-// else throws InputError naming the variable), else 256 MiB.
+// else throws InputError naming the variable), else cDefaultMaxInputBytes (README.md and
+// scenes/README.md say it).
+inline constexpr std::uintmax_t cDefaultMaxInputBytes = std::uintmax_t{256} << 20; // 256 MiB
 std::uintmax_t maxInputBytes();
 
 // Throws InputError(path, 0, 0, ...) unless `path` names a regular file (symbolic links followed)
@@ -83,8 +85,13 @@ struct TextPosition
 };
 TextPosition positionOf(const std::string& text, std::size_t pos);
 
+// `text` with each byte that would not print as text (a control character, a line break
+// included, or a byte outside well-formed UTF-8) written as \xNN.
+std::string printable(std::string_view text);
+
 // "FILE:LINE:COL: SEVERITY: TEXT" (line and column left out when 0): the one format of every
-// error and warning about an input file.
+// error and warning about an input file. FILE and TEXT go through printable(): a message quoting
+// a file's bytes (a binary header, a name with control characters) cannot reach the terminal raw.
 std::string diagnostic(const std::string& file, TextPosition at, const char* severity,
                        const std::string& message);
 

@@ -311,6 +311,14 @@ ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urd
             "'" + uri + "' names no file; expected " + (package ? "package" : "model") + "://NAME/PATH";
         return out;
     }
+    const fs::path inside = fs::path(rest).lexically_normal();
+    if (name == "." || name == ".." || inside.has_root_path() || (!inside.empty() && *inside.begin() == ".."))
+    {
+        out.notFound = "'" + uri + "' leads out of its package folder; expected " +
+                       (package ? "package" : "model") +
+                       "://NAME/PATH with PATH inside the package (no '..' " + "above it, not absolute)";
+        return out;
+    }
     std::optional<std::string> dir = findPackage(name, model);
     const std::vector<fs::path> ancestors = ancestorsOf(urdfFile);
     for (std::size_t i = 0; !dir && i < ancestors.size(); ++i) // 3: the URDF's own package

@@ -5,6 +5,7 @@
 #include "io/scene.h"
 #include "io/suggest.h"
 
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -38,6 +39,23 @@ std::vector<std::string> fields(const std::string& line)
         out.emplace_back(); // a trailing comma leaves an empty last field
     }
     return out;
+}
+
+// A header names each column once: a second column of a name would be ignored.
+void checkDistinctNames(const std::string& path, int lineNumber, const std::vector<std::string>& names)
+{
+    std::map<std::string, std::size_t> first; // name -> its 0-based field
+    for (std::size_t k = 0; k < names.size(); ++k)
+    {
+        const auto [it, added] = first.emplace(names[k], k);
+        if (!added)
+        {
+            throw InputError(path, lineNumber, 1,
+                             "column '" + names[k] + "' appears twice in the header (fields " +
+                                 std::to_string(it->second + 1) + " and " + std::to_string(k + 1) +
+                                 "); expected each column name once");
+        }
+    }
 }
 
 int indexOf(const std::vector<std::string>& names, const std::string& name)
@@ -77,6 +95,7 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
         {
             header = row;
             headerLine = lineNumber;
+            checkDistinctNames(path, lineNumber, header);
             timeIndex = indexOf(header, "time");
             valueIndex = indexOf(header, column);
             if (timeIndex < 0)
@@ -121,6 +140,7 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
         }
         out.times.push_back(numbers[0]);
         out.values.push_back(numbers[1]);
+        out.lines.push_back(lineNumber);
     }
     if (header.empty())
     {

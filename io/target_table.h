@@ -16,10 +16,12 @@ struct TargetColumn
 {
     std::vector<double> times;  // s, strictly increasing
     std::vector<double> values; // the column's values at those times
+    std::vector<int> lines;     // the line of each row in the file (1-based)
 };
 
 // The `time` column and the named one; throws InputError naming the file and line of a problem
-// (a missing column names the columns there are and the closest one).
+// (a missing column names the columns there are and the closest one; a column named twice is
+// refused).
 TargetColumn readTargetColumn(const std::string& path, const std::string& column);
 
 } // namespace frontier::io::detail

@@ -53,7 +53,6 @@ std::vector<Field> splitFields(std::string_view line, char separator)
     }
 }
 
-constexpr double cMaxPosition = 1e6;          // m: farther from the origin is a corrupt row
 constexpr double cQuaternionTolerance = 1e-6; // |q| - 1 the writer's normalised quaternions stay within
 
 // What is wrong with the value of a known pair of the comment line ("" when nothing is, or the key
@@ -271,12 +270,12 @@ Trajectory readTrajectory(const std::string& path)
             row.values[i] = number(i + 2);
         }
         const core::BodyState state = row.state();
-        if (!(state.position_W.norm() <= cMaxPosition))
+        if (!core::isPosition(state.position_W)) // the scenes' rule: farther is a corrupt row
         {
             throw InputError(path, lineNumber, fields[2].column,
                              "position (" + formatNumber(row.values[0]) + ", " + formatNumber(row.values[1]) +
                                  ", " + formatNumber(row.values[2]) + ") m is farther than " +
-                                 formatNumber(cMaxPosition) + " m from the origin");
+                                 formatNumber(core::cMaxDistance) + " m from the origin");
         }
         if (!(std::abs(state.orientation_WB.norm() - 1.0) <= cQuaternionTolerance))
         {

@@ -191,6 +191,15 @@ class UrdfConverter
         throw InputError(mFile, at.line, at.column, message);
     }
 
+    // An <origin xyz> (or a placement made of them) within the range of core/model.h.
+    void checkPosition(TextPosition at, const core::Vec3& p, const std::string& what) const
+    {
+        if (!core::isPosition(p))
+        {
+            fail(at, what + " is (" + formatVector(p) + ") m; expected " + core::cPositionRange);
+        }
+    }
+
     void warn(TextPosition at, const std::string& message)
     {
         mOut.warnings.push_back(diagnostic(mFile, at, "warning", message));
@@ -335,6 +344,9 @@ class UrdfConverter
                              "' its own ancestor; the links must form a tree");
                 }
                 const urdf::Link& child = link(childName);
+                const TextPosition origin = mIndex.element("joint", joint->name, "origin");
+                checkPosition(origin, fromUrdf(joint->parent_to_joint_origin_transform).p,
+                              "the <origin xyz> of joint '" + joint->name + "'");
                 LinkPlace place;
                 place.world = parentPlace.world * fromUrdf(joint->parent_to_joint_origin_transform);
                 switch (joint->type)
@@ -370,6 +382,8 @@ class UrdfConverter
                     fail(mIndex.element("joint", joint->name),
                          "joint '" + joint->name + "' has an unknown type");
                 }
+                checkPosition(origin, place.world.p,
+                              "joint '" + joint->name + "' places link '" + childName + "' where its frame");
                 mPlaces[childName] = place;
                 stack.push_back(&child);
             }
@@ -423,6 +437,8 @@ class UrdfConverter
             return part;
         }
         const Pose inertialPose = fromUrdf(inertial.origin);
+        checkPosition(mIndex.element("link", l.name, "inertial/origin"), inertialPose.p,
+                      "the <inertial><origin xyz> of link '" + l.name + "'");
         const std::optional<Pose>& inTop = mPlaces[l.name].inTop;
         const Pose inertialInTop = inTop ? *inTop * inertialPose : inertialPose;
         part.centre = inertialInTop.p;
@@ -514,6 +530,9 @@ class UrdfConverter
                 continue;
             }
             const Pose pose = fromUrdf(origin);
+            checkPosition(mIndex.element("link", l.name, element + "/origin"), pose.p,
+                          "the <origin xyz> of " + std::string(collision ? "a collision" : "a visual") +
+                              " of link '" + l.name + "'");
             shape->position_BS = pose.p;
             shape->rotation_BS = pose.q;
             out.push_back(std::move(*shape));
@@ -535,18 +554,21 @@ class UrdfConverter
             const auto& box = static_cast<const urdf::Box&>(geometry);
             shape.type = core::ShapeType::Box;
             shape.size = core::Vec3(box.dim.x, box.dim.y, box.dim.z);
-            if (!(shape.size.minCoeff() > 0.0) || !shape.size.allFinite())
+            if (!(core::isLength(shape.size.x()) && core::isLength(shape.size.y()) &&
+                  core::isLength(shape.size.z())))
             {
-                fail(at, "box size of " + where + " must be positive");
+                fail(at, "box size of " + where + " is (" + formatVector(shape.size) + "); expected each " +
+                             core::cLengthRange);
             }
             break;
         }
         case urdf::Geometry::SPHERE:
             shape.type = core::ShapeType::Sphere;
             shape.radius = static_cast<const urdf::Sphere&>(geometry).radius;
-            if (!(shape.radius > 0.0) || !std::isfinite(shape.radius))
+            if (!core::isLength(shape.radius))
             {
-                fail(at, "sphere radius of " + where + " must be positive");
+                fail(at, "sphere radius of " + where + " is " + formatNumber(shape.radius) + "; expected " +
+                             core::cLengthRange);
             }
             break;
         case urdf::Geometry::CYLINDER:
@@ -555,9 +577,10 @@ class UrdfConverter
             shape.type = core::ShapeType::Cylinder;
             shape.radius = cylinder.radius;
             shape.length = cylinder.length;
-            if (!(shape.radius > 0.0 && shape.length > 0.0) || !std::isfinite(shape.radius + shape.length))
+            if (!(core::isLength(shape.radius) && core::isLength(shape.length)))
             {
-                fail(at, "cylinder radius and length of " + where + " must be positive");
+                fail(at, "cylinder radius and length of " + where + " are " + formatNumber(shape.radius) +
+                             " and " + formatNumber(shape.length) + "; expected each " + core::cLengthRange);
             }
             break;
         }
@@ -590,7 +613,14 @@ class UrdfConverter
             }
             try
             {
-                return loadMeshFile(resolved.path, scale);
+                core::Shape shape = loadMeshFile(resolved.path, scale);
+                if (!(core::shapeReach(shape) <= core::cMaxDistance))
+                {
+                    fail(at, what + " reaches " + formatNumber(core::shapeReach(shape)) +
+                                 " m from its origin at scale (" + formatVector(scale) + "); expected " +
+                                 core::cLengthRange);
+                }
+                return shape;
             }
             catch (const InputError& e)
             {

@@ -1,4 +1,5 @@
 // io/urdf_scene.cpp: a URDF alone as a scene: the robot, placed on a floor (README "Robots").
+#include "core/state.h"
 #include "io/file_util.h"
 #include "io/hold_servos.h"
 #include "io/package_paths.h"
@@ -143,6 +144,15 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     plane.offset = floorHeight;
     floor.shapes.push_back(plane);
     model.bodies.push_back(std::move(floor));
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        // Placed on the floor, a body may have moved out of range (core::startingStateDefect).
+        const std::string defect = core::startingStateDefect(model, i);
+        if (!defect.empty())
+        {
+            throw InputError(path, 0, 0, "body '" + model.bodies[i].name + "': " + defect);
+        }
+    }
     if (report)
     {
         report->robots.push_back(std::move(robot));

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace frontier::io::detail
 {
@@ -84,9 +85,10 @@ core::Shape readMesh(const MapNode& map)
         }
     }
     const std::string path = resolvePath(map.source().baseDir, file);
+    core::Shape mesh;
     try
     {
-        return loadMeshFile(path, scale);
+        mesh = loadMeshFile(path, scale);
     }
     catch (const InputError& e)
     {
@@ -96,6 +98,15 @@ core::Shape readMesh(const MapNode& map)
         }
         failAt(map.source(), fileNode, "cannot read mesh file '" + path + "': " + e.message());
     }
+    if (!(core::shapeReach(mesh) <= core::cMaxDistance))
+    {
+        std::ostringstream message;
+        message << "mesh '" << file << "' of " << map.context() << " reaches " << core::shapeReach(mesh)
+                << " m from its origin" << (map.has("scale") ? " at this scale" : "") << "; expected "
+                << core::cLengthRange;
+        failAt(map.source(), map.has("scale") ? map.get("scale") : fileNode, message.str());
+    }
+    return mesh;
 }
 
 ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::string& context)
@@ -128,30 +139,36 @@ ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::
     {
         const YamlNode size = map.require("size");
         shape.size = toVec3(source, size, map.what("size"));
-        if (!(shape.size.minCoeff() > 0.0))
+        for (std::size_t i = 0; i < 3; ++i)
         {
-            failAt(source, size, "expected positive numbers for " + map.what("size") + " (full extents, m)");
+            toLength(source, size[i], "the full extents of " + map.what("size"));
         }
         break;
     }
     case core::ShapeType::Sphere:
-        shape.radius = toPositive(source, map.require("radius"), map.what("radius"));
+        shape.radius = toLength(source, map.require("radius"), map.what("radius"));
         break;
     case core::ShapeType::Capsule:
     case core::ShapeType::Cylinder:
-        shape.radius = toPositive(source, map.require("radius"), map.what("radius"));
-        shape.length = toPositive(source, map.require("length"), map.what("length"));
+        shape.radius = toLength(source, map.require("radius"), map.what("radius"));
+        shape.length = toLength(source, map.require("length"), map.what("length"));
         break;
     case core::ShapeType::Plane:
         shape.normal = toDirection(source, map.require("normal"), map.what("normal"));
         shape.offset = map.optNumber("offset").value_or(0.0);
+        if (!(std::abs(shape.offset) <= core::cMaxDistance))
+        {
+            map.failAtValue("offset", std::string("expected an offset (m) of ") + core::cPositionRange +
+                                          " for " + map.what("offset") + ", got " +
+                                          describeNode(map.get("offset")));
+        }
         break;
     case core::ShapeType::Mesh:
         entry.fileNode = map.get("file");
         shape = readMesh(map);
         break;
     }
-    shape.position_BS = map.optVec3("position").value_or(core::Vec3::Zero());
+    shape.position_BS = map.optPosition("position").value_or(core::Vec3::Zero());
     shape.rotation_BS = map.optQuaternion("orientation").value_or(core::Quat::Identity());
     return entry;
 }
@@ -329,10 +346,10 @@ void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
             }
         }
     }
-    const core::Vec3 position = map.optVec3("position").value_or(core::Vec3::Zero());
+    const core::Vec3 position = map.optPosition("position").value_or(core::Vec3::Zero());
     const core::Quat orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
-    body.velocity_W = map.optVec3("velocity").value_or(core::Vec3::Zero());
-    body.angularVelocity_W = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
+    body.velocity_W = map.optVelocity("velocity").value_or(core::Vec3::Zero());
+    body.angularVelocity_W = map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
     if (map.has("color"))
     {
         body.color = readColor(map);

@@ -104,7 +104,7 @@ void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
     core::Vec3 anchor = child.position_W; // fixed joints: the child's centre of mass by default
     if (joint.type != core::JointType::Fixed || map.has("anchor"))
     {
-        anchor = toVec3(source, map.require("anchor"), map.what("anchor"));
+        anchor = toPosition(source, map.require("anchor"), map.what("anchor"));
     }
     core::Vec3 axis = core::Vec3::UnitZ();
     if (needsAxis(joint.type))

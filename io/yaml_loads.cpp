@@ -38,7 +38,7 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         }
         load.frame = frame == "body" ? core::LoadFrame::Body : core::LoadFrame::World;
     }
-    load.point = map.optVec3("at");
+    load.point = map.optPosition("at");
     if (map.has("impulse"))
     {
         for (const char* key : {"force", "torque", "from", "to"})
@@ -51,7 +51,7 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         }
         load.force = *map.optVec3("impulse");
         map.require("time");
-        load.instant = map.optNumber("time");
+        load.instant = map.optNonNegative("time", "(s; the run starts at t = 0)");
         builder.model.loads.push_back(load);
         return;
     }
@@ -66,7 +66,7 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
     }
     load.force = map.optVec3("force").value_or(core::Vec3::Zero());
     load.torque = map.optVec3("torque").value_or(core::Vec3::Zero());
-    load.from = map.optNumber("from").value_or(0.0);
+    load.from = map.optNonNegative("from", "(s; the run starts at t = 0)").value_or(0.0);
     load.to = map.optNumber("to").value_or(load.to);
     if (!(load.to > load.from))
     {

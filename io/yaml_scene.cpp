@@ -1,6 +1,7 @@
 // io/yaml_scene.cpp: a YAML scene file: top-level keys, simulation, contact, camera, models.
 #include "io/yaml_scene.h"
 
+#include "core/state.h"
 #include "io/file_util.h"
 #include "io/hold_servos.h"
 #include "io/scene.h"
@@ -10,6 +11,8 @@
 #include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <sstream>
+#include <tuple>
 #include <yaml-cpp/exceptions.h>
 
 namespace frontier::io::detail
@@ -49,6 +52,17 @@ void readSimulation(const YamlSource& source, const YamlNode& node, core::Simula
     map.checkKeys(cSimulationKeys);
     sim.dt = map.optPositive("dt").value_or(sim.dt);
     sim.duration = map.optPositive("duration").value_or(sim.duration);
+    for (const auto& [key, limit, value] : {std::tuple("dt", core::cMaxTimeStep, sim.dt),
+                                            std::tuple("duration", core::cMaxDuration, sim.duration)})
+    {
+        if (!(value <= limit))
+        {
+            std::ostringstream message;
+            message << "expected a number of seconds in (0, " << limit << "] for " << map.what(key)
+                    << ", got " << value;
+            map.failAtValue(key, message.str());
+        }
+    }
     sim.gravity = map.optVec3("gravity").value_or(sim.gravity);
     if (map.has("solver"))
     {
@@ -154,8 +168,8 @@ void readCamera(const YamlSource& source, const YamlNode& node, core::Camera& ca
     const MapNode map(source, node, "'camera'");
     map.checkKeys(cCameraKeys);
     camera.automatic = false;
-    camera.position = map.optVec3("position").value_or(camera.position);
-    camera.lookAt = map.optVec3("look_at").value_or(camera.lookAt);
+    camera.position = map.optPosition("position").value_or(camera.position);
+    camera.lookAt = map.optPosition("look_at").value_or(camera.lookAt);
     if (map.has("fov"))
     {
         camera.fovDegrees = map.number("fov");
@@ -237,7 +251,7 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         const std::string file = toString(source, urdfNode, map.what("urdf"));
         map.setContext("model '" + file + "'");
         UrdfPlacement placement;
-        placement.position = map.optVec3("position").value_or(core::Vec3::Zero());
+        placement.position = map.optPosition("position").value_or(core::Vec3::Zero());
         placement.orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
         placement.prefix = map.optString("prefix").value_or("");
         placement.selfCollision =
@@ -307,8 +321,9 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         core::Model& fragment = loaded.model;
         const std::string placedAt = placeModel(map, fragment, placement);
         // A rigid motion of the whole model: v at the root link origin, w about it.
-        const core::Vec3 velocity = map.optVec3("velocity").value_or(core::Vec3::Zero());
-        const core::Vec3 angularVelocity = map.optVec3("angular_velocity").value_or(core::Vec3::Zero());
+        const core::Vec3 velocity = map.optVelocity("velocity").value_or(core::Vec3::Zero());
+        const core::Vec3 angularVelocity =
+            map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
         for (core::Body& body : fragment.bodies)
         {
             if (!body.isStatic)
@@ -324,6 +339,7 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         }
         builder.model.robots.push_back({loaded.report.name, path, firstBody,
                                         static_cast<int>(fragment.bodies.size()), placement.selfCollision});
+        builder.robotMarks.push_back(map.mark());
         if (builder.urdf.hold || map.optBool("hold").value_or(false))
         {
             const int firstJoint = static_cast<int>(builder.model.joints.size());
@@ -361,6 +377,34 @@ std::string tabHint(const std::string& text, const YAML::Mark& mark)
     const std::string indent = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
     return indent.find('\t') != std::string::npos ? " (tabs are not allowed in YAML indentation; use spaces)"
                                                   : "";
+}
+
+// Every body's starting state within the ranges of core/model.h, its energy finite
+// (core::startingStateDefect), at the line of the body, or of the model that brought it.
+void checkStartingStates(const SceneBuilder& builder)
+{
+    const core::Model& model = builder.model;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        const std::string defect = core::startingStateDefect(model, i);
+        if (defect.empty())
+        {
+            continue;
+        }
+        const std::string& name = model.bodies[i].name;
+        YAML::Mark mark = YAML::Mark::null_mark();
+        if (const auto it = builder.bodyMarks.find(name); it != builder.bodyMarks.end())
+        {
+            mark = it->second;
+        }
+        for (std::size_t r = 0; r < model.robots.size() && r < builder.robotMarks.size(); ++r)
+        {
+            const int first = model.robots[r].firstBody;
+            const int body = static_cast<int>(i);
+            mark = body >= first && body < first + model.robots[r].bodyCount ? builder.robotMarks[r] : mark;
+        }
+        failAt(builder.source, mark, "body '" + name + "': " + defect);
+    }
 }
 
 // Line breaks as '\n' only: yaml-cpp counts lines at '\n', so a file with old Mac line endings
@@ -664,6 +708,7 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
         {
             addHoldServos(model, first, end); // where the scene's actuators leave a joint free
         }
+        checkStartingStates(builder);
         if (root.has("loads"))
         {
             readLoads(builder, root.get("loads"));

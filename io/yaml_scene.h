@@ -23,6 +23,7 @@ struct SceneBuilder
     core::Model model;
     std::map<std::string, YAML::Mark> bodyMarks;     // where each YAML body's name was given
     std::map<std::string, YAML::Mark> jointMarks;    // where each YAML joint's name was given
+    std::vector<YAML::Mark> robotMarks;              // where each entry of model.robots was given
     std::map<std::string, int> weldedLinks;          // a URDF link welded into a body (prefixed name -> body)
     UrdfOptions urdf;                                // how `models:` are read
     std::optional<PackagePaths> packages;            // their mesh URIs, made on first use

@@ -24,8 +24,15 @@ core::TimeFunction readSine(const YamlSource& source, const YamlNode& node, cons
     const double amplitude = map.number("amplitude");
     map.require("frequency");
     const double frequency = *map.optNonNegative("frequency", "(Hz)");
-    return core::sineFunction(amplitude, frequency, map.optNumber("phase").value_or(0.0),
-                              map.optNumber("offset").value_or(0.0));
+    core::TimeFunction sine = core::sineFunction(amplitude, frequency, map.optNumber("phase").value_or(0.0),
+                                                 map.optNumber("offset").value_or(0.0));
+    const std::string defect = core::overflowDefect(sine, core::cMaxDuration);
+    if (!defect.empty())
+    {
+        map.fail("the " + map.context() + " gives values that doubles cannot hold: " + defect +
+                 "; expected an amplitude, frequency and offset whose value and rate stay finite");
+    }
+    return sine;
 }
 
 core::TimeFunction readKeyframes(const YamlSource& source, const YamlNode& node, const std::string& what,
@@ -54,7 +61,16 @@ core::TimeFunction readKeyframes(const YamlSource& source, const YamlNode& node,
         times.push_back(tv[0]);
         values.push_back(tv[1]);
     }
-    return core::keyframeFunction(std::move(times), std::move(values), smooth);
+    core::TimeFunction keyframes = core::keyframeFunction(std::move(times), std::move(values), smooth);
+    std::size_t k = 0;
+    const std::string defect = core::overflowDefect(keyframes, core::cMaxDuration, &k);
+    if (!defect.empty())
+    {
+        failAt(source, node[k],
+               "keyframe " + std::to_string(k + 1) + " of " + list + ": " + defect +
+                   "; expected keyframes whose values and rates stay finite");
+    }
+    return keyframes;
 }
 
 core::TimeFunction readCsv(const YamlSource& source, const YamlNode& node, const std::string& what,
@@ -78,7 +94,17 @@ core::TimeFunction readCsv(const YamlSource& source, const YamlNode& node, const
         }
         throw;
     }
-    return core::keyframeFunction(std::move(table.times), std::move(table.values), smooth);
+    core::TimeFunction keyframes =
+        core::keyframeFunction(std::move(table.times), std::move(table.values), smooth);
+    std::size_t k = 0;
+    const std::string defect = core::overflowDefect(keyframes, core::cMaxDuration, &k);
+    if (!defect.empty())
+    {
+        throw InputError(path, table.lines[k], 1,
+                         "the row of column '" + column + "' for " + what + ": " + defect +
+                             "; expected rows whose values and rates stay finite");
+    }
+    return keyframes;
 }
 
 } // namespace

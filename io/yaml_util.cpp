@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <yaml-cpp/yaml.h>
 
 namespace frontier::io::detail
@@ -188,6 +189,37 @@ core::Quat toQuaternion(const YamlSource& source, const YamlNode& node, const st
     return q;
 }
 
+core::Vec3 toBoundedVec3(const YamlSource& source, const YamlNode& node, const std::string& what,
+                         double bound, const char* range)
+{
+    const core::Vec3 v = toVec3(source, node, what);
+    if (!(v.norm() <= bound))
+    {
+        std::ostringstream message;
+        message << "expected " << range << " for " << what << ", got [" << v.x() << ", " << v.y() << ", "
+                << v.z() << "] (norm " << v.stableNorm() << ")";
+        failAt(source, node, message.str());
+    }
+    return v;
+}
+
+core::Vec3 toPosition(const YamlSource& source, const YamlNode& node, const std::string& what)
+{
+    return toBoundedVec3(source, node, what, core::cMaxDistance, core::cPositionRange);
+}
+
+double toLength(const YamlSource& source, const YamlNode& node, const std::string& what)
+{
+    const double value = toNumber(source, node, what);
+    if (!core::isLength(value))
+    {
+        failAt(source, node,
+               std::string("expected ") + core::cLengthRange + " for " + what + ", got " +
+                   describeNode(node));
+    }
+    return value;
+}
+
 const YamlNode& requireSequence(const YamlSource& source, const YamlNode& node, const std::string& what)
 {
     if (!node.isSequence())
@@ -360,6 +392,28 @@ std::optional<core::Vec3> MapNode::optDirection(const std::string& key) const
 {
     const Entry* entry = find(key);
     return entry ? std::optional(toDirection(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<core::Vec3> MapNode::optPosition(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toPosition(*mSource, entry->value, what(key))) : std::nullopt;
+}
+
+std::optional<core::Vec3> MapNode::optVelocity(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(
+                       toBoundedVec3(*mSource, entry->value, what(key), core::cMaxSpeed, core::cSpeedRange))
+                 : std::nullopt;
+}
+
+std::optional<core::Vec3> MapNode::optAngularVelocity(const std::string& key) const
+{
+    const Entry* entry = find(key);
+    return entry ? std::optional(toBoundedVec3(*mSource, entry->value, what(key), core::cMaxAngularSpeed,
+                                               core::cAngularSpeedRange))
+                 : std::nullopt;
 }
 
 std::optional<core::Quat> MapNode::optQuaternion(const std::string& key) const

@@ -45,6 +45,13 @@ core::Vec3 toVec3(const YamlSource& source, const YamlNode& node, const std::str
 core::Vec3 toDirection(const YamlSource& source, const YamlNode& node, const std::string& what);
 // Quaternion [w, x, y, z], non-zero, normalised.
 core::Quat toQuaternion(const YamlSource& source, const YamlNode& node, const std::string& what);
+// The ranges of core/model.h. A 3-vector of norm at most `bound`, `range` saying what was expected
+// (core::cPositionRange, ...); a position (m) within core::cMaxDistance of the origin; a length (m),
+// core::isLength.
+core::Vec3 toBoundedVec3(const YamlSource& source, const YamlNode& node, const std::string& what,
+                         double bound, const char* range);
+core::Vec3 toPosition(const YamlSource& source, const YamlNode& node, const std::string& what);
+double toLength(const YamlSource& source, const YamlNode& node, const std::string& what);
 const YamlNode& requireSequence(const YamlSource& source, const YamlNode& node, const std::string& what);
 
 // A YAML map with a context for messages ("body 'pelvis'").
@@ -88,6 +95,10 @@ class MapNode
     std::optional<std::string> optString(const std::string& key) const;
     std::optional<core::Vec3> optVec3(const std::string& key) const;
     std::optional<core::Vec3> optDirection(const std::string& key) const;
+    // Within the ranges of core/model.h: a position (m), a velocity (m/s), an angular velocity (rad/s).
+    std::optional<core::Vec3> optPosition(const std::string& key) const;
+    std::optional<core::Vec3> optVelocity(const std::string& key) const;
+    std::optional<core::Vec3> optAngularVelocity(const std::string& key) const;
     std::optional<core::Quat> optQuaternion(const std::string& key) const;
 
   private:

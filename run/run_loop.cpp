@@ -21,19 +21,6 @@ bool isPassive(const core::Model& model)
     return model.actuators.empty() && model.loads.empty();
 }
 
-namespace
-{
-// Kinetic energy and |potential| of one moving body (J).
-double bodyEnergyScale(const core::Model& model, std::size_t i, const core::BodyState& state)
-{
-    const core::Body& body = model.bodies[i];
-    const double kinetic =
-        0.5 * body.mass * state.velocity_W.squaredNorm() +
-        0.5 * state.angularVelocity_W.dot(core::worldInertia(body, state) * state.angularVelocity_W);
-    return kinetic + std::abs(body.mass * model.simulation.gravity.dot(state.position_W));
-}
-} // namespace
-
 double energyScale(const core::Model& model, const core::State& state)
 {
     double scale = 0.0;
@@ -41,7 +28,7 @@ double energyScale(const core::Model& model, const core::State& state)
     {
         if (!model.bodies[i].isStatic)
         {
-            scale += bodyEnergyScale(model, i, state.bodies[i]);
+            scale += core::bodyEnergyScale(model, i, state.bodies[i]);
         }
     }
     return scale;
@@ -54,19 +41,6 @@ double passiveEnergyRise(const core::Model& model, const RunSummary& summary)
         return 0.0;
     }
     return (summary.energyMaxJ - summary.energyInitialJ) / std::max(summary.energyScaleJ, cEnergyScaleFloorJ);
-}
-
-int bodyWithInfiniteEnergy(const core::Model& model)
-{
-    const core::State state = core::initialState(model);
-    for (std::size_t i = 0; i < model.bodies.size(); ++i)
-    {
-        if (!model.bodies[i].isStatic && !std::isfinite(bodyEnergyScale(model, i, state.bodies[i])))
-        {
-            return static_cast<int>(i);
-        }
-    }
-    return -1;
 }
 
 namespace

@@ -88,10 +88,6 @@ inline constexpr double cEnergyScaleFloorJ = 1e-6; // J: the scale of a scene at
 // The rise of a passive run's energy as a fraction of its scale, or 0 for a scene that is not passive.
 double passiveEnergyRise(const core::Model& model, const RunSummary& summary);
 
-// The index of the first moving body whose initial energy (kinetic or potential) is not finite
-// (a position like -1e308 m: its potential overflows), or -1.
-int bodyWithInfiniteEnergy(const core::Model& model);
-
 // The interrupt flag (core/interrupt.h), read between steps.
 using core::installInterruptHandlers;
 using core::interruptedExitCode;

@@ -11,16 +11,15 @@
 namespace frontier::run
 {
 
-void checkFiniteEnergy(const core::Model& model, const std::string& path)
+void checkStartingStates(const core::Model& model, const std::string& path)
 {
-    const int body = bodyWithInfiniteEnergy(model);
-    if (body >= 0)
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
-        const core::Body& b = model.bodies[static_cast<std::size_t>(body)];
-        throw io::InputError(path, 0, 0,
-                             "body '" + b.name +
-                                 "': its initial energy is not finite (position, velocity or mass too large "
-                                 "for doubles); no run could report its energy");
+        const std::string defect = core::startingStateDefect(model, i);
+        if (!defect.empty())
+        {
+            throw io::InputError(path, 0, 0, "body '" + model.bodies[i].name + "': " + defect);
+        }
     }
 }
 
@@ -65,10 +64,10 @@ std::string startPenetrationText(const LoadedScene& scene)
 
 namespace
 {
-// What every loaded scene goes through: finite energy, robots' starting overlaps excluded.
-LoadedScene finishLoading(LoadedScene out, const std::string& path)
+// What every loaded scene goes through (io::loadScene checked the starting states): robots'
+// starting overlaps excluded.
+LoadedScene finishLoading(LoadedScene out)
 {
-    checkFiniteEnergy(out.model, path);
     core::throwIfInterrupted(); // checkpoints between the phases (core/interrupt.h)
     for (const auto& [a, b] : collision::startingOverlaps(out.model))
     {
@@ -94,7 +93,7 @@ LoadedScene loadScene(const std::string& path, const io::UrdfOptions& options)
 {
     LoadedScene out;
     out.model = io::loadScene(path, options, &out.report);
-    return finishLoading(std::move(out), path);
+    return finishLoading(std::move(out));
 }
 
 LoadedScene loadSceneText(const std::string& yamlText, const std::string& path,
@@ -102,7 +101,7 @@ LoadedScene loadSceneText(const std::string& yamlText, const std::string& path,
 {
     LoadedScene out;
     out.model = io::loadSceneFromString(yamlText, path, options, &out.report);
-    return finishLoading(std::move(out), path);
+    return finishLoading(std::move(out));
 }
 
 void printLoadWarnings(const io::LoadReport& report)

@@ -23,11 +23,12 @@ struct LoadedScene
     std::optional<core::Contact> startPenetration;
 };
 
-// Throws io::InputError naming the first moving body whose initial energy is not finite.
-void checkFiniteEnergy(const core::Model& model, const std::string& path);
+// Throws io::InputError naming `path` and the first body whose starting state is out of range
+// (core::startingStateDefect: the check of io::loadScene, for a model changed since).
+void checkStartingStates(const core::Model& model, const std::string& path);
 
 // A YAML scene or a URDF robot as every command loads it: io::loadScene (a bare URDF placed on its
-// floor, hold servos, joint positions), finite initial energy checked, and the pairs of a robot's
+// floor, hold servos, joint positions, starting states checked), and the pairs of a robot's
 // links that overlap in the starting pose kept from colliding. Throws io::InputError.
 LoadedScene loadScene(const std::string& path, const io::UrdfOptions& options = {});
 // The same from the YAML text of a scene; `path` names it in messages and resolves its relative files.

@@ -9,10 +9,6 @@ namespace frontier::core
 
 namespace
 {
-// Anything beyond these is a blow-up even while still finite.
-constexpr double cMaxSpeed = 1e5;        // m/s
-constexpr double cMaxAngularSpeed = 1e6; // rad/s
-
 bool finite(const Vec3& v)
 {
     return v.allFinite();
@@ -76,13 +72,16 @@ void BlowUpCheck::checkState(const State& state, const char* where, const StepVi
         // finite sums may overflow only where the exact checks below then find nothing.
         const double sum = s.position_W.sum() + s.orientation_WB.coeffs().sum() + s.velocity_W.sum() +
                            s.angularVelocity_W.sum();
-        if (std::isfinite(sum) && s.velocity_W.squaredNorm() < 0.25 * cMaxSpeed * cMaxSpeed &&
+        // Anything beyond the ranges of core/model.h is a blow-up even while still finite: a body
+        // farther than cMaxDistance would break the collision detection of the next step.
+        if (std::isfinite(sum) && s.position_W.squaredNorm() < 0.25 * cMaxDistance * cMaxDistance &&
+            s.velocity_W.squaredNorm() < 0.25 * cMaxSpeed * cMaxSpeed &&
             s.angularVelocity_W.squaredNorm() < 0.25 * cMaxAngularSpeed * cMaxAngularSpeed)
         {
             continue;
         }
         const char* quantity = nullptr;
-        if (!finite(s.position_W))
+        if (!isPosition(s.position_W))
         {
             quantity = "position";
         }
@@ -107,6 +106,7 @@ void BlowUpCheck::checkState(const State& state, const char* where, const StepVi
             failure.body = static_cast<int>(i);
             failure.bodyName = mModel.bodies[i].name;
             failure.quantity = quantity;
+            failure.maxDistance = cMaxDistance;
             failure.maxSpeed = cMaxSpeed;
             failure.maxAngularSpeed = cMaxAngularSpeed;
             failure.hint = likelyCause(state, step);

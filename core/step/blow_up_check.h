@@ -36,7 +36,8 @@ class BlowUpCheck
     };
 
     // Throws SimulationError when a body's position, orientation, velocity or angular velocity is
-    // not finite or its speed beyond cMaxSpeed, cMaxAngularSpeed; `where` in the step.
+    // not finite, or its position or speeds beyond the ranges of core/model.h (cMaxDistance from
+    // the origin, cMaxSpeed, cMaxAngularSpeed); `where` in the step.
     void checkState(const State& state, const char* where, const StepView& step) const;
 
     // Throws the SimulationError of a joint that came apart: the joint of the largest error after

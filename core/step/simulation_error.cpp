@@ -23,7 +23,8 @@ std::string message(const SimulationFailure& f)
     {
         msg << "simulation blew up at step " << f.step << " (t = " << f.time << " s, " << f.where
             << "): body '" << f.bodyName << "' has a non-finite or runaway " << f.quantity << " (limits "
-            << f.maxSpeed << " m/s, " << f.maxAngularSpeed << " rad/s)" << f.hint;
+            << f.maxDistance << " m from the origin, " << f.maxSpeed << " m/s, " << f.maxAngularSpeed
+            << " rad/s)" << f.hint;
     }
     return msg.str();
 }

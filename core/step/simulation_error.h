@@ -24,7 +24,8 @@ struct SimulationFailure
     std::string jointName;        // its name
     std::string parentName;       // its parent body's name, empty for the world
     std::optional<double> gap;    // its error after the correction (m or rad, by quantity)
-    double maxSpeed = 0.0;        // a runaway: the speed limit checked (m/s)
+    double maxDistance = 0.0;     // a runaway: the distance from the origin checked (m)
+    double maxSpeed = 0.0;        // and the speed limit (m/s)
     double maxAngularSpeed = 0.0; // and the angular speed limit (rad/s)
     std::string hint;             // "; ..." the likely cause (core/failure_hint.h), or empty
     bool gapInRadians() const { return quantity == "orientation"; }

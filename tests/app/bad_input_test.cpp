@@ -1,6 +1,7 @@
 // tests/app/bad_input_test.cpp: bad scenes and bad usage exit with code 2 and a message that names
 // the file and line (scenes) or the flag (usage), and write nothing.
 #include "app_test_util.h"
+#include "io/file_util.h"
 #include "io/trajectory.h"
 
 #include <chrono>
@@ -54,6 +55,25 @@ TEST_P(BadSceneFile, ExitsWithTwoNamingFileAndLine)
 
 const char* const cBall = "  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}}\n";
 
+// Links a, b and c, b and c on continuous joints j and k from a; `collisionOrigin` goes into b's
+// <collision> (line 8), `jointOrigin` is j's <origin xyz> (line 16).
+std::string threeLinkUrdf(const std::string& collisionOrigin, const std::string& jointOrigin)
+{
+    const std::string inertial =
+        "    <inertial><mass value=\"1\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" "
+        "iyz=\"0\" izz=\"1\"/></inertial>\n";
+    const std::string sphere = "<geometry><sphere radius=\"0.1\"/></geometry></collision>\n  </link>\n";
+    return "<robot name=\"r\">\n  <link name=\"a\">\n" + inertial + "    <collision>" + sphere +
+           "  <link name=\"b\">\n" + inertial + "    <collision>" + collisionOrigin + sphere +
+           "  <link name=\"c\">\n" + inertial + "    <collision>" + sphere +
+           "  <joint name=\"j\" type=\"continuous\">\n    <parent link=\"a\"/><child link=\"b\"/>\n"
+           "    <origin xyz=\"" +
+           jointOrigin +
+           "\"/>\n  </joint>\n"
+           "  <joint name=\"k\" type=\"continuous\">\n    <parent link=\"a\"/><child link=\"c\"/>\n"
+           "    <origin xyz=\"0 1 0\"/>\n  </joint>\n</robot>\n";
+}
+
 INSTANTIATE_TEST_SUITE_P(
     App, BadSceneFile,
     ::testing::Values(
@@ -88,8 +108,55 @@ INSTANTIATE_TEST_SUITE_P(
             "    <parent link=\"a\"/><child link=\"b\"/>\n"
             "  </joint>\n"
             "</robot>\n",
-            6,
-            "link 'b' has no mass (no <inertial> with a positive mass) but continuous joint 'j' moves it"}),
+            6, "link 'b' has no mass (no <inertial> with a positive mass) but continuous joint 'j' moves it"},
+        // Positions, sizes and starting speeds lie in the ranges of core/model.h, in YAML and URDF
+        // alike: a body or an origin 1e308 m away used to crash the collision detection's set-up.
+        BadScene{"FarBodyPosition", "far.yaml",
+                 "bodies:\n"
+                 "  - {name: ball, mass: 1, shape: {type: sphere, radius: 0.1}, position: [1.0e308, 0, 1]}\n"
+                 "  - {name: b2, mass: 1, shape: {type: sphere, radius: 0.1}, position: [0, 0, 1]}\n"
+                 "  - {name: b3, mass: 1, shape: {type: sphere, radius: 0.1}, position: [0, 3, 1]}\n"
+                 "  - {name: floor, static: true, shape: {type: plane, normal: [0, 0, 1]}}\n",
+                 2, "expected a point within 1e6 m of the origin for 'position' in body 'ball'"},
+        BadScene{"FarShapeOffset", "far_shape.yaml",
+                 "bodies:\n  - name: ball\n    mass: 1\n"
+                 "    shape: {type: sphere, radius: 0.1, position: [0, 0, -1.0e250]}\n",
+                 4, "expected a point within 1e6 m of the origin for 'position' in sphere shape of body"},
+        BadScene{"HugeRadius", "huge_radius.yaml",
+                 "bodies:\n  - name: ball\n    mass: 1\n    shape: {type: sphere, radius: 1.0e300}\n", 4,
+                 "expected a length in (0, 1e6] m for 'radius'"},
+        BadScene{"HugeBoxSide", "huge_box.yaml",
+                 "bodies:\n  - name: box\n    mass: 1\n    shape: {type: box, size: [1, 1.0e200, 1]}\n", 4,
+                 "expected a length in (0, 1e6] m for the full extents of 'size'"},
+        BadScene{
+            "FarJointAnchor", "far_anchor.yaml",
+            std::string("bodies:\n") + cBall +
+                "joints:\n  - {name: j, type: ball, parent: world, child: ball, anchor: [0, 1.0e300, 0]}\n",
+            4, "expected a point within 1e6 m of the origin for 'anchor'"},
+        BadScene{"FastBody", "fast.yaml",
+                 "bodies:\n  - name: ball\n    mass: 1\n    velocity: [1.0e150, 0, 0]\n"
+                 "    shape: {type: sphere, radius: 0.1}\n",
+                 4, "expected a velocity of at most 1e5 m/s for 'velocity' in body 'ball'"},
+        BadScene{"HugeTimeStep", "huge_dt.yaml", std::string("simulation: {dt: 1.0e308}\nbodies:\n") + cBall,
+                 1, "expected a number of seconds in (0, 1e+06] for 'dt' in 'simulation', got 1e+308"},
+        // Three links (and the floor) make the collision detection build a tree: the crash.
+        BadScene{"UrdfFarJointOrigin", "far_joint.urdf", threeLinkUrdf("", "1e308 0 0"), 16,
+                 "the <origin xyz> of joint 'j' is (1e+308, 0, 0) m; expected a point within 1e6 m"},
+        BadScene{"UrdfFarCollisionOrigin", "far_collision.urdf",
+                 threeLinkUrdf("<origin xyz=\"1e308 0 0\"/>", "0 0 0"), 8,
+                 "the <origin xyz> of a collision of link 'b' is (1e+308, 0, 0) m"},
+        BadScene{"UrdfHugeCylinder", "huge_cylinder.urdf",
+                 "<robot name=\"r\">\n"
+                 "  <link name=\"a\">\n"
+                 "    <inertial><mass value=\"1\"/>"
+                 "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial>\n"
+                 "    <collision>\n"
+                 "      <geometry><cylinder radius=\"0.1\" length=\"1e250\"/></geometry>\n"
+                 "    </collision>\n"
+                 "  </link>\n"
+                 "</robot>\n",
+                 5,
+                 "cylinder radius and length of a collision of link 'a' are 0.1 and 1e+250; expected each"}),
     [](const ::testing::TestParamInfo<BadScene>& p) { return std::string(p.param.name); });
 
 TEST(BadInput, MissingSceneFileIsNamed)
@@ -202,8 +269,8 @@ bodies:
     EXPECT_NE(r.err.find(scene), std::string::npos) << r.err;
 }
 
-// A body whose initial energy overflows (a position of -1e308 m: m g z is -inf) is refused at load,
-// by name, instead of running with a null initial energy and a -nan% change.
+// A body whose initial energy overflows (a mass of 1e308 kg 10 m up: m g z is inf) is refused at
+// load, by name and at its line, instead of running with a null initial energy and a -nan% change.
 TEST(BadInput, InfiniteInitialEnergyIsRefusedNamingTheBody)
 {
     const TestDir dir;
@@ -211,13 +278,54 @@ TEST(BadInput, InfiniteInitialEnergyIsRefusedNamingTheBody)
 simulation: {dt: 0.001, duration: 0.01}
 bodies:
   - {name: ok, mass: 1, shape: {type: sphere, radius: 0.1}}
-  - {name: abyss, mass: 1, shape: {type: sphere, radius: 0.1}, position: [0, 0, -1.0e308]}
+  - {name: abyss, mass: 1.0e308, shape: {type: sphere, radius: 0.1}, position: [0, 0, 10]}
 )");
     const Result r = dir.run("run " + shellQuote(scene) + " --stats " + shellQuote(dir.out("s.json")));
     EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_NE(r.err.find("'abyss'"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("energy"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(scene + ":5:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("body 'abyss': its initial energy is not finite (mass 1e+308 kg"), std::string::npos)
+        << r.err;
     EXPECT_TRUE(dir.outputs().empty());
+}
+
+// A body that passes the ranges of core/model.h during a run stops it (a blow-up naming the step,
+// the body and the quantity) before the next step's collision detection sees it: here one leaving
+// the 1e6 m the scenes and trajectories keep to. Its trajectory rows are all readable.
+TEST(BadInput, BodyLeavingTheRangeStopsTheRunNamingIt)
+{
+    const TestDir dir;
+    const std::string scene = dir.write("away.yaml", R"(
+simulation: {dt: 0.001, duration: 0.01, gravity: [0, 0, 0]}
+bodies:
+  - {name: probe, mass: 1, shape: {type: sphere, radius: 0.1}, position: [999995, 0, 0], velocity: [1.0e4, 0, 0]}
+)");
+    const Result r = dir.run("run " + shellQuote(scene) + " --trajectory " + shellQuote(dir.out("t.csv")));
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("simulation blew up at step 1"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("body 'probe' has a non-finite or runaway position (limits 1e+06 m from the origin"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NO_THROW(io::readTrajectory(dir.out("t.failed.csv")));
+}
+
+// scenes/README.md and README.md say the size limit of input files that the code enforces.
+TEST(BadInput, DocumentsSayTheInputSizeLimit)
+{
+    const std::string limit = std::to_string(io::detail::cDefaultMaxInputBytes >> 20) + " MiB";
+    for (const char* document : {"scenes/README.md", "README.md"})
+    {
+        const std::string text = readText(sourcePath(document));
+        std::size_t at = 0;
+        int mentions = 0;
+        while ((at = text.find(" MiB", at + 1)) != std::string::npos)
+        {
+            const std::size_t start = text.find_last_of(' ', at - 1) + 1;
+            const std::string said = text.substr(start, at + 4 - start);
+            EXPECT_EQ(said, limit) << document;
+            ++mentions;
+        }
+        EXPECT_GE(mentions, 1) << document;
+    }
 }
 
 // Input that is not a file of text (a FIFO, /dev/zero, a URDF nested 40 000 deep, a joint loop)

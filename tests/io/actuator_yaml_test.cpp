@@ -212,6 +212,24 @@ const BadInput cBadInputs[] = {
      "expected 'to' > 'from' for the load on body 'arm', got from = 2 s, to = 1 s"},
     {"UnknownFrame", "loads:\n  - {body: arm, force: [1, 0, 0], frame: local}\n", 14, 42,
      "expected 'world' or 'body' for 'frame'"},
+    // Finite parameters whose values or rates are not: refused at their line, not at step 1.
+    {"SineWhoseRateOverflows",
+     "actuators:\n  - {joint: hinge, type: effort, target: {sine: {amplitude: 1, frequency: 1.0e308}}}\n", 14,
+     49, "2 pi x frequency x t overflows within a run (t up to 1e+12 s)"},
+    {"KeyframesWhoseSpanOverflows",
+     "actuators:\n  - {joint: hinge, type: effort, target: {smooth: true, keyframes: [[-1.0e308, 0], "
+     "[1.0e308, "
+     "1]]}}\n",
+     14, 84,
+     "keyframe 2 of 'keyframes' of 'target' in the actuator on joint 'hinge': the time from the keyframe "
+     "before overflows"},
+    // A load cannot act before the run starts (it used to be ignored without a word).
+    {"ImpulseBeforeTheStart", "loads:\n  - {body: arm, impulse: [1, 0, 0], time: -1}\n", 14, 43,
+     "expected a number >= 0 for 'time' in the load on body 'arm' (s; the run starts at t = 0), got '-1'"},
+    {"WindowBeforeTheStart", "loads:\n  - {body: arm, force: [1, 0, 0], from: -0.5, to: 1}\n", 14, 41,
+     "expected a number >= 0 for 'from' in the load on body 'arm'"},
+    {"LoadPointFarAway", "loads:\n  - {body: arm, force: [1, 0, 0], at: [0, 0, 2.0e6]}\n", 14, 39,
+     "expected a point within 1e6 m of the origin for 'at' in the load on body 'arm', got [0, 0, 2e+06]"},
 };
 
 INSTANTIATE_TEST_SUITE_P(Cases, ActuatorYamlError, ::testing::ValuesIn(cBadInputs),
@@ -235,6 +253,12 @@ TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
         {"", "time,hinge\n0,0\n1,1\n1,2\n", 4, "times must increase: time 1 after 1"},
         {"", "hinge\n0\n", 1, "the header has no 'time' column"},
         {"", "time,hinge\n0,1,2\n", 2, "expected 2 comma-separated values"},
+        {"", "time,hinge,hinge\n0,0,1\n", 1,
+         "column 'hinge' appears twice in the header (fields 2 and 3); expected each column name once"},
+        {"", "time,hinge\n-1e308,0\n1e308,1\n", 3,
+         "the row of column 'hinge' for 'target' in the actuator on joint 'hinge': the time from the "
+         "keyframe "
+         "before overflows"},
     };
     TempDir dir;
     for (const BadCsv& bad : cases)
@@ -247,6 +271,24 @@ TEST(ActuatorYaml, CsvErrorsNameTheCsvFileAndLine)
         const std::string csv = dir.write("t.csv", bad.csv);
         EXPECT_INPUT_ERROR_AT(captureInputError([&] { load(yaml, scenePath); }), csv, bad.line, 1,
                               bad.message);
+    }
+}
+
+// A message that quotes a file's bytes (here a binary CSV header) escapes those that would not print
+// (\xNN), so that nothing reaches the terminal raw; well-formed UTF-8 is kept.
+TEST(ActuatorYaml, BinaryBytesInAQuotedHeaderAreEscaped)
+{
+    TempDir dir;
+    const std::string yaml =
+        scene("actuators:\n  - {joint: hinge, type: position, kp: 1, target: {csv: {file: t.csv}}}\n");
+    const std::string scenePath = dir.write("scene.yaml", yaml);
+    dir.write("t.csv", std::string("time,\x1b]0;pwned\x07\xff\xfe,r\xc3\xa9glage\r\n0,0,0\n"));
+    const InputError e = captureInputError([&] { load(yaml, scenePath); });
+    const std::string what = e.what();
+    EXPECT_NE(what.find("\\x1b]0;pwned\\x07\\xff\\xfe, r\xc3\xa9glage"), std::string::npos) << what;
+    for (const char c : what)
+    {
+        EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << what;
     }
 }
 

@@ -231,6 +231,46 @@ TEST(UrdfPackages, UnresolvedPackageNamesFileLinePackageAndWhereItLooked)
         << what;
 }
 
+// A package:// path stays inside its package folder: '..' above it (or a package named '..') is
+// refused at the mesh's line, even where the file it would reach exists.
+TEST(UrdfPackages, DotDotCannotLeaveThePackage)
+{
+    TempDir dir;
+    mkdirs(dir, "pkgs/my_robot/urdf");
+    dir.write("pkgs/my_robot/package.xml", packageXml("my_robot"));
+    dir.write("pkgs/secret.obj", cCubeObj);
+    for (const char* uri : {"package://my_robot/../secret.obj", "package://../../secret.obj",
+                            "package://my_robot/meshes/../../../secret.obj", "model://..%2f..%2fsecret.obj"})
+    {
+        const std::string urdf = dir.write("pkgs/my_robot/urdf/r.urdf", meshRobot(uri));
+        EXPECT_INPUT_ERROR_AT(captureInputError([&] { loadScene(urdf); }), urdf, 4, 26,
+                              "'" + std::string(uri) + "' leads out of its package folder");
+    }
+}
+
+// A mesh scaled beyond the ranges of core/model.h is refused at its `scale` (YAML) or its <mesh>
+// element (URDF): its vertices would be far beyond what the collision detection can take.
+TEST(UrdfPackages, MeshScaledOutOfRangeIsRefused)
+{
+    TempDir dir;
+    dir.write("cube.obj", cCubeObj);
+    const std::string scene = dir.write(
+        "scene.yaml",
+        "bodies:\n  - {name: part, mass: 1, inertia: [1, 1, 1], shape: {type: mesh, file: cube.obj, scale: "
+        "1.0e300}}\n");
+    EXPECT_INPUT_ERROR_AT(
+        captureInputError([&] { loadScene(scene); }), scene, 2, 90,
+        "mesh 'cube.obj' of mesh shape of body 'part' reaches 8.66025e+298 m from its origin at "
+        "this scale; expected a length in (0, 1e6] m");
+    std::string robot = meshRobot("cube.obj");
+    robot.replace(robot.find("cube.obj\"/>"), 11, "cube.obj\" scale=\"1 1e300 1\"/>");
+    const std::string urdf = dir.write("r.urdf", robot);
+    EXPECT_INPUT_ERROR_AT(
+        captureInputError([&] { loadScene(urdf); }), urdf, 4, 26,
+        "collision mesh 'cube.obj' of link 'a' reaches 5e+298 m from its origin at scale (1, "
+        "1e+300, 1)");
+}
+
 TEST(UrdfPackages, PackageFoundButFileMissing)
 {
     TempDir dir;

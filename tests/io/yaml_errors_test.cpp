@@ -424,8 +424,9 @@ bodies:
       type: sphere
       radius: 0
 )"));
-    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 15,
-                          "expected a positive number for 'radius' in sphere shape of body 'a', got '0'");
+    EXPECT_INPUT_ERROR_AT(
+        e, "scene.yaml", 5, 15,
+        "expected a length in (0, 1e6] m for 'radius' in sphere shape of body 'a', got '0'");
 }
 
 TEST(YamlErrors, NonPositiveBoxSize)
@@ -437,8 +438,10 @@ bodies:
       type: box
       size: [1, 0, 1]
 )"));
-    EXPECT_INPUT_ERROR_AT(e, "scene.yaml", 5, 13,
-                          "expected positive numbers for 'size' in box shape of body 'a'");
+    EXPECT_INPUT_ERROR_AT(
+        e, "scene.yaml", 5, 17,
+        "expected a length in (0, 1e6] m for the full extents of 'size' in box shape of body "
+        "'a', got '0'");
 }
 
 TEST(YamlErrors, BoxSizeWithTwoNumbers)
