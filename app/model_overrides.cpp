@@ -2,7 +2,7 @@
 #include "app/model_overrides.h"
 
 #include "io/scene.h"
-#include "run/method.h"
+#include "run/overrides.h"
 #include "run/run_loop.h"
 
 #include <algorithm>
@@ -29,26 +29,9 @@ long checkedStepCount(double duration, double dt, const std::string& source)
 
 long applyOverrides(const RunOptions& options, core::Model& model)
 {
+    run::applySettingOverrides(
+        {options.dt, options.solver, options.pgsIterations, options.integrator, options.contact}, model);
     core::SimulationSettings& sim = model.simulation;
-    if (options.dt)
-    {
-        sim.dt = *options.dt;
-    }
-    run::Method method = run::Method::of(sim);
-    if (options.solver)
-    {
-        method.solver = *core::solverFromName(*options.solver);
-    }
-    if (options.pgsIterations)
-    {
-        method.pgsIterations = *options.pgsIterations;
-    }
-    if (options.integrator)
-    {
-        method.integrator = *core::integratorFromName(*options.integrator);
-    }
-    method.applyTo(sim);
-    options.contact.applyTo(model.contact);
     if (options.steps)
     {
         sim.duration = static_cast<double>(*options.steps) * sim.dt;

@@ -141,14 +141,6 @@ void checkOutputs(const JobOutputs& job, const std::vector<std::string>& inputs,
 }
 } // namespace
 
-std::string failedPath(const std::string& path)
-{
-    const fs::path p(path);
-    fs::path out = p.parent_path() / (p.stem().string() + ".failed");
-    out += p.extension();
-    return out.string();
-}
-
 std::string jobName(const std::string& inputPath)
 {
     return std::filesystem::path(inputPath).stem().string();

@@ -4,6 +4,8 @@
 // DIR/<scene>/frame_00000.png, and --video as a folder of DIR/<scene>.mp4.
 #pragma once
 
+#include "io/atomic_file.h"
+
 #include <string>
 #include <vector>
 
@@ -22,9 +24,7 @@ struct JobOutputs
 
 std::string jobName(const std::string& inputPath); // file name without folder and extension
 
-// Where a failed run keeps an output's rows up to the failure: "out.csv" -> "out.failed.csv"
-// (the extension stays last, so the file still opens as what it is).
-std::string failedPath(const std::string& path);
+using io::failedPath; // io/atomic_file.h
 
 // Throws io::InputError when two inputs of a batch share a name, when two outputs are the same
 // file (their files would collide), when an output is one of the inputs, or when an output path is

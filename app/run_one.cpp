@@ -12,6 +12,7 @@
 #include "io/stats.h"
 #include "io/trajectory.h"
 #include "run/run_loop.h"
+#include "run/run_stats.h"
 
 #include <cmath>
 #include <cstdio>
@@ -72,71 +73,6 @@ std::string formatSummary(const core::Model& model, const run::RunSummary& s)
     return text;
 }
 
-io::RunStats makeStats(const std::string& scene, const core::Model& model, const run::RunSummary& s)
-{
-    io::RunStats stats;
-    io::fillModelCounts(stats, model);
-    stats.scene = scene;
-    stats.solver = core::solverName(model.simulation.solver);
-    stats.integrator = core::integratorName(model.simulation.integrator);
-    stats.dt = model.simulation.dt;
-    stats.steps = s.steps;
-    stats.wallSeconds = s.wallSeconds;
-    stats.secondsPerStep = s.steps > 0 ? s.wallSeconds / static_cast<double>(s.steps) : 0.0;
-    stats.maxJointErrorM = s.maxJointErrorM;
-    stats.pgsIterations = model.simulation.pgsIterations;
-    stats.simulatedSeconds = static_cast<double>(s.steps) * model.simulation.dt;
-    stats.extra["max_joint_error_rad"] = s.maxJointErrorRad;
-    stats.extra["energy_max_j"] = s.energyMaxJ;
-    if (model.simulation.integrator != core::IntegratorKind::Euler)
-    {
-        stats.extra["first_order_steps"] = static_cast<double>(s.firstOrderSteps);
-    }
-    if (model.simulation.integrator == core::IntegratorKind::Rattle4)
-    {
-        stats.extra["second_order_steps"] = static_cast<double>(s.secondOrderSteps); // retaken by rattle
-    }
-    // How the contact problem was solved (core::ContactRoute): steps that kept the last impulses,
-    // that finished on a recent step's Delassus matrix, that built their own; sweeps in all.
-    stats.extra["contact_steps_carried"] =
-        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Carried)]);
-    stats.extra["contact_steps_reused"] =
-        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Reused)]);
-    stats.extra["contact_steps_built"] =
-        static_cast<double>(s.contactRoutes[core::routeIndex(core::ContactRoute::Built)]);
-    stats.extra["contact_sweeps"] = static_cast<double>(s.contactSweeps);
-    // How often a limit held: joint limits that pushed, actuators at their effort limit (steps).
-    stats.extra["limit_steps"] = static_cast<double>(s.limitSteps);
-    stats.extra["max_actuator_effort"] = s.maxActuatorEffort;
-    stats.extra["actuator_limit_steps"] = static_cast<double>(s.actuatorLimitSteps);
-    // Each actuator over the run (run::ActuatorSummary), named as the scene names it.
-    for (std::size_t a = 0; a < s.actuators.size() && a < model.actuators.size(); ++a)
-    {
-        const core::Actuator& actuator = model.actuators[a];
-        const run::ActuatorSummary& summary = s.actuators[a];
-        stats.actuators.push_back({model.joints[static_cast<std::size_t>(actuator.joint)].name,
-                                   core::coordinateName(actuator.coordinate),
-                                   core::actuatorTypeName(actuator.kind), summary.trackingRms,
-                                   summary.trackingMax, summary.effortRms, summary.effortMax,
-                                   summary.limitSteps});
-    }
-    // Steps in which tensioned light bodies took their geometric stiffness (docs/method.md §7a).
-    stats.extra["geometric_stiffness_steps"] = static_cast<double>(s.stiffenedSteps);
-    // Time per step of each stage (s): detection, factorization, impulse and contact solve, integration.
-    const char* stageKeys[core::cStepStages] = {"seconds_per_step_detect", "seconds_per_step_factor",
-                                                "seconds_per_step_solve", "seconds_per_step_integrate"};
-    for (std::size_t stage = 0; stage < core::cStepStages; ++stage)
-    {
-        stats.extra[stageKeys[stage]] =
-            s.steps > 0 ? s.stageSeconds[stage] / static_cast<double>(s.steps) : 0.0;
-    }
-    stats.maxPenetrationM = s.maxPenetrationM;
-    stats.energyInitialJ = s.energyInitialJ;
-    stats.energyFinalJ = s.energyFinalJ;
-    stats.maxContacts = s.maxContacts;
-    stats.finite = s.finite;
-    return stats;
-}
 } // namespace
 
 namespace
@@ -343,7 +279,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         }
         if (!out.stats.empty())
         {
-            io::RunStats stats = makeStats(scene, model, summary);
+            io::RunStats stats = run::runStats(scene, model, summary);
             stats.completed = ok;
             stats.failure = failure;
             stats.warnings = warnings;
@@ -351,11 +287,6 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
             {
                 stats.inputsDigest = options.inputsDigest;
                 stats.inputFiles = inputFiles;
-            }
-            if (run::isPassive(model))
-            {
-                stats.extra["energy_rise_fraction"] = rise; // of energy_scale_j
-                stats.extra["energy_scale_j"] = summary.energyScaleJ;
             }
             io::writeStats(out.stats, stats);
             written.push_back(out.stats);

@@ -207,4 +207,12 @@ void AtomicFile::commitAs(const std::string& path)
     mCommitted = true;
 }
 
+std::string failedPath(const std::string& path)
+{
+    const std::filesystem::path p(path);
+    std::filesystem::path out = p.parent_path() / (p.stem().string() + ".failed");
+    out += p.extension();
+    return out.string();
+}
+
 } // namespace frontier::io

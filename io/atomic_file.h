@@ -48,6 +48,10 @@ std::size_t removeStaleTemporariesOf(const std::string& path);
 // Throws OutputError.
 void writeNewFile(const std::string& path, const std::string& text);
 
+// Where a failed run keeps an output's rows up to the failure: "out.csv" -> "out.failed.csv"
+// (the extension stays last, so the file still opens as what it is).
+std::string failedPath(const std::string& path);
+
 class AtomicFile
 {
   public:
