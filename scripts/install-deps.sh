@@ -3,8 +3,10 @@
 # Usage: scripts/install-deps.sh [--with-extras] [--for-tests] [--with-peers]
 #   --with-extras also installs ffmpeg (--video). gnuplot-nox (the charts of `frontier sweep`)
 #   is in the main list: the sweep test draws one in CI.
-#   --for-tests also installs dart-doc: real robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas)
-#   that the robot corpus test (tests/robots) runs; and clang with libclang-rt-14-dev (libFuzzer)
+#   python3-dev, pybind11-dev and python3-numpy are in the main list: the Python module (python/).
+#   --for-tests also installs python3-pytest (the module's tests, tests/python); dart-doc: real
+#   robot files (KUKA KR5, Barrett WAM, DRC-Hubo, Atlas) that the robot corpus test
+#   (tests/robots) runs; and clang with libclang-rt-14-dev (libFuzzer)
 #   for the fuzz targets (fuzz/, scripts/fuzz.sh); and slurm-wlm with munge for the test of
 #   `frontier batch --slurm` on a private one-node cluster (tests/slurm).
 #   --with-peers also installs Bullet, ODE and MuJoCo for bench/peers (the comparison harness,
@@ -18,13 +20,14 @@ packages=(
   libosmesa6-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libssl-dev
   gnuplot-nox
+  python3-dev pybind11-dev python3-numpy
 )
 for option in "$@"; do
   case "$option" in
     --with-extras) packages+=(ffmpeg) ;;
-    --for-tests) packages+=(dart-doc clang libclang-rt-14-dev slurm-wlm munge) ;;
+    --for-tests) packages+=(python3-pytest dart-doc clang libclang-rt-14-dev slurm-wlm munge) ;;
     --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests, --with-peers or --help)" >&2; exit 2 ;;
   esac
 done

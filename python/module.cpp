@@ -1,0 +1,347 @@
+// python/module.cpp: the C++ part of the Python module `frontier` (frontier._frontier): load(),
+// Simulator, Recording, and the translation of the library's errors into the exceptions of
+// python/frontier/_errors.py. Arrays are NumPy copies made at each read (python/arrays.h).
+#include "core/impulse_solver.h"
+#include "io/atomic_file.h"
+#include "python/arrays.h"
+#include "python/simulator.h"
+#include "render/renderer.h"
+#include "run/names.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace frontier::python
+{
+
+namespace
+{
+
+py::object errorClass(const char* name)
+{
+    return py::module_::import("frontier._errors").attr(name);
+}
+
+void raise(const py::object& type, const py::object& error)
+{
+    PyErr_SetObject(type.ptr(), error.ptr());
+}
+
+void translateErrors(std::exception_ptr thrown)
+{
+    try
+    {
+        if (thrown)
+        {
+            std::rethrow_exception(thrown);
+        }
+    }
+    catch (const io::InputError& e)
+    {
+        const py::object type = errorClass("LoadError");
+        raise(type, type(e.what(), e.file(), e.line(), e.column(), e.message()));
+    }
+    catch (const core::SimulationError& e)
+    {
+        const core::SimulationFailure& f = e.failure();
+        const py::object type = errorClass("SimulationError");
+        raise(type, type(e.what(), f.step, f.time, f.bodyName, f.quantity,
+                         f.joint ? py::object(py::str(f.jointName)) : py::object(py::none())));
+    }
+    catch (const core::SingularJointError& e)
+    {
+        const py::object type = errorClass("SimulationError");
+        raise(type, type(e.what(), py::none(), py::none(), py::none(), "singular joint", e.jointName()));
+    }
+    catch (const run::NameError& e)
+    {
+        const py::object type = errorClass("UnknownNameError");
+        raise(type, type(e.what()));
+    }
+    catch (const io::OutputError& e)
+    {
+        PyErr_SetString(PyExc_OSError, e.what());
+    }
+}
+
+int actuatorOf(const Simulator& sim, const py::object& actuator)
+{
+    if (py::isinstance<py::str>(actuator))
+    {
+        return sim.actuatorIndex(actuator.cast<std::string>());
+    }
+    return actuator.cast<int>();
+}
+
+std::optional<core::Camera> cameraOf(const py::object& camera)
+{
+    if (camera.is_none())
+    {
+        return std::nullopt;
+    }
+    const py::dict d = camera.cast<py::dict>();
+    core::Camera c;
+    c.automatic = false;
+    for (const auto& [key, value] : d)
+    {
+        const std::string k = key.cast<std::string>();
+        if (k == "position")
+        {
+            c.position = vec3Of(value.cast<py::object>(), "camera position");
+        }
+        else if (k == "look_at")
+        {
+            c.lookAt = vec3Of(value.cast<py::object>(), "camera look_at");
+        }
+        else if (k == "fov")
+        {
+            c.fovDegrees = value.cast<double>();
+        }
+        else
+        {
+            throw py::key_error("camera: unknown key '" + k + "' (expected position, look_at, fov)");
+        }
+    }
+    return c;
+}
+
+// The handle of a recording under way (Simulator.record()).
+struct RecordingHandle
+{
+    Simulator* sim = nullptr;
+    bool open = true;
+
+    py::list close(const std::optional<std::string>& failure)
+    {
+        py::list written;
+        if (open)
+        {
+            open = false;
+            for (const std::string& path : sim->closeRecording(failure))
+            {
+                written.append(path);
+            }
+        }
+        return written;
+    }
+};
+
+std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool freeBase,
+                                std::optional<double> dropHeight, bool hold,
+                                const std::vector<std::string>& packagePath,
+                                const std::map<std::string, double>& jointPositions,
+                                std::optional<bool> selfCollision, std::optional<double> dt,
+                                std::optional<std::string> integrator, std::optional<std::string> solver,
+                                std::optional<int> pgsIterations)
+{
+    LoadOptions options;
+    options.urdf.fixedBase = fixedBase;
+    options.urdf.freeBase = freeBase;
+    options.urdf.dropHeight = dropHeight;
+    options.urdf.hold = hold;
+    options.urdf.packagePaths = packagePath;
+    options.urdf.jointPositions = jointPositions;
+    options.urdf.selfCollision = selfCollision;
+    options.overrides.dt = dt;
+    options.overrides.integrator = integrator;
+    options.overrides.solver = solver;
+    options.overrides.pgsIterations = pgsIterations;
+    return std::make_unique<Simulator>(path, options);
+}
+
+constexpr const char* cLoadDoc =
+    R"(load(path, *, fixed_base=False, free_base=False, drop_height=None, hold=False,
+     package_path=(), joint_positions=None, self_collision=None, dt=None, integrator=None,
+     solver=None, pgs_iterations=None) -> Simulator
+
+Loads a YAML scene or a URDF robot exactly as `frontier run PATH` does with the matching flags:
+fixed_base (weld a bare URDF's root where it is), free_base, drop_height (m: lowest collision
+point above the floor), hold (a position servo on every joint coordinate without an actuator,
+holding its starting position), package_path (folders searched for package:// URIs before
+ROS_PACKAGE_PATH), joint_positions ({joint name: rad or m}), self_collision (bool), dt (s),
+integrator ("euler", "rattle", "rattle4"), solver ("linear", "dense", "pgs"), pgs_iterations.
+Warnings of the load go to stderr as the command line prints them.
+
+Raises frontier.LoadError (file, line, column, message) for a file that cannot be loaded or a
+keyword out of range.)";
+
+constexpr const char* cSimulatorDoc = R"(A loaded scene and its state, stepped at a fixed time step.
+
+Bodies are indexed in the model's order (body_names), static ones included; joint coordinates
+(the rotation of revolute joints, the slide of prismatic ones, both of cylindrical ones) in
+coordinate_names order; actuators in actuator_names order. Every array property returns a new
+NumPy array (a copy: it does not change when the simulation steps on, and writing to it changes
+nothing). Units: m, s, kg, rad, N, N m.)";
+
+void bindSimulator(py::module_& m)
+{
+    py::class_<Simulator> simulator(m, "Simulator", cSimulatorDoc);
+    simulator
+        .def(
+            "step",
+            [](Simulator& s, long n)
+            {
+                if (n < 0)
+                {
+                    throw py::value_error("step(n): n must be >= 0, not " + std::to_string(n));
+                }
+                py::gil_scoped_release release;
+                s.step(n,
+                       []
+                       {
+                           py::gil_scoped_acquire acquire;
+                           if (PyErr_CheckSignals() != 0)
+                           {
+                               throw py::error_already_set();
+                           }
+                       });
+            },
+            "n"_a = 1,
+            "Takes n steps of dt (s). Releases the GIL while stepping; Ctrl-C stops a long call between "
+            "steps. Raises frontier.SimulationError when a step blows up (the state is then that of the "
+            "failed step; restore a saved one with set_state).")
+        .def_property_readonly(
+            "time", [](const Simulator& s) { return s.state().time; },
+            "Simulated time (s), exactly steps_taken * dt.")
+        .def_property_readonly(
+            "dt", [](const Simulator& s) { return s.model().simulation.dt; }, "The time step (s).")
+        .def_property_readonly(
+            "steps_taken", [](const Simulator& s) { return s.state().step; }, "Steps taken since the start.")
+        .def_property_readonly(
+            "path", [](const Simulator& s) { return s.path(); }, "The scene or model file loaded.")
+        .def_property(
+            "gravity", [](const Simulator& s) { return vec3Array(s.model().simulation.gravity); },
+            [](Simulator& s, const py::object& g) { s.setGravity(vec3Of(g, "gravity")); },
+            "Gravity (3,) in m/s^2, world frame; setting it acts from the next step on.")
+        .def_property_readonly("body_names", &bodyNames, "Names of the bodies, in index order.")
+        .def_property_readonly("is_static", &staticMask,
+                               "(n,) bool: the body never moves (the floor, a welded base).")
+        .def_property_readonly("masses", &masses, "(n,) kg.")
+        .def_property_readonly("joint_names", &jointNames, "Names of the joints, in index order.")
+        .def_property_readonly("coordinate_names", &coordinateNames,
+                               "Names of the joint coordinates: the joint's name, or NAME:slide and "
+                               "NAME:rotation for a cylindrical joint. Ball and free joints have none.")
+        .def_property_readonly("actuator_names", &actuatorNames,
+                               "Names of the actuators: the coordinate each drives (coordinate_names).")
+        .def_property_readonly("actuator_kinds", &actuatorKinds,
+                               "Per actuator: position, velocity or effort.")
+        .def_property_readonly("positions", &positions, "(n, 3) float64: centres of mass (m), world frame.")
+        .def_property_readonly("orientations", &orientations,
+                               "(n, 4) float64: unit quaternions w, x, y, z, body to world (as in the CSV).")
+        .def_property_readonly("velocities", &velocities, "(n, 3) float64: centre-of-mass velocities (m/s).")
+        .def_property_readonly("angular_velocities", &angularVelocities,
+                               "(n, 3) float64: angular velocities (rad/s), world frame.")
+        .def_property_readonly("joint_positions", &jointPositions,
+                               "(k,) float64 per coordinate_names: rad or m, counted as the model file "
+                               "counts them (a URDF joint's position).")
+        .def_property_readonly("joint_velocities", &jointVelocities, "(k,) float64: rad/s or m/s.")
+        .def_property_readonly("contacts", &contacts,
+                               "The contacts of the last step as a structured array: body_a, body_b (int32 "
+                               "indices), point (3, m), normal (3, unit, from a towards b), depth (m, < 0 a "
+                               "gap within the margin), force (3, N: the impulse body b received over the "
+                               "step / dt, world frame). Empty before the first step and after set_state.")
+        .def_property_readonly("joint_wrenches", &jointWrenches,
+                               "(j, 6) float64: per joint, what it passed to its child body over the last "
+                               "step / dt: force (N) then torque about the joint's anchor (N m), world "
+                               "frame. Zero before the first step and after set_state.")
+        .def_property_readonly("actuator_efforts", &actuatorEfforts,
+                               "(a,) float64: each actuator's effort over the last step (N m or N, along "
+                               "its coordinate).")
+        .def_property_readonly(
+            "energy", [](const Simulator& s) { return core::totalEnergy(s.model(), s.state()); },
+            "Kinetic plus gravitational potential energy of the moving bodies (J).")
+        .def_property_readonly(
+            "joint_error", [](Simulator& s) { return s.jointErrors(); },
+            "(m, rad): the largest violation of a joint's conditions in the current state.")
+        .def("body_index", &Simulator::bodyIndex, "name"_a, "The index of the body named so.")
+        .def(
+            "set_actuator_target",
+            [](Simulator& s, const py::object& actuator, double value)
+            { s.setActuatorTarget(actuatorOf(s, actuator), value); },
+            "actuator"_a, "value"_a,
+            "Sets an actuator's target from the next step on: by name (actuator_names, the driven "
+            "joint's name) or index. rad or m for a position servo (as the model file counts the "
+            "joint), rad/s or m/s for a velocity motor, N m or N for an effort actuator.")
+        .def(
+            "set_actuator_targets",
+            [](Simulator& s, const py::array_t<double, py::array::c_style | py::array::forcecast>& values)
+            {
+                if (values.ndim() != 1 ||
+                    static_cast<std::size_t>(values.shape(0)) != s.model().actuators.size())
+                {
+                    throw py::value_error("set_actuator_targets: expected " +
+                                          std::to_string(s.model().actuators.size()) +
+                                          " values, one per actuator_names entry");
+                }
+                for (py::ssize_t a = 0; a < values.shape(0); ++a)
+                {
+                    s.setActuatorTarget(static_cast<int>(a), values.at(a));
+                }
+            },
+            "values"_a,
+            "Sets every actuator's target at once, in actuator_names order (units as set_actuator_target).")
+        .def(
+            "render",
+            [](Simulator& s, int width, int height, const py::object& camera)
+            { return imageArray(s.render(width, height, cameraOf(camera))); },
+            "width"_a = 640, "height"_a = 480, "camera"_a = py::none(),
+            "The current state drawn by the OSMesa renderer of `frontier render`: an (height, width, 3) "
+            "uint8 array. camera: None for the scene's camera (or one framed around the bodies at the "
+            "first render, then kept), or a dict with position (m), look_at (m) and fov (degrees).")
+        .def(
+            "record",
+            [](Simulator& s, const std::optional<std::string>& trajectory,
+               const std::optional<std::string>& stats, int every)
+            {
+                s.startRecording({{}, {}, trajectory.value_or(""), stats.value_or(""), every});
+                return RecordingHandle{&s, true};
+            },
+            "trajectory"_a = py::none(), "stats"_a = py::none(), "every"_a = 1, py::keep_alive<0, 1>(),
+            "Records the steps from now on into the files `frontier run --trajectory --stats` writes "
+            "(so `frontier check` and `frontier render` read them): a row block every `every` steps. "
+            "Returns a Recording; use it in a with statement, or call close(). The files appear "
+            "when it is closed; a loop that raised leaves its rows under NAME.failed.csv and stats "
+            "with completed: false. `frontier check` reruns the scene file: it matches a recording "
+            "started at time 0 of a loop that only stepped.");
+
+    py::class_<RecordingHandle>(m, "Recording", "A recording under way (Simulator.record()).")
+        .def(
+            "close", [](RecordingHandle& r) { return r.close(std::nullopt); },
+            "Writes the files; returns their paths. Closing twice does nothing.")
+        .def("__enter__", [](RecordingHandle& r) -> RecordingHandle& { return r; })
+        .def("__exit__",
+             [](RecordingHandle& r, const py::object& type, const py::object& value, const py::object&)
+             {
+                 std::optional<std::string> failure;
+                 if (!type.is_none())
+                 {
+                     failure = "stopped by " + py::str(type.attr("__name__")).cast<std::string>() + ": " +
+                               py::str(value).cast<std::string>();
+                 }
+                 r.close(failure);
+                 return false;
+             });
+}
+
+} // namespace
+
+} // namespace frontier::python
+
+PYBIND11_MODULE(_frontier, m)
+{
+    using namespace frontier::python;
+    m.doc() = "Frontier's C++ part; use the package `frontier`.";
+    m.attr("__version__") = FRONTIER_VERSION;
+    py::register_exception_translator(&translateErrors);
+    registerArrayTypes();
+    bindSimulator(m);
+    m.def("load", &load, cLoadDoc, "path"_a, py::kw_only(), "fixed_base"_a = false, "free_base"_a = false,
+          "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},
+          "joint_positions"_a = std::map<std::string, double>{}, "self_collision"_a = py::none(),
+          "dt"_a = py::none(), "integrator"_a = py::none(), "solver"_a = py::none(),
+          "pgs_iterations"_a = py::none());
+}

@@ -1,0 +1,195 @@
+// python/simulator.cpp: a scene stepped, read and driven from Python.
+#include "python/simulator.h"
+
+#include "core/joints/coordinates.h"
+#include "render/renderer.h"
+#include "run/names.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace frontier::python
+{
+
+namespace
+{
+// Steps between calls of the signal check (Ctrl-C in a long sim.step(n)).
+constexpr long cStepsPerSignalCheck = 256;
+
+std::vector<Coordinate> coordinatesOf(const core::Model& model)
+{
+    std::vector<Coordinate> out;
+    for (std::size_t j = 0; j < model.joints.size(); ++j)
+    {
+        const std::span<const core::JointCoordinate> coordinates =
+            core::jointCoordinates(model.joints[j].type);
+        for (const core::JointCoordinate c : coordinates)
+        {
+            std::string name = model.joints[j].name;
+            if (coordinates.size() > 1)
+            {
+                name += std::string(":") + core::coordinateName(c);
+            }
+            out.push_back({static_cast<int>(j), c, std::move(name)});
+        }
+    }
+    return out;
+}
+} // namespace
+
+Simulator::Simulator(const std::string& path, const LoadOptions& options)
+    : mPath(path), mOptions(options),
+      mScene(std::make_unique<run::LoadedScene>(run::loadScene(path, options.urdf)))
+{
+    run::applySettingOverrides(options.overrides, mScene->model);
+    run::printLoadWarnings(mScene->report);
+    mSimulation = std::make_unique<run::Simulation>(mScene->model);
+    mCoordinates = coordinatesOf(mScene->model);
+}
+
+Simulator::~Simulator() = default;
+
+void Simulator::step(long steps, const std::function<void()>& checkSignals)
+{
+    for (long k = 0; k < steps; ++k)
+    {
+        if (k % cStepsPerSignalCheck == cStepsPerSignalCheck - 1 && checkSignals)
+        {
+            checkSignals();
+        }
+        try
+        {
+            mSimulation->step();
+        }
+        catch (const core::SimulationError& error)
+        {
+            if (mRecording)
+            {
+                mRecording->fail(error, mSimulation->simulator());
+            }
+            throw;
+        }
+        mHasLastStep = true;
+        if (mRecording)
+        {
+            mRecording->addStep(mSimulation->simulator(), mSimulation->state());
+        }
+    }
+}
+
+std::string Simulator::actuatorName(std::size_t actuator) const
+{
+    const core::Actuator& a = model().actuators.at(actuator);
+    for (const Coordinate& c : mCoordinates)
+    {
+        if (c.joint == a.joint && c.coordinate == a.coordinate)
+        {
+            return c.name;
+        }
+    }
+    return model().joints[static_cast<std::size_t>(a.joint)].name;
+}
+
+void Simulator::setGravity(const core::Vec3& gravity_mps2)
+{
+    if (!gravity_mps2.allFinite())
+    {
+        throw std::invalid_argument("gravity must be three finite numbers (m/s^2)");
+    }
+    mScene->model.simulation.gravity = gravity_mps2;
+}
+
+int Simulator::bodyIndex(const std::string& name) const
+{
+    return run::bodyIndex(model(), name);
+}
+
+int Simulator::actuatorIndex(const std::string& name) const
+{
+    for (std::size_t a = 0; a < model().actuators.size(); ++a)
+    {
+        if (actuatorName(a) == name)
+        {
+            return static_cast<int>(a);
+        }
+    }
+    return run::actuatorIndex(model(), name); // the message: no such joint, or no actuator on it
+}
+
+void Simulator::setActuatorTarget(int actuator, double value)
+{
+    if (actuator < 0 || static_cast<std::size_t>(actuator) >= model().actuators.size())
+    {
+        throw std::out_of_range("actuator index " + std::to_string(actuator) +
+                                " out of range (the model has " + std::to_string(model().actuators.size()) +
+                                " actuators)");
+    }
+    if (!std::isfinite(value))
+    {
+        throw std::invalid_argument("the target of actuator '" +
+                                    actuatorName(static_cast<std::size_t>(actuator)) + "' must be finite");
+    }
+    mSimulation->simulator().setActuatorTarget(static_cast<std::size_t>(actuator), value);
+}
+
+render::Image Simulator::render(int width, int height, const std::optional<core::Camera>& camera)
+{
+    if (width < 1 || height < 1 || width > 8192 || height > 8192)
+    {
+        throw std::invalid_argument("image size " + std::to_string(width) + " x " + std::to_string(height) +
+                                    ": expected 1 to 8192 pixels each way");
+    }
+    const auto sameCamera = [](const std::optional<core::Camera>& a, const std::optional<core::Camera>& b)
+    {
+        return a.has_value() == b.has_value() &&
+               (!a ||
+                (a->position == b->position && a->lookAt == b->lookAt && a->fovDegrees == b->fovDegrees));
+    };
+    if (!mRenderer || width != mRenderWidth || height != mRenderHeight || !sameCamera(camera, mRenderCamera))
+    {
+        const core::Camera sceneCamera = mScene->model.camera;
+        if (camera)
+        {
+            mScene->model.camera = *camera; // read while framing, at the first render
+        }
+        mRenderer.reset();
+        render::RenderOptions options;
+        options.width = width;
+        options.height = height;
+        mRenderer = std::make_unique<render::Renderer>(mScene->model, options);
+        mRenderer->frameFrom(state());
+        mScene->model.camera = sceneCamera;
+        mRenderWidth = width;
+        mRenderHeight = height;
+        mRenderCamera = camera;
+    }
+    return mRenderer->render(state());
+}
+
+void Simulator::startRecording(RecordingOptions options)
+{
+    if (mRecording)
+    {
+        throw std::logic_error("a recording is already under way: close it first");
+    }
+    options.urdf = mOptions.urdf;
+    options.contact = mOptions.overrides.contact;
+    mRecording = std::make_unique<Recording>(options, mPath, mScene->model, mSimulation->simulator(),
+                                             mSimulation->state());
+}
+
+std::vector<std::string> Simulator::closeRecording(const std::optional<std::string>& failure)
+{
+    if (!mRecording)
+    {
+        return {};
+    }
+    std::unique_ptr<Recording> recording = std::move(mRecording);
+    if (failure)
+    {
+        recording->abandon(*failure);
+    }
+    return recording->close(mSimulation->state());
+}
+
+} // namespace frontier::python
