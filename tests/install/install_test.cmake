@@ -7,7 +7,8 @@
 #      compiler and build type, warnings as errors), builds it and runs it: its exit status is the
 #      verdict on the physics it prints;
 #   4. docs/library.md shows examples/run_a_scene/main.cpp; built like step_a_scene, its positions
-#      of a robot scene after 0.3 s equal those of `frontier run`'s trajectory, digit for digit.
+#      of a robot scene after 0.3 s equal those of `frontier run`'s trajectory, digit for digit;
+#   5. with PYTHON: the installed Python package imports and gives the same positions.
 cmake_minimum_required(VERSION 3.20)
 
 string(RANDOM LENGTH 10 suffix)
@@ -103,4 +104,33 @@ foreach(line IN LISTS printed)
   endif()
 endforeach()
 message(STATUS "run_a_scene ends where frontier run does (${body_count} bodies)")
+
+# 5. The Python package where the install put it (PYTHON_SITE under the prefix), nothing of the
+#    build folder on the path: it imports, and its positions after 0.3 s are the trajectory's.
+if(PYTHON)
+  set(check "import frontier, sys
+sim = frontier.load(sys.argv[1])
+sim.step(round(0.3 / sim.dt))
+for name, p, static in zip(sim.body_names, sim.positions, sim.is_static):
+    if not static:
+        print('%.17g' % sim.time, name, *['%.17g' % x for x in p])")
+  run("importing the installed Python package" ${CMAKE_COMMAND} -E env --unset=PYTHONPATH
+      "PYTHONPATH=${prefix}/${PYTHON_SITE}" "${PYTHON}" -c "${check}" "${scene}")
+  string(STRIP "${last_output}" printed)
+  string(REPLACE "\n" ";" printed "${printed}")
+  foreach(line IN LISTS printed)
+    string(REPLACE " " ";" fields "${line}")
+    list(GET fields 0 time)
+    list(GET fields 1 name)
+    list(GET fields 2 x)
+    list(GET fields 3 y)
+    list(GET fields 4 z)
+    string(FIND "${trajectory}" "\n${time},${name},${x},${y},${z}," at)
+    if(at EQUAL -1)
+      file(REMOVE_RECURSE "${dir}")
+      message(FATAL_ERROR "the installed Python package puts ${name} at ${x} ${y} ${z} at t = ${time} s, where no row of `frontier run`'s trajectory does")
+    endif()
+  endforeach()
+  message(STATUS "the installed Python package imports and ends where frontier run does")
+endif()
 file(REMOVE_RECURSE "${dir}")
