@@ -11,8 +11,9 @@ namespace frontier::run
 {
 
 // Steps a model from its initial state. Keeps a reference to the model, which must outlive it
-// and not change while it steps. Two Simulations of one model and one sequence of calls give
-// bit-identical states.
+// and not change while it steps; between steps its gravity (Model::simulation.gravity) may change,
+// which the next step follows (nothing reads it ahead). Two Simulations of one model and one
+// sequence of calls give bit-identical states.
 class Simulation
 {
   public:
