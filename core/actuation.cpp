@@ -375,4 +375,20 @@ bool Actuation::finishStep(double dt)
     return changed;
 }
 
+Actuation::Memory Actuation::memory() const
+{
+    return {mBounded, mGains, mLastFraction, mEfforts, mTargets, mWrenches};
+}
+
+void Actuation::restore(const Memory& memory)
+{
+    mBounded = memory.bounded;
+    mGains = memory.gains;
+    mLastFraction = memory.lastFraction;
+    mEfforts = memory.efforts;
+    mTargets = memory.targets;
+    mWrenches = memory.wrenches;
+    clearStepImpulses();
+}
+
 } // namespace frontier::core

@@ -99,6 +99,13 @@ class Actuation
     // Per Model::actuators entry, after finishStep.
     std::span<const ActuatorEffort> efforts() const { return mEfforts; }
 
+    // What carries over from one step to the next (core/step_memory.h): the targets given to
+    // setTarget, which actuators are out of their blocks and the gains that follows from, the last
+    // step's efforts and the external wrenches waiting for the next step.
+    struct Memory;
+    Memory memory() const;
+    void restore(const Memory& memory); // the memory of an Actuation of the same model
+
     // An out-of-block actuator returns to its block when its impulse fell below this fraction of its
     // bound (a margin, so one near its limit does not go in and out every step).
     static constexpr double cReleaseFraction = 0.9;
@@ -138,6 +145,16 @@ class Actuation
     std::vector<Wrench> mWrenches; // for the next step, one per body, in the order first given
     double mStepFrom = 0.0;        // the step under way: [mStepFrom, mStepTo) (s)
     double mStepTo = 0.0;
+};
+
+struct Actuation::Memory
+{
+    std::vector<std::uint8_t> bounded;
+    std::vector<JointDriveGains> gains;
+    std::vector<double> lastFraction;
+    std::vector<ActuatorEffort> efforts;
+    std::vector<std::optional<TimeFunction>> targets;
+    std::vector<Wrench> wrenches;
 };
 
 } // namespace frontier::core

@@ -75,6 +75,7 @@
 #include "core/step/simulation_error.h"
 #include "core/step/step_options.h"
 #include "core/step/step_stats.h"
+#include "core/step_memory.h"
 
 #include <Eigen/Dense>
 #include <array>
@@ -136,6 +137,16 @@ class Simulator
     // the torque (point_W - x) x force_N, x the centre of mass where `state` (the state the next step
     // starts from) has it.
     void applyForceAtPoint(const State& state, int body, const Vec3& force_N, const Vec3& point_W);
+
+    // What the simulator carries from one step to the next besides the State (core/step_memory.h):
+    // a State and this memory taken together and put back together (State assigned,
+    // restoreMemory) make the next steps bit-identical to those taken from them the first time, in
+    // this Simulator or another one of the same model. What the last step reported (lastStep(),
+    // jointImpulses(), contactImpulses() ...) stays that of the step last taken; actuatorEfforts()
+    // is restored. restoreMemory throws std::invalid_argument for an empty memory or that of a
+    // model with other numbers of bodies, joints or actuators, and then changes nothing.
+    StepMemory memory() const;
+    void restoreMemory(const StepMemory& memory);
 
     // What the last step passed through its joints and contacts, worked out when asked
     // (core/step_report.cpp; nothing of it runs in step()).
