@@ -3,7 +3,7 @@
 // A step reads more than the State: the warm start of the contact problem (the last step's
 // impulses), the parts of its Delassus matrix kept from recent steps, the actuators out of their
 // joints' blocks (with their hysteresis) and the targets given to Simulator::setActuatorTarget, the
-// external wrenches waiting for the next step, RATTLE-4's last drive step, the position projection's
+// external wrenches waiting for the next step, rattle4's last drive step, the position projection's
 // recovery flag and the first step's record for failure messages. They change later results (at
 // round-off level or more), so a rollout taken back to a State continues bit-identically only
 // with this memory too: Simulator::memory() takes it, Simulator::restoreMemory() puts it back, into
