@@ -138,7 +138,43 @@ void Actuation::updateGains()
     }
 }
 
-void Actuation::beginStep()
+void Actuation::addWrench(int body, const Vec3& force_N, const Vec3& torque_Nm)
+{
+    if (body < 0 || body >= static_cast<int>(mModel.bodies.size()))
+    {
+        throw std::out_of_range("a wrench on body index " + std::to_string(body) + ", which does not exist");
+    }
+    if (!isMovingBody(mModel, body))
+    {
+        throw std::invalid_argument("a wrench on the static body '" +
+                                    mModel.bodies[static_cast<std::size_t>(body)].name +
+                                    "', which nothing moves");
+    }
+    if (!force_N.allFinite() || !torque_Nm.allFinite())
+    {
+        throw std::invalid_argument("a wrench on body '" +
+                                    mModel.bodies[static_cast<std::size_t>(body)].name +
+                                    "' needs a finite force (N) and torque (N m)");
+    }
+    const auto same = std::find_if(mWrenches.begin(), mWrenches.end(),
+                                   [body](const Wrench& wrench) { return wrench.body == body; });
+    if (same == mWrenches.end())
+    {
+        mWrenches.push_back({body, force_N, torque_Nm});
+        return;
+    }
+    same->force += force_N;
+    same->torque += torque_Nm;
+}
+
+void Actuation::beginStep(double start, double dt)
+{
+    mStepFrom = start;
+    mStepTo = start + dt;
+    clearStepImpulses();
+}
+
+void Actuation::clearStepImpulses()
 {
     std::fill(mStepImpulse.begin(), mStepImpulse.end(), 0.0);
     std::fill(mStepAtLimit.begin(), mStepAtLimit.end(), 0);
@@ -170,6 +206,11 @@ void Actuation::applyForces(State& state, double t0, double t1)
             lever = bodyFrame ? Vec3(s.orientation_WB * *load.point) : Vec3(*load.point - s.position_W);
         }
         addImpulse(mModel, state, load.body, scale * force, scale * (torque + lever.cross(force)));
+    }
+    const double wrenchScale = sign * overlap(from, to, mStepFrom, mStepTo); // s
+    for (const Wrench& wrench : mWrenches)
+    {
+        addImpulse(mModel, state, wrench.body, wrenchScale * wrench.force, wrenchScale * wrench.torque);
     }
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
@@ -329,8 +370,25 @@ bool Actuation::finishStep(double dt)
     {
         updateGains();
     }
-    beginStep();
+    clearStepImpulses();
+    mWrenches.clear();
     return changed;
+}
+
+Actuation::Memory Actuation::memory() const
+{
+    return {mBounded, mGains, mLastFraction, mEfforts, mTargets, mWrenches};
+}
+
+void Actuation::restore(const Memory& memory)
+{
+    mBounded = memory.bounded;
+    mGains = memory.gains;
+    mLastFraction = memory.lastFraction;
+    mEfforts = memory.efforts;
+    mTargets = memory.targets;
+    mWrenches = memory.wrenches;
+    clearStepImpulses();
 }
 
 } // namespace frontier::core

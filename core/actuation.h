@@ -15,10 +15,12 @@
 // limit * h, and a scene whose actuators stay below their limits keeps the joint tree's exact
 // O(n) solve. An actuator of a loop-closing joint is always an extra row.
 //
-// Effort actuators (clamped to their limit) and loads are applied forces: each solve starts from
-// u* = u + M^-1 (their impulse over the solve), as gravity. A force over [from, to) gives the
-// impulse F |[t0, t1) n [from, to)| over a solve [t0, t1), so the total is F (to - from) whatever
-// the step; an impulse load lands in the one solve whose [t0, t1) holds its instant.
+// Effort actuators (clamped to their limit), loads and the external wrenches given for the next
+// step (addWrench) are applied forces: each solve starts from u* = u + M^-1 (their impulse over the
+// solve), as gravity. A force over [from, to) gives the impulse F |[t0, t1) n [from, to)| over a
+// solve [t0, t1), so the total is F (to - from) whatever the step; an impulse load lands in the one
+// solve whose [t0, t1) holds its instant. An external wrench acts over the step it was given for,
+// [from, to) = the step's [t, t + dt): its impulse over the step is F dt for every integrator.
 //
 // The drift correction moves drive rows too (their compliance is part of the factorization it
 // reuses); those impulses keep the joints together and are not counted as the actuator's.
@@ -66,8 +68,15 @@ class Actuation
     // beyond Model::actuators.
     void setTarget(std::size_t actuator, TimeFunction target);
 
-    // A new step: forgets the impulses of an earlier attempt.
-    void beginStep();
+    // Adds a force through body's centre of mass and a torque (world frame; N, N m) to what acts on
+    // it over the next step only (wrenches given twice add up); finishStep() forgets them. Throws
+    // std::out_of_range for an index beyond Model::bodies, std::invalid_argument for a static body
+    // or a value that is not finite.
+    void addWrench(int body, const Vec3& force_N, const Vec3& torque_Nm);
+
+    // A new step over [start, start + dt) (s), the interval of the external wrenches: forgets the
+    // impulses of an earlier attempt of it.
+    void beginStep(double start, double dt);
     // Effort actuators and loads over [t0, t1) (s) at the pose of `state`: its moving bodies'
     // velocities change by M^-1 times their impulse. t1 < t0 (a backward stage of rattle4) gives
     // the opposite of the impulse over [t1, t0).
@@ -90,11 +99,25 @@ class Actuation
     // Per Model::actuators entry, after finishStep.
     std::span<const ActuatorEffort> efforts() const { return mEfforts; }
 
+    // What carries over from one step to the next (core/step_memory.h): the targets given to
+    // setTarget, which actuators are out of their blocks and the gains that follows from, the last
+    // step's efforts and the external wrenches waiting for the next step.
+    struct Memory;
+    Memory memory() const;
+    void restore(const Memory& memory); // the memory of an Actuation of the same model
+
     // An out-of-block actuator returns to its block when its impulse fell below this fraction of its
     // bound (a margin, so one near its limit does not go in and out every step).
     static constexpr double cReleaseFraction = 0.9;
 
   private:
+    struct Wrench // an external wrench for the next step, world frame
+    {
+        int body = 0;
+        Vec3 force = Vec3::Zero();  // N, through the centre of mass
+        Vec3 torque = Vec3::Zero(); // N m
+    };
+    void clearStepImpulses();
     void updateGains();
     // f0 (N or N m) and the targets of a servo or motor for a solve ending at tEnd, at `state`.
     struct Command
@@ -119,6 +142,19 @@ class Actuation
     std::vector<ActuatorEffort> mEfforts; // the last finished step
     // Per actuator: the target given to setTarget, or none (the model's).
     std::vector<std::optional<TimeFunction>> mTargets;
+    std::vector<Wrench> mWrenches; // for the next step, one per body, in the order first given
+    double mStepFrom = 0.0;        // the step under way: [mStepFrom, mStepTo) (s)
+    double mStepTo = 0.0;
+};
+
+struct Actuation::Memory
+{
+    std::vector<std::uint8_t> bounded;
+    std::vector<JointDriveGains> gains;
+    std::vector<double> lastFraction;
+    std::vector<ActuatorEffort> efforts;
+    std::vector<std::optional<TimeFunction>> targets;
+    std::vector<Wrench> wrenches;
 };
 
 } // namespace frontier::core

@@ -76,6 +76,14 @@ void Simulator::step(State& state)
     }
 }
 
+void Simulator::applyForceAtPoint(const State& state, int body, const Vec3& force_N, const Vec3& point_W)
+{
+    const std::size_t i = static_cast<std::size_t>(body);
+    const bool known = body >= 0 && i < state.bodies.size();
+    const Vec3 lever = point_W - (known ? state.bodies[i].position_W : Vec3::Zero()); // m
+    applyWrench(body, force_N, lever.cross(force_N)); // refuses the index, a static body, a point not finite
+}
+
 void Simulator::takeStep(State& state)
 {
     mStats.seconds.fill(0.0);
@@ -178,7 +186,7 @@ void Simulator::stepEuler(State& state)
 {
     StageClock clock(mStats.seconds);
     checkState(state, "start of step");
-    mActuation.beginStep();
+    mActuation.beginStep(state.time, mDt);
     detectContacts(state);
     clock.lap(StepStage::Detect);
     computeFreeVelocities(state, mDt);
@@ -237,7 +245,7 @@ Simulator::RattleOutcome Simulator::stepRattle(State& state, bool firstStage)
     mStats.stiffenedBodies = 0;
     if (firstStage)
     {
-        mActuation.beginStep();
+        mActuation.beginStep(state.time, mDt);
     }
     detectContacts(state);
     clock.lap(StepStage::Detect);

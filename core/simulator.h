@@ -75,6 +75,7 @@
 #include "core/step/simulation_error.h"
 #include "core/step/step_options.h"
 #include "core/step/step_stats.h"
+#include "core/step_memory.h"
 
 #include <Eigen/Dense>
 #include <array>
@@ -122,6 +123,30 @@ class Simulator
     {
         mActuation.setTarget(actuator, std::move(target));
     }
+
+    // Pushes moving body `body` during the next step only: a force through its centre of mass and
+    // a torque, world frame (N, N m), applied as the model's loads are (core/actuation.h), so its
+    // impulse over the step is force_N dt and torque_Nm dt with every integrator. Wrenches given
+    // twice before a step add up; the step forgets them. Throws std::out_of_range for an index
+    // beyond Model::bodies, std::invalid_argument for a static body or a value that is not finite.
+    void applyWrench(int body, const Vec3& force_N, const Vec3& torque_Nm)
+    {
+        mActuation.addWrench(body, force_N, torque_Nm);
+    }
+    // The same for a force at world point point_W (m): the force through the centre of mass and
+    // the torque (point_W - x) x force_N, x the centre of mass where `state` (the state the next step
+    // starts from) has it.
+    void applyForceAtPoint(const State& state, int body, const Vec3& force_N, const Vec3& point_W);
+
+    // What the simulator carries from one step to the next besides the State (core/step_memory.h):
+    // a State and this memory taken together and put back together (State assigned,
+    // restoreMemory) make the next steps bit-identical to those taken from them the first time, in
+    // this Simulator or another one of the same model. What the last step reported (lastStep(),
+    // jointImpulses(), contactImpulses() ...) stays that of the step last taken; actuatorEfforts()
+    // is restored. restoreMemory throws std::invalid_argument for an empty memory or that of a
+    // model with other numbers of bodies, joints or actuators, and then changes nothing.
+    StepMemory memory() const;
+    void restoreMemory(const StepMemory& memory);
 
     // What the last step passed through its joints and contacts, worked out when asked
     // (core/step_report.cpp; nothing of it runs in step()).
@@ -203,9 +228,9 @@ class Simulator
     RowSystem mRows;                    // rows at the start of the step (the factored ones)
     RowSystem mRowsAfter;               // rows re-evaluated after the position update (errors only)
     BlockVector mRhs, mSolution;
-    std::vector<BodyState> mStart;           // poses at the start of the step
-    std::vector<PrincipalAxes> mPrincipal;   // principal axes per body (free rotation, momentum carry)
-    std::vector<std::uint8_t> mFreeRotation; // per body: the step turns it by the free rotation (§4)
+    std::vector<BodyState> mStart;             // poses at the start of the step
+    std::vector<PrincipalAxes> mPrincipal;     // principal axes per body (free rotation, momentum carry)
+    std::vector<std::uint8_t> mFreeRotation;   // per body: the step turns it by the free rotation (§4)
     std::vector<std::uint8_t> mHeldInRotation; // per body: a joint holds its rotation (§4, eq. (8a))
     // euler: the end pose of the last step, at which mRowsAfter holds the rows (reused as the
     // next step's mRows when it starts there).

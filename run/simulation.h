@@ -11,12 +11,28 @@ namespace frontier::run
 {
 
 // Steps a model from its initial state. Keeps a reference to the model, which must outlive it
-// and not change while it steps. Two Simulations of one model and one sequence of calls give
-// bit-identical states.
+// and not change while it steps; between steps its gravity (Model::simulation.gravity) may change,
+// which the next step follows (nothing reads it ahead). Two Simulations of one model and one
+// sequence of calls give bit-identical states.
 class Simulation
 {
   public:
     explicit Simulation(const core::Model& model, const core::StepOptions& options = {});
+
+    // Where a rollout stands: the state and what the simulator carries from step to step
+    // (core/step_memory.h). Not the model (gravity as it is when stepping) nor the detector,
+    // whose history only skips work it proves has the same outcome.
+    struct Snapshot
+    {
+        core::State state;
+        core::StepMemory memory;
+    };
+    // The steps after restore(snapshot()) are bit-identical to those after snapshot(), here or in
+    // another Simulation of the same model (a copy of vectors: microseconds). restore throws
+    // std::invalid_argument for a snapshot of a model with other numbers of bodies, joints or
+    // actuators, and then changes nothing.
+    Snapshot snapshot() const;
+    void restore(const Snapshot& snapshot);
 
     // One step of the model's dt (s), or `steps` of them. Throw core::SimulationError (a blow-up,
     // naming the step, body and quantity) and core::SingularJointError.

@@ -45,6 +45,19 @@ class BlowUpCheck
     [[noreturn]] void jointCameApart(const State& state, const JointErrors& errors,
                                      const StepView& step) const;
 
+    // What carries over from one step to the next (core/step_memory.h): the first step's record.
+    struct Memory
+    {
+        StartDefects startDefects;
+        bool startRecorded = false;
+    };
+    Memory memory() const { return {mStartDefects, mStartRecorded}; }
+    void restore(const Memory& memory)
+    {
+        mStartDefects = memory.startDefects;
+        mStartRecorded = memory.startRecorded;
+    }
+
   private:
     // "; ..." for a failure message, or empty.
     std::string likelyCause(const State& state, const StepView& step) const;

@@ -71,6 +71,20 @@ class ContactProblem
     const DelassusMatrix& delassus() const { return mDelassus.matrix(); } // after solve()
     ExtraSolveScratch& scratch() { return mExtraScratch; } // the Gauss-Seidel's, shared with other solves
 
+    // What carries over from one step to the next (core/step_memory.h): the impulses of the warm
+    // start and the parts of G kept for reuse.
+    struct Memory
+    {
+        ImpulseMemory impulses;
+        DelassusCache::Memory delassus;
+    };
+    Memory memory() const { return {mMemory, mDelassus.memory()}; }
+    void restore(const Memory& memory)
+    {
+        mMemory = memory.impulses;
+        mDelassus.restore(memory.delassus);
+    }
+
   private:
     void setIslandTolerances();
     ContactRoute solveOpenIslands(BlockVector& solution, int& sweeps);

@@ -172,6 +172,23 @@ bool DelassusCache::exact(int island) const
     return true;
 }
 
+DelassusCache::Memory DelassusCache::memory() const
+{
+    return {mG, mLast, mRecords, mLastRecords, mState, mKeys, mStep};
+}
+
+void DelassusCache::restore(const Memory& memory)
+{
+    mG = memory.g;
+    mLast = memory.last;
+    mRecords = memory.records;
+    mLastRecords = memory.lastRecords;
+    mState = memory.state;
+    mKeys = memory.keys;
+    mStep = memory.step;
+    mBuiltAny = false;
+}
+
 bool DelassusCache::complete() const
 {
     return std::none_of(mState.begin(), mState.end(), [](PartState s) { return s == PartState::Empty; });

@@ -45,6 +45,12 @@ class DelassusCache
 
     const DelassusMatrix& matrix() const { return mG; }
 
+    // What carries over from one step to the next (core/step_memory.h): the last two steps' parts
+    // with what they were built for, and the steps counted.
+    struct Memory;
+    Memory memory() const;
+    void restore(const Memory& memory);
+
   private:
     enum class PartState : std::uint8_t
     {
@@ -75,6 +81,15 @@ class DelassusCache
     std::vector<int> mToBuild;                        // scratch
     long mStep = 0;                                   // layOut() calls
     bool mBuiltAny = false;
+};
+
+struct DelassusCache::Memory
+{
+    DelassusMatrix g, last;
+    std::vector<Record> records, lastRecords;
+    std::vector<PartState> state;
+    std::vector<RowKey> keys;
+    long step = 0;
 };
 
 } // namespace frontier::core
