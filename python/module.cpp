@@ -68,6 +68,22 @@ void translateErrors(std::exception_ptr thrown)
     }
 }
 
+// A body given by name or index.
+int bodyOf(const Simulator& sim, const py::object& body)
+{
+    if (py::isinstance<py::str>(body))
+    {
+        return sim.bodyIndex(body.cast<std::string>());
+    }
+    const int index = body.cast<int>();
+    if (index < 0 || static_cast<std::size_t>(index) >= sim.model().bodies.size())
+    {
+        throw py::index_error("body index " + std::to_string(index) + " out of range (the model has " +
+                              std::to_string(sim.model().bodies.size()) + " bodies)");
+    }
+    return index;
+}
+
 int actuatorOf(const Simulator& sim, const py::object& actuator)
 {
     if (py::isinstance<py::str>(actuator))
@@ -177,6 +193,19 @@ coordinate_names order; actuators in actuator_names order. Every array property 
 NumPy array (a copy: it does not change when the simulation steps on, and writing to it changes
 nothing). Units: m, s, kg, rad, N, N m.)";
 
+void bindState(py::module_& m)
+{
+    py::class_<run::Simulation::Snapshot>(
+        m, "State", "A saved state (Simulator.get_state()), restored with Simulator.set_state().")
+        .def_property_readonly(
+            "time", [](const run::Simulation::Snapshot& s) { return s.state.time; },
+            "Its simulated time (s).")
+        .def_property_readonly(
+            "steps_taken", [](const run::Simulation::Snapshot& s) { return s.state.step; }, "Its step count.")
+        .def("__copy__", [](const run::Simulation::Snapshot& s) { return s; })
+        .def("__deepcopy__", [](const run::Simulation::Snapshot& s, const py::dict&) { return s; });
+}
+
 void bindSimulator(py::module_& m)
 {
     py::class_<Simulator> simulator(m, "Simulator", cSimulatorDoc);
@@ -257,6 +286,26 @@ void bindSimulator(py::module_& m)
         .def_property_readonly(
             "joint_error", [](Simulator& s) { return s.jointErrors(); },
             "(m, rad): the largest violation of a joint's conditions in the current state.")
+        .def(
+            "apply_force",
+            [](Simulator& s, const py::object& body, const py::object& force, const py::object& torque,
+               const py::object& point)
+            {
+                s.applyForce(bodyOf(s, body), vec3Of(force, "force"),
+                             torque.is_none() ? core::Vec3::Zero() : vec3Of(torque, "torque"),
+                             point.is_none() ? std::nullopt : std::optional(vec3Of(point, "point")));
+            },
+            "body"_a, "force"_a, "torque"_a = py::none(), "point"_a = py::none(),
+            "Pushes a moving body (name or index) during the next step only: force (N) through its "
+            "centre of mass, or at `point` (m, world), and torque (N m), world frame. Calls before "
+            "one step add up; the step's impulse is force * dt whatever the integrator.")
+        .def("get_state", &Simulator::getState,
+             "Saves what the next steps depend on: poses, velocities, time, joint angles, the contact "
+             "solver's warm start and cached matrices, actuator targets and limit states, pending "
+             "forces (not gravity, which belongs to the model). Cheap: microseconds.")
+        .def("set_state", &Simulator::setState, "state"_a,
+             "Restores a state from get_state (of this simulator or another loaded from the same "
+             "file): the same steps then give the same states, bit for bit.")
         .def("body_index", &Simulator::bodyIndex, "name"_a, "The index of the body named so.")
         .def(
             "set_actuator_target",
@@ -338,6 +387,7 @@ PYBIND11_MODULE(_frontier, m)
     m.attr("__version__") = FRONTIER_VERSION;
     py::register_exception_translator(&translateErrors);
     registerArrayTypes();
+    bindState(m);
     bindSimulator(m);
     m.def("load", &load, cLoadDoc, "path"_a, py::kw_only(), "fixed_base"_a = false, "free_base"_a = false,
           "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},

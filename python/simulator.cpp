@@ -99,6 +99,32 @@ void Simulator::setGravity(const core::Vec3& gravity_mps2)
     mScene->model.simulation.gravity = gravity_mps2;
 }
 
+void Simulator::applyForce(int body, const core::Vec3& force_N, const core::Vec3& torque_Nm,
+                           const std::optional<core::Vec3>& point_W)
+{
+    core::Simulator& simulator = mSimulation->simulator();
+    if (point_W)
+    {
+        simulator.applyForceAtPoint(state(), body, force_N, *point_W);
+        simulator.applyWrench(body, core::Vec3::Zero(), torque_Nm);
+    }
+    else
+    {
+        simulator.applyWrench(body, force_N, torque_Nm);
+    }
+}
+
+void Simulator::setState(const run::Simulation::Snapshot& snapshot)
+{
+    if (mRecording)
+    {
+        throw std::logic_error("set_state while recording: close the recording first (its rows would "
+                               "run back in time)");
+    }
+    mSimulation->restore(snapshot);
+    mHasLastStep = false;
+}
+
 int Simulator::bodyIndex(const std::string& name) const
 {
     return run::bodyIndex(model(), name);

@@ -62,6 +62,15 @@ class Simulator
     std::pair<double, double> jointErrors() { return mSimulation->simulator().jointErrors(state()); }
 
     void setGravity(const core::Vec3& gravity_mps2);
+    // A force (N) and torque (N m), world frame, on a moving body during the next step; with a
+    // point (m, world) the force acts there. Throws std::invalid_argument / std::out_of_range.
+    void applyForce(int body, const core::Vec3& force_N, const core::Vec3& torque_Nm,
+                    const std::optional<core::Vec3>& point_W);
+
+    // What the next steps depend on (run::Simulation::Snapshot), and back. set_state refuses
+    // while a recording is under way (its rows would run back in time).
+    run::Simulation::Snapshot getState() const { return mSimulation->snapshot(); }
+    void setState(const run::Simulation::Snapshot& snapshot);
     // Index of a body by name or of the actuator on a coordinate ("NAME" or "NAME:slide"); throw
     // run::NameError naming the nearest.
     int bodyIndex(const std::string& name) const;

@@ -13,7 +13,7 @@ quaternions (w, x, y, z), body to world, as in the trajectory CSV. See help(fron
 import os as _os
 
 from ._errors import LoadError, SimulationError, UnknownNameError
-from ._frontier import Recording, Simulator, __version__
+from ._frontier import Recording, Simulator, State, __version__
 from ._frontier import load as _load
 
 
@@ -36,6 +36,7 @@ def _paths(options):
 __all__ = [
     "load",
     "Simulator",
+    "State",
     "Recording",
     "LoadError",
     "SimulationError",
