@@ -112,3 +112,17 @@ def test_record_takes_path_objects_as_load_does(scenes, tmp_path):
     with sim.record(trajectory=tmp_path / "p.csv", stats=tmp_path / "p.json"):
         sim.step(10)
     assert (tmp_path / "p.csv").is_file() and (tmp_path / "p.json").is_file()
+
+
+def test_a_bad_record_request_fails_before_any_step_and_writes_nothing(scenes, tmp_path):
+    sim = frontier.load(scenes / "pendulum.yaml")
+    with pytest.raises(ValueError):
+        sim.record(trajectory=str(tmp_path / "t.csv"), every=0)
+    # A folder that cannot be made (a file is in the way) is an OSError naming the path.
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(OSError) as caught:
+        sim.record(trajectory=str(blocker / "t.csv"))
+    assert "file" in str(caught.value)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+    assert sim.steps_taken == 0
