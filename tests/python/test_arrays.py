@@ -143,7 +143,7 @@ def test_a_force_and_torque_act_for_one_step_in_si_units(tmp_path):
     sim.apply_force("ball", force, torque=torque)
     sim.step()
     np.testing.assert_allclose(sim.velocities[ball], force * sim.dt / mass, rtol=1e-12)
-    np.testing.assert_allclose(sim.angular_velocities[ball], torque * sim.dt / inertia, rtol=1e-9)
+    np.testing.assert_allclose(sim.angular_velocities[ball], torque * sim.dt / inertia, rtol=1e-9, atol=1e-15)
     # Only for that step: the ball then coasts.
     velocity = sim.velocities[ball]
     sim.step(10)
@@ -220,3 +220,17 @@ def test_a_blow_up_is_a_simulation_error_naming_the_body(tmp_path):
     assert error.step >= 4
     assert error.time == pytest.approx(error.step * sim.dt)
     assert error.quantity
+
+
+def test_forces_before_one_step_add_up_and_static_bodies_refuse_them(tmp_path):
+    sim = frontier.load(write_scene(tmp_path, "ball.yaml", BALL_IN_SPACE))
+    ball = sim.body_names.index("ball")
+    sim.apply_force(ball, [3.0, 0.0, 0.0])
+    sim.apply_force("ball", [1.0, 2.0, 0.0])
+    sim.step()
+    np.testing.assert_allclose(sim.velocities[ball], np.array([4.0, 2.0, 0.0]) * sim.dt / 4.0, rtol=1e-12)
+    floor = frontier.load(write_scene(tmp_path, "box.yaml", BOX_ON_FLOOR))
+    with pytest.raises(ValueError):
+        floor.apply_force("floor", [1.0, 0.0, 0.0])
+    with pytest.raises(IndexError):
+        floor.apply_force(len(floor.body_names), [1.0, 0.0, 0.0])

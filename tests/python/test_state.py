@@ -7,6 +7,8 @@ import frontier
 import numpy as np
 import pytest
 
+from frontier_testing import read_trajectory
+
 QUANTITIES = ("positions", "orientations", "velocities", "angular_velocities", "joint_positions",
               "joint_velocities")
 
@@ -127,3 +129,29 @@ def test_step_releases_the_gil(scenes):
         sys.setswitchinterval(interval)
     assert sim.steps_taken == 1000
     assert ran_during_step
+
+
+def test_actuator_targets_and_pending_forces_are_part_of_the_state(scenes):
+    sim = frontier.load(scenes / "robots" / "arm6_description" / "urdf" / "arm6.urdf", fixed_base=True,
+                        hold=True)
+    sim.set_actuator_target("elbow_joint", 0.4)
+    sim.apply_force("forearm_link", [0.0, 30.0, 0.0])  # pending: acts in the next step
+    saved = sim.get_state()
+    assert saved.time == 0.0 and saved.steps_taken == 0
+    first = rollout(sim, 200)
+    sim.set_state(saved)
+    sim.set_actuator_target("elbow_joint", -0.4)  # changed after the save ...
+    sim.set_state(saved)  # ... and restored with it
+    assert_identical(first, rollout(sim, 200))
+
+
+def test_set_state_is_refused_while_recording(scenes, tmp_path):
+    sim = frontier.load(scenes / "pendulum.yaml")
+    saved = sim.get_state()
+    with sim.record(trajectory=str(tmp_path / "t.csv")):
+        sim.step(10)
+        with pytest.raises(RuntimeError):
+            sim.set_state(saved)  # the recorded rows would run back in time
+        sim.step(10)
+    assert sim.steps_taken == 20
+    assert max(read_trajectory(tmp_path / "t.csv")) == pytest.approx(20 * sim.dt)
