@@ -9,7 +9,8 @@
 #             difference per call is the fixed overhead of a Python step() call
 # Each process keeps the fastest of 3 loops, timed in CPU time (see step_loop.cpp). Prints per
 # scene and mode the median and range over the rounds of the time per step (us) and the ratio
-# Python / C++ of the medians; then the fixed overhead of a Python step() call (ball, Python minus
+# Python / C++ of the medians and of the minima (on a busy machine the fastest rounds are the
+# least disturbed ones); then the fixed overhead of a Python step() call (ball, Python minus
 # C++) and the cost of reading the positions once (both languages, `peek`: reads without steps).
 #
 #   bench/python_step.sh [BUILD] [ROUNDS]    (BUILD: default build; ROUNDS: default 5, at least 5)
@@ -84,15 +85,21 @@ def describe(values):
 
 print("CPU time per step, us: median [min, max] over %s rounds (a process each, fastest of 3 loops)"
       % sys.argv[2])
-print("%-9s %6s %-6s %-31s %-31s %s" % ("scene", "bodies", "loop", "C++", "Python", "Python/C++"))
+print("%-9s %6s %-7s %-31s %-31s %s" % ("scene", "bodies", "loop", "C++", "Python",
+                                         "Python/C++ (medians, minima)"))
+
+
+def ratios(p, c):
+    return "%.3f  %.3f" % (statistics.median(p) / statistics.median(c), min(p) / min(c))
+
+
 for scene in ("doll", "chain100", "ball"):
     for mode in ("step", "read"):
         c, p = rows[(scene, "cpp", mode)], rows[(scene, "python", mode)]
-        print("%-9s %6s %-6s %-31s %-31s %.3f" % (scene, bodies[scene], mode, describe(c), describe(p),
-                                                   statistics.median(p) / statistics.median(c)))
+        print("%-9s %6s %-7s %-31s %-31s %s" % (scene, bodies[scene], mode, describe(c), describe(p), ratios(p, c)))
     b = rows[(scene, "python", "batch")]
-    print("%-9s %6s %-6s %-31s %-31s %.3f" % (scene, bodies[scene], "step(n)", "", describe(b),
-                                               statistics.median(b) / statistics.median(rows[(scene, "cpp", "step")])))
+    print("%-9s %6s %-7s %-31s %-31s %s" % (scene, bodies[scene], "step(n)", "", describe(b),
+                                            ratios(b, rows[(scene, "cpp", "step")])))
 print("(step: step() alone; read: step() then the positions; step(n): one Python call for all steps)")
 print()
 overhead = [p - c for p, c in zip(rows[("ball", "python", "step")], rows[("ball", "cpp", "step")])]
