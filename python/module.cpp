@@ -84,6 +84,13 @@ int bodyOf(const Simulator& sim, const py::object& body)
     return index;
 }
 
+// A path given as str or path-like (pathlib.Path), "" for None.
+std::string pathOf(const py::object& path)
+{
+    return path.is_none() ? std::string()
+                          : py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
+
 int actuatorOf(const Simulator& sim, const py::object& actuator)
 {
     if (py::isinstance<py::str>(actuator))
@@ -343,10 +350,9 @@ void bindSimulator(py::module_& m)
             "first render, then kept), or a dict with position (m), look_at (m) and fov (degrees).")
         .def(
             "record",
-            [](Simulator& s, const std::optional<std::string>& trajectory,
-               const std::optional<std::string>& stats, int every)
+            [](Simulator& s, const py::object& trajectory, const py::object& stats, int every)
             {
-                s.startRecording({{}, {}, trajectory.value_or(""), stats.value_or(""), every});
+                s.startRecording({{}, {}, pathOf(trajectory), pathOf(stats), every});
                 return RecordingHandle{&s, true};
             },
             "trajectory"_a = py::none(), "stats"_a = py::none(), "every"_a = 1, py::keep_alive<0, 1>(),

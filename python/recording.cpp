@@ -15,9 +15,11 @@ namespace
 void makeFolderFor(const std::string& file)
 {
     const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-    if (!parent.empty())
+    std::error_code error;
+    if (!parent.empty() && !std::filesystem::create_directories(parent, error) && error)
     {
-        std::filesystem::create_directories(parent);
+        throw io::OutputError("cannot create the folder " + parent.string() + " for " + file + ": " +
+                              error.message());
     }
 }
 } // namespace
@@ -86,8 +88,11 @@ std::vector<std::string> Recording::close(const core::State& state)
     std::vector<std::string> written;
     if (!mOptions.trajectory.empty())
     {
+        // As `frontier run --steps N` states it: the run's duration is the steps taken.
+        core::SimulationSettings settings = mModel.simulation;
+        settings.duration = static_cast<double>(summary.steps) * settings.dt;
         io::TrajectoryMetadata metadata =
-            io::makeTrajectoryMetadata(mScene, mModel.simulation, summary.steps, mOptions.every);
+            io::makeTrajectoryMetadata(mScene, settings, summary.steps, mOptions.every);
         io::addUrdfOptions(metadata, mOptions.urdf);
         io::addContactTolerances(metadata, mOptions.contact);
         io::TrajectoryWriter writer(mOptions.trajectory, metadata);

@@ -41,7 +41,14 @@ Simulator::Simulator(const std::string& path, const LoadOptions& options)
     : mPath(path), mOptions(options),
       mScene(std::make_unique<run::LoadedScene>(run::loadScene(path, options.urdf)))
 {
-    run::applySettingOverrides(options.overrides, mScene->model);
+    try
+    {
+        run::applySettingOverrides(options.overrides, mScene->model);
+    }
+    catch (const io::InputError& e) // a keyword, not the file: say so
+    {
+        throw io::InputError(e.file(), 0, 0, "a keyword of load(): " + e.message());
+    }
     run::printLoadWarnings(mScene->report);
     mSimulation = std::make_unique<run::Simulation>(mScene->model);
     mCoordinates = coordinatesOf(mScene->model);
