@@ -285,4 +285,26 @@ py::array_t<std::uint8_t> imageArray(const render::Image& image)
     return out;
 }
 
+render::Image imageOf(const py::object& array)
+{
+    const auto pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(array);
+    if (!pixels || pixels.ndim() != 3 || (pixels.shape(2) != 3 && pixels.shape(2) != 4) ||
+        pixels.shape(0) < 1 || pixels.shape(1) < 1)
+    {
+        throw py::value_error("an image: expected an (height, width, 3) or (height, width, 4) uint8 array");
+    }
+    render::Image image;
+    image.height = static_cast<int>(pixels.shape(0));
+    image.width = static_cast<int>(pixels.shape(1));
+    const auto channels = static_cast<std::size_t>(pixels.shape(2));
+    const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    image.rgba.assign(4 * count, 255);
+    const std::uint8_t* in = pixels.data();
+    for (std::size_t p = 0; p < count; ++p)
+    {
+        std::memcpy(image.rgba.data() + 4 * p, in + channels * p, channels);
+    }
+    return image;
+}
+
 } // namespace frontier::python

@@ -44,5 +44,7 @@ pybind11::array_t<double> jointWrenches(const Simulator& sim);     // (j, 6) N, 
 pybind11::array_t<double> actuatorEfforts(const Simulator& sim);   // (a,) N m or N
 
 pybind11::array_t<std::uint8_t> imageArray(const render::Image& image); // (h, w, 3)
+// An (h, w, 3) or (h, w, 4) uint8 array as an RGBA image; throws pybind11::value_error.
+render::Image imageOf(const pybind11::object& array);
 
 } // namespace frontier::python

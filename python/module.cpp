@@ -395,6 +395,17 @@ PYBIND11_MODULE(_frontier, m)
     registerArrayTypes();
     bindState(m);
     bindSimulator(m);
+    m.def(
+        "write_png",
+        [](const py::object& path, const py::object& image)
+        { frontier::render::writePng(pathOf(path), imageOf(image)); },
+        "path"_a, "image"_a,
+        "Writes an (h, w, 3) or (h, w, 4) uint8 array (a render()) as a PNG file, through a temporary "
+        "file renamed into place.");
+    m.def(
+        "read_png",
+        [](const py::object& path) { return imageArray(frontier::render::readPng(pathOf(path))); }, "path"_a,
+        "Reads a PNG file (a frame of `frontier render`) as an (h, w, 3) uint8 array.");
     m.def("load", &load, cLoadDoc, "path"_a, py::kw_only(), "fixed_base"_a = false, "free_base"_a = false,
           "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},
           "joint_positions"_a = std::map<std::string, double>{}, "self_collision"_a = py::none(),

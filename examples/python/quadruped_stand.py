@@ -11,10 +11,8 @@ writes out/quadruped_stand.mp4 (or out/frame_00000.png ...) and prints the trunk
 import math
 import pathlib
 import shutil
-import struct
 import subprocess
 import sys
-import zlib
 
 import frontier
 import numpy as np
@@ -45,19 +43,6 @@ def targets(t):
         out[leg + "_thigh_joint"] = thigh
         out[leg + "_calf_joint"] = -2.0 * thigh
     return out
-
-
-def write_png(path, image):
-    """An (h, w, 3) uint8 array as an 8-bit RGB PNG (no imaging package needed)."""
-    height, width, _ = image.shape
-    raw = b"".join(b"\x00" + image[y].tobytes() for y in range(height))
-
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
-
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
-    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw, 6))
-                     + chunk(b"IEND", b""))
 
 
 def main():
@@ -91,7 +76,7 @@ def main():
             if video:
                 video.stdin.write(image.tobytes())
             else:
-                write_png(out / ("frame_%05d.png" % frame), image)
+                frontier.write_png(out / ("frame_%05d.png" % frame), image)
             frame += 1
         # The targets for this step, from the function of time.
         for name, value in targets(sim.time).items():

@@ -13,7 +13,7 @@ quaternions (w, x, y, z), body to world, as in the trajectory CSV. See help(fron
 import os as _os
 
 from ._errors import LoadError, SimulationError, UnknownNameError
-from ._frontier import Recording, Simulator, State, __version__
+from ._frontier import Recording, Simulator, State, __version__, read_png, write_png
 from ._frontier import load as _load
 
 
@@ -41,5 +41,7 @@ __all__ = [
     "LoadError",
     "SimulationError",
     "UnknownNameError",
+    "read_png",
+    "write_png",
     "__version__",
 ]
