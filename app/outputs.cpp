@@ -81,7 +81,7 @@ void checkInputsKept(const std::vector<OutputPath>& outputs, const std::vector<s
         }
         for (const std::string& input : inputs)
         {
-            if (!out.folder && fs::equivalent(input, out.path, error))
+            if (!out.folder && io::replacedInput(out.path, {input}) == input)
             {
                 throw io::InputError(out.path, 0, 0,
                                      out.flag +

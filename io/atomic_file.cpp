@@ -215,4 +215,21 @@ std::string failedPath(const std::string& path)
     return out.string();
 }
 
+std::string replacedInput(const std::string& output, const std::vector<std::string>& inputs)
+{
+    std::error_code error;
+    if (!std::filesystem::exists(output, error))
+    {
+        return {}; // a new path: no input is there
+    }
+    for (const std::string& input : inputs)
+    {
+        if (std::filesystem::equivalent(input, output, error))
+        {
+            return input;
+        }
+    }
+    return {};
+}
+
 } // namespace frontier::io

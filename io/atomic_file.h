@@ -9,6 +9,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace frontier::io
 {
@@ -51,6 +52,11 @@ void writeNewFile(const std::string& path, const std::string& text);
 // Where a failed run keeps an output's rows up to the failure: "out.csv" -> "out.failed.csv"
 // (the extension stays last, so the file still opens as what it is).
 std::string failedPath(const std::string& path);
+
+// The one of `inputs` that writing `output` would replace (compared as files, so a symbolic link,
+// a hard link or another spelling of the path counts), or "" when none is: a run checks its
+// outputs against every file its load read before it writes anything.
+std::string replacedInput(const std::string& output, const std::vector<std::string>& inputs);
 
 class AtomicFile
 {

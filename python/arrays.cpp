@@ -287,6 +287,12 @@ py::array_t<std::uint8_t> imageArray(const render::Image& image)
 
 render::Image imageOf(const py::object& array)
 {
+    if (!py::isinstance<py::array>(array) ||
+        !py::array(array.cast<py::array>()).dtype().is(py::dtype::of<std::uint8_t>()))
+    {
+        throw py::value_error("an image: expected an (height, width, 3) or (height, width, 4) uint8 array "
+                              "(convert others with .astype(numpy.uint8) after scaling to 0..255)");
+    }
     const auto pixels = py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>::ensure(array);
     if (!pixels || pixels.ndim() != 3 || (pixels.shape(2) != 3 && pixels.shape(2) != 4) ||
         pixels.shape(0) < 1 || pixels.shape(1) < 1)

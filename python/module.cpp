@@ -8,9 +8,11 @@
 #include "render/renderer.h"
 #include "run/names.h"
 
+#include <cmath>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <utility>
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -20,6 +22,24 @@ namespace frontier::python
 
 namespace
 {
+
+// Text from the library as a Python str: names and messages may hold bytes that are not UTF-8
+// (a scene's own names), shown as \xNN rather than failing to convert.
+py::str text(const std::string& value)
+{
+    return py::reinterpret_steal<py::str>(
+        PyUnicode_DecodeUTF8(value.data(), static_cast<py::ssize_t>(value.size()), "backslashreplace"));
+}
+
+py::list texts(const std::vector<std::string>& values)
+{
+    py::list out;
+    for (const std::string& value : values)
+    {
+        out.append(text(value));
+    }
+    return out;
+}
 
 py::object errorClass(const char* name)
 {
@@ -43,45 +63,75 @@ void translateErrors(std::exception_ptr thrown)
     catch (const io::InputError& e)
     {
         const py::object type = errorClass("LoadError");
-        raise(type, type(e.what(), e.file(), e.line(), e.column(), e.message()));
+        raise(type, type(text(e.what()), text(e.file()), e.line(), e.column(), text(e.message())));
     }
     catch (const core::SimulationError& e)
     {
         const core::SimulationFailure& f = e.failure();
         const py::object type = errorClass("SimulationError");
-        raise(type, type(e.what(), f.step, f.time, f.bodyName, f.quantity,
-                         f.joint ? py::object(py::str(f.jointName)) : py::object(py::none())));
+        raise(type, type(text(e.what()), f.step, f.time, text(f.bodyName), f.quantity,
+                         f.joint ? py::object(text(f.jointName)) : py::object(py::none())));
     }
     catch (const core::SingularJointError& e)
     {
         const py::object type = errorClass("SimulationError");
-        raise(type, type(e.what(), py::none(), py::none(), py::none(), "singular joint", e.jointName()));
+        raise(type, type(text(e.what()), py::none(), py::none(), py::none(), "singular joint",
+                         text(e.jointName())));
     }
     catch (const run::NameError& e)
     {
         const py::object type = errorClass("UnknownNameError");
-        raise(type, type(e.what()));
+        raise(type, type(text(e.what())));
     }
     catch (const io::OutputError& e)
     {
-        PyErr_SetString(PyExc_OSError, e.what());
+        PyErr_SetObject(PyExc_OSError, text(e.what()).ptr());
     }
 }
 
 // A body given by name or index.
+// An index given as a Python int (numpy integers too), within [0, count); `what` names it.
+int indexOf(const py::object& value, std::size_t count, const std::string& what)
+{
+    if (!py::isinstance<py::int_>(value) && !py::hasattr(value, "__index__"))
+    {
+        throw py::type_error(what + ": expected a name (str) or an index (int), not " +
+                             py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    }
+    const long long index = py::int_(value).cast<long long>();
+    if (index < 0 || static_cast<unsigned long long>(index) >= count)
+    {
+        throw py::index_error(what + " index " + std::to_string(index) + " out of range (the model has " +
+                              std::to_string(count) + ")");
+    }
+    return static_cast<int>(index);
+}
+
 int bodyOf(const Simulator& sim, const py::object& body)
 {
     if (py::isinstance<py::str>(body))
     {
         return sim.bodyIndex(body.cast<std::string>());
     }
-    const int index = body.cast<int>();
-    if (index < 0 || static_cast<std::size_t>(index) >= sim.model().bodies.size())
+    return indexOf(body, sim.model().bodies.size(), "body");
+}
+
+// f(), with a std::runtime_error of a file (libpng's) raised as OSError.
+template <typename F> auto asOSError(F f)
+{
+    try
     {
-        throw py::index_error("body index " + std::to_string(index) + " out of range (the model has " +
-                              std::to_string(sim.model().bodies.size()) + " bodies)");
+        return f();
     }
-    return index;
+    catch (const py::builtin_exception&) // a ValueError of the arguments stays one
+    {
+        throw;
+    }
+    catch (const std::runtime_error& e)
+    {
+        PyErr_SetObject(PyExc_OSError, text(e.what()).ptr());
+        throw py::error_already_set();
+    }
 }
 
 // A path given as str or path-like (pathlib.Path), "" for None.
@@ -97,7 +147,7 @@ int actuatorOf(const Simulator& sim, const py::object& actuator)
     {
         return sim.actuatorIndex(actuator.cast<std::string>());
     }
-    return actuator.cast<int>();
+    return indexOf(actuator, sim.model().actuators.size(), "actuator");
 }
 
 std::optional<core::Camera> cameraOf(const py::object& camera)
@@ -111,6 +161,10 @@ std::optional<core::Camera> cameraOf(const py::object& camera)
     c.automatic = false;
     for (const auto& [key, value] : d)
     {
+        if (!py::isinstance<py::str>(key))
+        {
+            throw py::type_error("camera: keys are position, look_at and fov");
+        }
         const std::string k = key.cast<std::string>();
         if (k == "position")
         {
@@ -129,28 +183,53 @@ std::optional<core::Camera> cameraOf(const py::object& camera)
             throw py::key_error("camera: unknown key '" + k + "' (expected position, look_at, fov)");
         }
     }
+    if (!d.contains("position") || !d.contains("look_at"))
+    {
+        throw py::value_error("camera: expected position and look_at (m), and fov (degrees) if not 45");
+    }
+    if (!(std::isfinite(c.fovDegrees) && c.fovDegrees > 0.0 && c.fovDegrees < 180.0))
+    {
+        throw py::value_error("camera fov: expected a number of degrees in (0, 180)");
+    }
+    if ((c.position - c.lookAt).norm() < 1e-9)
+    {
+        throw py::value_error("camera: position and look_at must differ");
+    }
     return c;
 }
 
 // The handle of a recording under way (Simulator.record()).
-struct RecordingHandle
+class RecordingHandle
 {
-    Simulator* sim = nullptr;
-    bool open = true;
+  public:
+    explicit RecordingHandle(Simulator& sim) : mSim(&sim) {}
+    RecordingHandle(RecordingHandle&& other) noexcept : mSim(std::exchange(other.mSim, nullptr)) {}
+    RecordingHandle& operator=(RecordingHandle&&) = delete;
+    // Dropped without close(): the recording ends and writes nothing (the simulator can record again).
+    ~RecordingHandle()
+    {
+        if (mSim != nullptr && mSim->recording())
+        {
+            mSim->discardRecording();
+        }
+    }
 
     py::list close(const std::optional<std::string>& failure)
     {
         py::list written;
-        if (open)
+        if (mSim != nullptr)
         {
-            open = false;
+            Simulator* sim = std::exchange(mSim, nullptr);
             for (const std::string& path : sim->closeRecording(failure))
             {
-                written.append(path);
+                written.append(text(path));
             }
         }
         return written;
     }
+
+  private:
+    Simulator* mSim; // null once closed; kept alive by the handle (py::keep_alive)
 };
 
 std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool freeBase,
@@ -173,6 +252,7 @@ std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool fr
     options.overrides.integrator = integrator;
     options.overrides.solver = solver;
     options.overrides.pgsIterations = pgsIterations;
+    py::gil_scoped_release release; // other threads go on while the files are read
     return std::make_unique<Simulator>(path, options);
 }
 
@@ -202,15 +282,35 @@ nothing). Units: m, s, kg, rad, N, N m.)";
 
 void bindState(py::module_& m)
 {
-    py::class_<run::Simulation::Snapshot>(
-        m, "State", "A saved state (Simulator.get_state()), restored with Simulator.set_state().")
+    py::class_<SavedState>(m, "State",
+                           "A saved state (Simulator.get_state()), restored with Simulator.set_state().")
         .def_property_readonly(
-            "time", [](const run::Simulation::Snapshot& s) { return s.state.time; },
-            "Its simulated time (s).")
+            "time", [](const SavedState& s) { return s.snapshot.state.time; }, "Its simulated time (s).")
         .def_property_readonly(
-            "steps_taken", [](const run::Simulation::Snapshot& s) { return s.state.step; }, "Its step count.")
-        .def("__copy__", [](const run::Simulation::Snapshot& s) { return s; })
-        .def("__deepcopy__", [](const run::Simulation::Snapshot& s, const py::dict&) { return s; });
+            "steps_taken", [](const SavedState& s) { return s.snapshot.state.step; }, "Its step count.")
+        .def("__copy__", [](const SavedState& s) { return s; })
+        .def("__deepcopy__", [](const SavedState& s, const py::dict&) { return s; });
+}
+
+void bindRecording(py::module_& m)
+{
+    py::class_<RecordingHandle>(m, "Recording", "A recording under way (Simulator.record()).")
+        .def(
+            "close", [](RecordingHandle& r) { return r.close(std::nullopt); },
+            "Writes the files; returns their paths. Closing twice does nothing.")
+        .def("__enter__", [](RecordingHandle& r) -> RecordingHandle& { return r; })
+        .def("__exit__",
+             [](RecordingHandle& r, const py::object& type, const py::object& value, const py::object&)
+             {
+                 std::optional<std::string> failure;
+                 if (!type.is_none())
+                 {
+                     failure = "stopped by " + py::str(type.attr("__name__")).cast<std::string>() + ": " +
+                               py::str(value).cast<std::string>();
+                 }
+                 r.close(failure);
+                 return false;
+             });
 }
 
 void bindSimulator(py::module_& m)
@@ -253,16 +353,22 @@ void bindSimulator(py::module_& m)
             "gravity", [](const Simulator& s) { return vec3Array(s.model().simulation.gravity); },
             [](Simulator& s, const py::object& g) { s.setGravity(vec3Of(g, "gravity")); },
             "Gravity (3,) in m/s^2, world frame; setting it acts from the next step on.")
-        .def_property_readonly("body_names", &bodyNames, "Names of the bodies, in index order.")
+        .def_property_readonly(
+            "body_names", [](const Simulator& sim) { return texts(bodyNames(sim)); },
+            "Names of the bodies, in index order.")
         .def_property_readonly("is_static", &staticMask,
                                "(n,) bool: the body never moves (the floor, a welded base).")
         .def_property_readonly("masses", &masses, "(n,) kg.")
-        .def_property_readonly("joint_names", &jointNames, "Names of the joints, in index order.")
-        .def_property_readonly("coordinate_names", &coordinateNames,
-                               "Names of the joint coordinates: the joint's name, or NAME:slide and "
-                               "NAME:rotation for a cylindrical joint. Ball and free joints have none.")
-        .def_property_readonly("actuator_names", &actuatorNames,
-                               "Names of the actuators: the coordinate each drives (coordinate_names).")
+        .def_property_readonly(
+            "joint_names", [](const Simulator& sim) { return texts(jointNames(sim)); },
+            "Names of the joints, in index order.")
+        .def_property_readonly(
+            "coordinate_names", [](const Simulator& sim) { return texts(coordinateNames(sim)); },
+            "Names of the joint coordinates: the joint's name, or NAME:slide and "
+            "NAME:rotation for a cylindrical joint. Ball and free joints have none.")
+        .def_property_readonly(
+            "actuator_names", [](const Simulator& sim) { return texts(actuatorNames(sim)); },
+            "Names of the actuators: the coordinate each drives (coordinate_names).")
         .def_property_readonly("actuator_kinds", &actuatorKinds,
                                "Per actuator: position, velocity or effort.")
         .def_property_readonly("positions", &positions, "(n, 3) float64: centres of mass (m), world frame.")
@@ -333,6 +439,15 @@ void bindSimulator(py::module_& m)
                                           std::to_string(s.model().actuators.size()) +
                                           " values, one per actuator_names entry");
                 }
+                for (py::ssize_t a = 0; a < values.shape(0); ++a) // all checked before any is set
+                {
+                    if (!std::isfinite(values.at(a)))
+                    {
+                        throw py::value_error("set_actuator_targets: the target of '" +
+                                              s.actuatorName(static_cast<std::size_t>(a)) +
+                                              "' must be finite");
+                    }
+                }
                 for (py::ssize_t a = 0; a < values.shape(0); ++a)
                 {
                     s.setActuatorTarget(static_cast<int>(a), values.at(a));
@@ -343,7 +458,15 @@ void bindSimulator(py::module_& m)
         .def(
             "render",
             [](Simulator& s, int width, int height, const py::object& camera)
-            { return imageArray(s.render(width, height, cameraOf(camera))); },
+            {
+                const std::optional<core::Camera> view = cameraOf(camera);
+                render::Image image;
+                {
+                    py::gil_scoped_release release;
+                    image = s.render(width, height, view);
+                }
+                return imageArray(image);
+            },
             "width"_a = 640, "height"_a = 480, "camera"_a = py::none(),
             "The current state drawn by the OSMesa renderer of `frontier render`: an (height, width, 3) "
             "uint8 array. camera: None for the scene's camera (or one framed around the bodies at the "
@@ -353,7 +476,7 @@ void bindSimulator(py::module_& m)
             [](Simulator& s, const py::object& trajectory, const py::object& stats, int every)
             {
                 s.startRecording({{}, {}, pathOf(trajectory), pathOf(stats), every});
-                return RecordingHandle{&s, true};
+                return RecordingHandle(s);
             },
             "trajectory"_a = py::none(), "stats"_a = py::none(), "every"_a = 1, py::keep_alive<0, 1>(),
             "Records the steps from now on into the files `frontier run --trajectory --stats` writes "
@@ -362,24 +485,6 @@ void bindSimulator(py::module_& m)
             "when it is closed; a loop that raised leaves its rows under NAME.failed.csv and stats "
             "with completed: false. `frontier check` reruns the scene file: it matches a recording "
             "started at time 0 of a loop that only stepped.");
-
-    py::class_<RecordingHandle>(m, "Recording", "A recording under way (Simulator.record()).")
-        .def(
-            "close", [](RecordingHandle& r) { return r.close(std::nullopt); },
-            "Writes the files; returns their paths. Closing twice does nothing.")
-        .def("__enter__", [](RecordingHandle& r) -> RecordingHandle& { return r; })
-        .def("__exit__",
-             [](RecordingHandle& r, const py::object& type, const py::object& value, const py::object&)
-             {
-                 std::optional<std::string> failure;
-                 if (!type.is_none())
-                 {
-                     failure = "stopped by " + py::str(type.attr("__name__")).cast<std::string>() + ": " +
-                               py::str(value).cast<std::string>();
-                 }
-                 r.close(failure);
-                 return false;
-             });
 }
 
 } // namespace
@@ -394,18 +499,20 @@ PYBIND11_MODULE(_frontier, m)
     py::register_exception_translator(&translateErrors);
     registerArrayTypes();
     bindState(m);
+    bindRecording(m);
     bindSimulator(m);
     m.def(
         "write_png",
         [](const py::object& path, const py::object& image)
-        { frontier::render::writePng(pathOf(path), imageOf(image)); },
+        { asOSError([&] { frontier::render::writePng(pathOf(path), imageOf(image)); }); },
         "path"_a, "image"_a,
         "Writes an (h, w, 3) or (h, w, 4) uint8 array (a render()) as a PNG file, through a temporary "
         "file renamed into place.");
     m.def(
         "read_png",
-        [](const py::object& path) { return imageArray(frontier::render::readPng(pathOf(path))); }, "path"_a,
-        "Reads a PNG file (a frame of `frontier render`) as an (h, w, 3) uint8 array.");
+        [](const py::object& path)
+        { return imageArray(asOSError([&] { return frontier::render::readPng(pathOf(path)); })); },
+        "path"_a, "Reads a PNG file (a frame of `frontier render`) as an (h, w, 3) uint8 array.");
     m.def("load", &load, cLoadDoc, "path"_a, py::kw_only(), "fixed_base"_a = false, "free_base"_a = false,
           "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},
           "joint_positions"_a = std::map<std::string, double>{}, "self_collision"_a = py::none(),

@@ -2,10 +2,14 @@
 #include "python/simulator.h"
 
 #include "core/joints/coordinates.h"
+#include "io/atomic_file.h"
+#include "io/input_digest.h"
 #include "render/renderer.h"
 #include "run/names.h"
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 namespace frontier::python
@@ -13,8 +17,8 @@ namespace frontier::python
 
 namespace
 {
-// Steps between calls of the signal check (Ctrl-C in a long sim.step(n)).
-constexpr long cStepsPerSignalCheck = 256;
+// Wall time between calls of the signal check (Ctrl-C in a long sim.step(n)).
+constexpr std::chrono::milliseconds cSignalCheckInterval{50};
 
 std::vector<Coordinate> coordinatesOf(const core::Model& model)
 {
@@ -37,6 +41,34 @@ std::vector<Coordinate> coordinatesOf(const core::Model& model)
 }
 } // namespace
 
+class Simulator::Busy
+{
+  public:
+    explicit Busy(const Simulator& sim) : mSim(sim)
+    {
+        if (mSim.mBusy.exchange(true))
+        {
+            throw std::runtime_error("this simulator is busy in another thread (step or render): use a "
+                                     "simulator from one thread at a time");
+        }
+    }
+    ~Busy() { mSim.mBusy.store(false); }
+    Busy(const Busy&) = delete;
+    Busy& operator=(const Busy&) = delete;
+
+  private:
+    const Simulator& mSim;
+};
+
+void Simulator::checkIdle() const
+{
+    if (mBusy.load())
+    {
+        throw std::runtime_error("this simulator is busy in another thread (step or render): use a "
+                                 "simulator from one thread at a time");
+    }
+}
+
 Simulator::Simulator(const std::string& path, const LoadOptions& options)
     : mPath(path), mOptions(options),
       mScene(std::make_unique<run::LoadedScene>(run::loadScene(path, options.urdf)))
@@ -50,6 +82,10 @@ Simulator::Simulator(const std::string& path, const LoadOptions& options)
         throw io::InputError(e.file(), 0, 0, "a keyword of load(): " + e.message());
     }
     run::printLoadWarnings(mScene->report);
+    mInputs = io::inputPaths(mScene->report.inputFiles);
+    std::error_code error;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(path, error);
+    mSource = error ? path : canonical.string();
     mSimulation = std::make_unique<run::Simulation>(mScene->model);
     mCoordinates = coordinatesOf(mScene->model);
 }
@@ -58,11 +94,14 @@ Simulator::~Simulator() = default;
 
 void Simulator::step(long steps, const std::function<void()>& checkSignals)
 {
+    const Busy busy(*this);
+    auto lastCheck = std::chrono::steady_clock::now();
     for (long k = 0; k < steps; ++k)
     {
-        if (k % cStepsPerSignalCheck == cStepsPerSignalCheck - 1 && checkSignals)
+        if (checkSignals && k > 0 && std::chrono::steady_clock::now() - lastCheck >= cSignalCheckInterval)
         {
             checkSignals();
+            lastCheck = std::chrono::steady_clock::now();
         }
         try
         {
@@ -99,6 +138,7 @@ std::string Simulator::actuatorName(std::size_t actuator) const
 
 void Simulator::setGravity(const core::Vec3& gravity_mps2)
 {
+    checkIdle();
     if (!gravity_mps2.allFinite())
     {
         throw std::invalid_argument("gravity must be three finite numbers (m/s^2)");
@@ -109,6 +149,7 @@ void Simulator::setGravity(const core::Vec3& gravity_mps2)
 void Simulator::applyForce(int body, const core::Vec3& force_N, const core::Vec3& torque_Nm,
                            const std::optional<core::Vec3>& point_W)
 {
+    checkIdle();
     core::Simulator& simulator = mSimulation->simulator();
     if (point_W)
     {
@@ -121,14 +162,25 @@ void Simulator::applyForce(int body, const core::Vec3& force_N, const core::Vec3
     }
 }
 
-void Simulator::setState(const run::Simulation::Snapshot& snapshot)
+SavedState Simulator::getState() const
 {
+    checkIdle();
+    return {mSimulation->snapshot(), mSource};
+}
+
+void Simulator::setState(const SavedState& saved)
+{
+    checkIdle();
+    if (saved.source != mSource)
+    {
+        throw std::invalid_argument("set_state: a state of " + saved.source + ", not of " + mSource);
+    }
     if (mRecording)
     {
         throw std::logic_error("set_state while recording: close the recording first (its rows would "
                                "run back in time)");
     }
-    mSimulation->restore(snapshot);
+    mSimulation->restore(saved.snapshot);
     mHasLastStep = false;
 }
 
@@ -151,6 +203,7 @@ int Simulator::actuatorIndex(const std::string& name) const
 
 void Simulator::setActuatorTarget(int actuator, double value)
 {
+    checkIdle();
     if (actuator < 0 || static_cast<std::size_t>(actuator) >= model().actuators.size())
     {
         throw std::out_of_range("actuator index " + std::to_string(actuator) +
@@ -167,6 +220,8 @@ void Simulator::setActuatorTarget(int actuator, double value)
 
 render::Image Simulator::render(int width, int height, const std::optional<core::Camera>& camera)
 {
+    const Busy busy(*this);
+    const core::State& now = mSimulation->state();
     if (width < 1 || height < 1 || width > 8192 || height > 8192)
     {
         throw std::invalid_argument("image size " + std::to_string(width) + " x " + std::to_string(height) +
@@ -190,20 +245,47 @@ render::Image Simulator::render(int width, int height, const std::optional<core:
         options.width = width;
         options.height = height;
         mRenderer = std::make_unique<render::Renderer>(mScene->model, options);
-        mRenderer->frameFrom(state());
+        // The automatic camera is framed once, around the state of the first render, and kept.
+        if (!camera && !mFramedAt)
+        {
+            mFramedAt = now;
+        }
+        mRenderer->frameFrom(camera ? now : *mFramedAt);
         mScene->model.camera = sceneCamera;
         mRenderWidth = width;
         mRenderHeight = height;
         mRenderCamera = camera;
     }
-    return mRenderer->render(state());
+    return mRenderer->render(now);
 }
 
 void Simulator::startRecording(RecordingOptions options)
 {
+    checkIdle();
     if (mRecording)
     {
         throw std::logic_error("a recording is already under way: close it first");
+    }
+    // Written where the names point now, whatever the working folder is when the recording closes.
+    for (std::string* path : {&options.trajectory, &options.stats})
+    {
+        if (!path->empty())
+        {
+            *path = std::filesystem::absolute(*path).lexically_normal().string();
+        }
+    }
+    if (!options.trajectory.empty() && options.trajectory == options.stats)
+    {
+        throw std::invalid_argument("record(): trajectory and stats name the same file " + options.stats);
+    }
+    const std::string failedTrajectory = options.trajectory.empty() ? "" : io::failedPath(options.trajectory);
+    for (const std::string& path : {options.trajectory, failedTrajectory, options.stats})
+    {
+        if (const std::string input = path.empty() ? "" : io::replacedInput(path, mInputs); !input.empty())
+        {
+            throw std::invalid_argument("record(): " + path + " is the input " + input +
+                                        ": the recording would replace a file the load read");
+        }
     }
     options.urdf = mOptions.urdf;
     options.contact = mOptions.overrides.contact;
@@ -213,6 +295,7 @@ void Simulator::startRecording(RecordingOptions options)
 
 std::vector<std::string> Simulator::closeRecording(const std::optional<std::string>& failure)
 {
+    checkIdle();
     if (!mRecording)
     {
         return {};

@@ -8,6 +8,7 @@
 #include "run/scene_loading.h"
 #include "run/simulation.h"
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
@@ -26,6 +27,13 @@ struct LoadOptions
 {
     io::UrdfOptions urdf;
     run::SettingOverrides overrides;
+};
+
+// A saved state (Simulator::getState) with the file it is a state of.
+struct SavedState
+{
+    run::Simulation::Snapshot snapshot;
+    std::string source; // the model file's canonical path
 };
 
 // One joint coordinate Python addresses (Simulator::coordinates()).
@@ -48,8 +56,19 @@ class Simulator
     void step(long steps, const std::function<void()>& checkSignals);
 
     const core::Model& model() const { return mScene->model; }
-    const core::State& state() const { return mSimulation->state(); }
-    const core::Simulator& simulator() const { return mSimulation->simulator(); }
+    // The state and the simulator between steps: throw std::runtime_error while another thread
+    // is in step() or render() (a simulator is used by one thread at a time; the reader would race).
+    const core::State& state() const
+    {
+        checkIdle();
+        return mSimulation->state();
+    }
+    const core::Simulator& simulator() const
+    {
+        checkIdle();
+        return mSimulation->simulator();
+    }
+    void checkIdle() const;
     const std::string& path() const { return mPath; }
     const std::vector<Coordinate>& coordinates() const { return mCoordinates; }
     // "NAME" for an actuator on a one-coordinate joint, "NAME:slide"/"NAME:rotation" on a cylindrical one.
@@ -69,8 +88,9 @@ class Simulator
 
     // What the next steps depend on (run::Simulation::Snapshot), and back. set_state refuses
     // while a recording is under way (its rows would run back in time).
-    run::Simulation::Snapshot getState() const { return mSimulation->snapshot(); }
-    void setState(const run::Simulation::Snapshot& snapshot);
+    SavedState getState() const;
+    // Throws std::invalid_argument for a state of another file.
+    void setState(const SavedState& saved);
     // Index of a body by name or of the actuator on a coordinate ("NAME" or "NAME:slide"); throw
     // run::NameError naming the nearest.
     int bodyIndex(const std::string& name) const;
@@ -89,16 +109,25 @@ class Simulator
     // `failure`: the loop stopped on an exception, the files say the run failed and why.
     std::vector<std::string> closeRecording(const std::optional<std::string>& failure = std::nullopt);
     bool recording() const { return mRecording != nullptr; }
+    // Ends the recording under way writing nothing (its handle was dropped unclosed).
+    void discardRecording() { mRecording.reset(); }
 
   private:
+    // Marks the simulator busy for the scope (step, render): a second entry throws std::runtime_error.
+    class Busy;
+
     std::string mPath;
+    std::string mSource; // canonical mPath: a saved state's origin
     LoadOptions mOptions;
+    std::vector<std::string> mInputs; // every file the load read (io::LoadReport::inputFiles)
+    mutable std::atomic<bool> mBusy{false};
     std::unique_ptr<run::LoadedScene> mScene; // its model stays where the simulation references it
     std::unique_ptr<run::Simulation> mSimulation;
     std::vector<Coordinate> mCoordinates;
     std::unique_ptr<render::Renderer> mRenderer;
     int mRenderWidth = 0, mRenderHeight = 0;
     std::optional<core::Camera> mRenderCamera;
+    std::optional<core::State> mFramedAt; // the state the automatic camera was framed around
     std::unique_ptr<Recording> mRecording;
     bool mHasLastStep = false;
 };
