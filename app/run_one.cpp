@@ -75,17 +75,6 @@ std::string formatSummary(const core::Model& model, const run::RunSummary& s)
 
 } // namespace
 
-namespace
-{
-// The folder an output file goes into, made when missing.
-void makeFolderFor(const std::string& file)
-{
-    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-    std::filesystem::create_directories(parent.empty() ? std::filesystem::path(".") : parent);
-}
-
-} // namespace
-
 int runOne(const RunOptions& options, const std::string& scene, const JobOutputs& out, int renderThreads,
            const std::function<void(const std::string&)>& status, std::string& summaryText,
            std::string& error, const SceneLoader& load)
@@ -129,7 +118,7 @@ int runOne(const RunOptions& options, const std::string& scene, const JobOutputs
         {
             if (!file->empty())
             {
-                makeFolderFor(*file);
+                io::makeFolderFor(*file);
             }
         }
         removeStaleOutputTemporaries(out); // of a run killed outright (SIGKILL)

@@ -215,6 +215,17 @@ std::string failedPath(const std::string& path)
     return out.string();
 }
 
+void makeFolderFor(const std::string& file)
+{
+    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+    std::error_code error;
+    if (!parent.empty() && !std::filesystem::create_directories(parent, error) && error)
+    {
+        throw OutputError("cannot create the folder " + parent.string() + " for " + file + ": " +
+                          error.message());
+    }
+}
+
 std::string replacedInput(const std::string& output, const std::vector<std::string>& inputs)
 {
     std::error_code error;

@@ -53,6 +53,9 @@ void writeNewFile(const std::string& path, const std::string& text);
 // (the extension stays last, so the file still opens as what it is).
 std::string failedPath(const std::string& path);
 
+// Makes the folder an output file goes into when it is missing. Throws OutputError naming it.
+void makeFolderFor(const std::string& file);
+
 // The one of `inputs` that writing `output` would replace (compared as files, so a symbolic link,
 // a hard link or another spelling of the path counts), or "" when none is: a run checks its
 // outputs against every file its load read before it writes anything.

@@ -44,6 +44,19 @@ py::array_t<double> bodyVectors(const Simulator& sim, core::Vec3 core::BodyState
     return out;
 }
 
+// An (n,) array of one property of every body of the model.
+template <typename T, typename F> py::array_t<T> perBody(const Simulator& sim, F value)
+{
+    const std::vector<core::Body>& bodies = sim.model().bodies;
+    py::array_t<T> out(static_cast<py::ssize_t>(bodies.size()));
+    auto a = out.template mutable_unchecked<1>();
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        a(static_cast<py::ssize_t>(i)) = value(bodies[i]);
+    }
+    return out;
+}
+
 template <typename F> py::array_t<double> perCoordinate(const Simulator& sim, F value)
 {
     const std::vector<Coordinate>& coordinates = sim.coordinates();
@@ -140,26 +153,12 @@ std::vector<std::string> actuatorKinds(const Simulator& sim)
 
 py::array_t<bool> staticMask(const Simulator& sim)
 {
-    const std::vector<core::Body>& bodies = sim.model().bodies;
-    py::array_t<bool> out(static_cast<py::ssize_t>(bodies.size()));
-    auto a = out.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-    {
-        a(static_cast<py::ssize_t>(i)) = bodies[i].isStatic;
-    }
-    return out;
+    return perBody<bool>(sim, [](const core::Body& body) { return body.isStatic; });
 }
 
 py::array_t<double> masses(const Simulator& sim)
 {
-    const std::vector<core::Body>& bodies = sim.model().bodies;
-    py::array_t<double> out(static_cast<py::ssize_t>(bodies.size()));
-    auto a = out.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-    {
-        a(static_cast<py::ssize_t>(i)) = bodies[i].mass;
-    }
-    return out;
+    return perBody<double>(sim, [](const core::Body& body) { return body.mass; });
 }
 
 py::array_t<double> positions(const Simulator& sim)

@@ -5,24 +5,8 @@
 #include "io/stats.h"
 #include "run/run_stats.h"
 
-#include <filesystem>
-
 namespace frontier::python
 {
-
-namespace
-{
-void makeFolderFor(const std::string& file)
-{
-    const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-    std::error_code error;
-    if (!parent.empty() && !std::filesystem::create_directories(parent, error) && error)
-    {
-        throw io::OutputError("cannot create the folder " + parent.string() + " for " + file + ": " +
-                              error.message());
-    }
-}
-} // namespace
 
 Recording::Recording(const RecordingOptions& options, const std::string& scene, const core::Model& model,
                      core::Simulator& simulator, const core::State& state)
@@ -37,7 +21,7 @@ Recording::Recording(const RecordingOptions& options, const std::string& scene, 
     {
         if (!file->empty())
         {
-            makeFolderFor(*file);
+            io::makeFolderFor(*file);
             io::removeStaleTemporariesOf(*file);
             io::AtomicFile probe(*file); // the file can be written (removed again, never committed)
         }
