@@ -148,6 +148,8 @@ void addRobotOptions(CLI::App& command, frontier::io::UrdfOptions& o)
             "--self-collision", [&o](const std::string& value) { o.selfCollision = value == "on"; },
             "on: links collide unless joined or overlapping at the start (default); off: never")
         ->check(CLI::IsMember({"on", "off"}));
+    command.add_option("--keyframe", o.keyframe,
+                       "a bare MJCF file starts in this <key> of it (its qpos, qvel and ctrl)");
     command.add_flag("--hold", o.hold,
                      "a position servo on every joint of every URDF robot, holding it where it starts "
                      "(gains from the joint's inertia and effort limit)");

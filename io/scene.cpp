@@ -2,6 +2,8 @@
 #include "io/scene.h"
 
 #include "io/file_util.h"
+#include "io/mjcf_compile.h"
+#include "io/mjcf_model.h"
 #include "io/urdf_model.h"
 #include "io/yaml_scene.h"
 
@@ -25,9 +27,18 @@ template <typename Load> core::Model recordingInputs(LoadReport* report, const L
 core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     const std::string ext = detail::lowerExtension(path);
-    if (ext == ".urdf")
+    if (options.keyframe && ext != ".xml" && ext != ".mjcf")
+    {
+        throw InputError(path, 0, 0, "--keyframe chooses a <key> of a bare MJCF file (.xml)");
+    }
+    if (ext == ".urdf" ||
+        (ext == ".xml" && detail::isUrdfText(path, detail::readTextFile(path, "model file"))))
     {
         return detail::loadUrdfScene(path, options, report);
+    }
+    if (ext == ".xml" || ext == ".mjcf")
+    {
+        return detail::loadMjcfScene(path, options, report);
     }
     if (ext == ".yaml" || ext == ".yml")
     {
@@ -41,8 +52,9 @@ core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, L
         }
         return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }
-    throw InputError(
-        path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");
+    throw InputError(path, 0, 0,
+                     "unknown scene file type '" + ext +
+                         "'; expected a .yaml or .yml scene, a .urdf model or an MJCF model (.xml)");
 }
 } // namespace
 

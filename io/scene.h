@@ -52,6 +52,8 @@ struct UrdfOptions
     // Every URDF: a position servo on each joint coordinate without an actuator, holding it where
     // it starts (--hold; a scene model's `hold: true`; io/hold_servos.h).
     bool hold = false;
+    // A bare MJCF file only: the <key name="..."> whose qpos, qvel and ctrl start it (--keyframe).
+    std::optional<std::string> keyframe;
 };
 
 // What loading did to a scene's robots beyond reading them (`frontier info` shows it).

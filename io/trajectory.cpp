@@ -321,6 +321,7 @@ constexpr const char* cJointPositions = "joint_positions"; // NAME=VALUE;NAME=VA
 constexpr const char* cSelfCollision = "self_collision";
 constexpr const char* cPackagePath = "package_path"; // entries joined by ';'
 constexpr const char* cHold = "hold";
+constexpr const char* cKeyframe = "keyframe";
 } // namespace
 
 void addContactTolerances(TrajectoryMetadata& metadata, const core::ContactTolerances& contact)
@@ -370,6 +371,10 @@ void addUrdfOptions(TrajectoryMetadata& metadata, const UrdfOptions& options)
     {
         metadata.emplace_back(cHold, "1");
     }
+    if (options.keyframe)
+    {
+        metadata.emplace_back(cKeyframe, *options.keyframe);
+    }
     if (!options.packagePaths.empty())
     {
         std::string joined;
@@ -392,6 +397,10 @@ UrdfOptions urdfOptionsFrom(const std::map<std::string, std::string>& metadata, 
     options.fixedBase = value(cFixedBase) && *value(cFixedBase) == "1";
     options.freeBase = value(cFreeBase) && *value(cFreeBase) == "1";
     options.hold = value(cHold) && *value(cHold) == "1";
+    if (const std::string* keyframe = value(cKeyframe))
+    {
+        options.keyframe = *keyframe;
+    }
     if (const std::string* height = value(cDropHeight))
     {
         options.dropHeight = detail::parseFiniteNumber(*height);

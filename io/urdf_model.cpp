@@ -154,7 +154,7 @@ class UrdfConverter
     {
     }
 
-    UrdfFragment convert()
+    ModelFragment convert()
     {
         mOut.model.name = mRobot.getName();
         mOut.report.file = mFile;
@@ -895,7 +895,7 @@ class UrdfConverter
     std::set<std::string> mNotedPackages;         // last-resort package matches already warned about
     std::map<std::string, double> mStartPosition; // joints that start away from 0 (rad or m)
     std::set<std::string> mUsedJointPositions;    // names of mPlacement.jointPositions taken
-    UrdfFragment mOut;
+    ModelFragment mOut;
 };
 
 // The joints must join the links into a tree, checked on the file's text before urdfdom reads it
@@ -1042,7 +1042,7 @@ std::string formatVector(const core::Vec3& v)
     return formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z());
 }
 
-UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
+ModelFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
                               const PackagePaths& packages)
 {
     const std::string original = readTextFile(path, "URDF file");
@@ -1076,7 +1076,7 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
         throw InputError(path, at.line, at.column, message);
     }
     UrdfConverter converter(path, index, *robot, placement, packages);
-    UrdfFragment fragment = converter.convert();
+    ModelFragment fragment = converter.convert();
     fragment.warnings.insert(fragment.warnings.begin(), warnings.begin(), warnings.end());
     fragment.report.name = placement.prefix.empty() ? fragment.model.name : placement.prefix;
     fragment.report.prefix = placement.prefix;

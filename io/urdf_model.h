@@ -43,9 +43,10 @@ class JointPositionError : public std::runtime_error
     std::string mJoint;
 };
 
-// A URDF's links as bodies (links joined by fixed joints welded into one) and its moving joints,
-// body indices local to `model` (joints to the world use core::cWorld); model.name is the robot name.
-struct UrdfFragment
+// A robot model read from its file (URDF, MJCF): its links as bodies (links joined by fixed joints
+// welded into one) and its moving joints, body indices local to `model` (joints to the world use
+// core::cWorld); model.name is the robot name.
+struct ModelFragment
 {
     core::Model model;
     RobotReport report;
@@ -57,8 +58,8 @@ std::string formatNumber(double value);
 std::string formatVector(const core::Vec3& v);
 
 // Throws InputError naming the URDF file and, where it can be found, the line.
-UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
-                              const PackagePaths& packages);
+ModelFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
+                               const PackagePaths& packages);
 
 // Placing a robot (io/urdf_scene.cpp). The lowest point of the model's collision shapes along z
 // (m; +infinity when it has none); every body (and every joint anchor held by the world) moved by
@@ -72,5 +73,10 @@ bool heldByWorld(const core::Model& model);
 // floor z = 0; a fixed one stays where the URDF puts it, the floor at z = 0 or under its lowest
 // collision point if that is lower.
 core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report);
+
+// The end of a bare robot file's load: every body's starting state checked (InputError naming the
+// body), then the fragment's report and warnings moved into `report` (when given).
+void reportRobotScene(const std::string& path, const core::Model& model, ModelFragment& fragment,
+                      LoadReport* report);
 
 } // namespace frontier::io::detail

@@ -79,7 +79,7 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     placement.freeRoot = options.freeBase;
     placement.selfCollision = options.selfCollision.value_or(true);
     placement.jointPositions = options.jointPositions;
-    UrdfFragment fragment;
+    ModelFragment fragment;
     try
     {
         fragment = loadUrdfFragment(path, placement, packages);
@@ -144,6 +144,13 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     plane.offset = floorHeight;
     floor.shapes.push_back(plane);
     model.bodies.push_back(std::move(floor));
+    reportRobotScene(path, model, fragment, report);
+    return model;
+}
+
+void reportRobotScene(const std::string& path, const core::Model& model, ModelFragment& fragment,
+                      LoadReport* report)
+{
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
     {
         // Placed on the floor, a body may have moved out of range (core::startingStateDefect).
@@ -155,10 +162,9 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     }
     if (report)
     {
-        report->robots.push_back(std::move(robot));
+        report->robots.push_back(std::move(fragment.report));
         report->warnings.insert(report->warnings.end(), fragment.warnings.begin(), fragment.warnings.end());
     }
-    return model;
 }
 
 } // namespace frontier::io::detail

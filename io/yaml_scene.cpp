@@ -4,6 +4,7 @@
 #include "core/state.h"
 #include "io/file_util.h"
 #include "io/hold_servos.h"
+#include "io/mjcf_model.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 #include "io/urdf_model.h"
@@ -31,8 +32,11 @@ const std::vector<std::string> cContactKeys = {"friction",           "restitutio
                                                "relative_tolerance", "start_penetration", "ignore"};
 const std::vector<std::string> cCameraKeys = {"position", "look_at", "fov"};
 const std::vector<std::string> cModelKeys = {
-    "urdf",           "position", "orientation", "velocity", "angular_velocity", "prefix",
-    "self_collision", "fixed",    "free_base",   "hold",     "joint_positions",  "drop_height"};
+    "urdf",   "mjcf",           "position", "orientation", "velocity",        "angular_velocity",
+    "prefix", "self_collision", "fixed",    "free_base",   "joint_positions", "drop_height",
+    "hold",   "keyframe"};
+// Keys that place a URDF only (an MJCF file's <key> chosen by 'keyframe' sets its pose).
+const std::vector<std::string> cUrdfOnlyModelKeys = {"fixed", "free_base", "joint_positions"};
 
 // `reference: {csv: FILE, body: NAME}`, after all bodies exist; the CSV is read by `sweep` alone.
 SceneReference readReference(const SceneBuilder& builder, const YamlNode& node)
@@ -184,12 +188,22 @@ void readCamera(const YamlSource& source, const YamlNode& node, core::Camera& ca
     }
 }
 
-// Appends a URDF fragment's bodies and joints, shifting its body indices.
+// Appends a model's bodies, joints, actuators and ignored contact pairs, shifting its indices.
 void appendFragment(SceneBuilder& builder, const MapNode& entry, core::Model fragment,
                     const std::string& urdfPath)
 {
     core::Model& model = builder.model;
     const int offset = static_cast<int>(model.bodies.size());
+    const int jointOffset = static_cast<int>(model.joints.size());
+    for (core::Actuator& actuator : fragment.actuators)
+    {
+        actuator.joint += jointOffset;
+        model.actuators.push_back(std::move(actuator));
+    }
+    for (const std::array<int, 2>& pair : fragment.contact.ignore)
+    {
+        model.contact.ignore.push_back({pair[0] + offset, pair[1] + offset});
+    }
     for (core::Body& body : fragment.bodies)
     {
         if (builder.findBody(body.name) >= 0)
@@ -247,8 +261,21 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
     {
         MapNode map(source, node[i], "model #" + std::to_string(i + 1));
         map.checkKeys(cModelKeys);
-        const YamlNode urdfNode = map.require("urdf");
-        const std::string file = toString(source, urdfNode, map.what("urdf"));
+        const bool mjcf = map.has("mjcf");
+        if (mjcf && map.has("urdf"))
+        {
+            map.failAtKey("mjcf", "a model entry names one file: 'urdf' or 'mjcf'");
+        }
+        const std::string fileKey = mjcf ? "mjcf" : "urdf";
+        for (const std::string& key : mjcf ? cUrdfOnlyModelKeys : std::vector<std::string>{"keyframe"})
+        {
+            if (map.has(key))
+            {
+                map.failAtKey(key, "'" + key + "' is for " + (mjcf ? "a 'urdf' model" : "an 'mjcf' model"));
+            }
+        }
+        const YamlNode urdfNode = map.require(fileKey);
+        const std::string file = toString(source, urdfNode, map.what(fileKey));
         map.setContext("model '" + file + "'");
         UrdfPlacement placement;
         placement.position = map.optPosition("position").value_or(core::Vec3::Zero());
@@ -290,10 +317,13 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         {
             builder.packages.emplace(builder.urdf.packagePaths);
         }
-        UrdfFragment loaded;
+        ModelFragment loaded;
         try
         {
-            loaded = loadUrdfFragment(path, placement, *builder.packages);
+            loaded =
+                mjcf ? loadMjcfFragment(path, {placement.position, placement.orientation, placement.prefix,
+                                               placement.selfCollision, map.optString("keyframe")})
+                     : loadUrdfFragment(path, placement, *builder.packages);
         }
         catch (const JointPositionError& e)
         {
@@ -312,9 +342,9 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
             if (e.file() == path && e.line() == 0)
             {
                 failAt(source, urdfNode,
-                       (e.message().starts_with("cannot open file") ? "cannot open URDF file '"
-                                                                    : "cannot read URDF file '") +
-                           path + "': " + e.message());
+                       (e.message().starts_with("cannot open file") ? "cannot open " : "cannot read ") +
+                           (mjcf ? std::string("MJCF") : std::string("URDF")) + " file '" + path +
+                           "': " + e.message());
             }
             throw;
         }

@@ -238,7 +238,7 @@ std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool fr
                                 const std::map<std::string, double>& jointPositions,
                                 std::optional<bool> selfCollision, std::optional<double> dt,
                                 std::optional<std::string> integrator, std::optional<std::string> solver,
-                                std::optional<int> pgsIterations)
+                                std::optional<int> pgsIterations, std::optional<std::string> keyframe)
 {
     LoadOptions options;
     options.urdf.fixedBase = fixedBase;
@@ -248,6 +248,7 @@ std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool fr
     options.urdf.packagePaths = packagePath;
     options.urdf.jointPositions = jointPositions;
     options.urdf.selfCollision = selfCollision;
+    options.urdf.keyframe = keyframe;
     options.overrides.dt = dt;
     options.overrides.integrator = integrator;
     options.overrides.solver = solver;
@@ -259,14 +260,15 @@ std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool fr
 constexpr const char* cLoadDoc =
     R"(load(path, *, fixed_base=False, free_base=False, drop_height=None, hold=False,
      package_path=(), joint_positions=None, self_collision=None, dt=None, integrator=None,
-     solver=None, pgs_iterations=None) -> Simulator
+     solver=None, pgs_iterations=None, keyframe=None) -> Simulator
 
-Loads a YAML scene or a URDF robot exactly as `frontier run PATH` does with the matching flags:
+Loads a YAML scene, a URDF robot or an MJCF model exactly as `frontier run PATH` does with the matching flags:
 fixed_base (weld a bare URDF's root where it is), free_base, drop_height (m: lowest collision
 point above the floor), hold (a position servo on every joint coordinate without an actuator,
 holding its starting position), package_path (folders searched for package:// URIs before
 ROS_PACKAGE_PATH), joint_positions ({joint name: rad or m}), self_collision (bool), dt (s),
-integrator ("euler", "rattle", "rattle4"), solver ("linear", "dense", "pgs"), pgs_iterations.
+integrator ("euler", "rattle", "rattle4"), solver ("linear", "dense", "pgs"), pgs_iterations,
+keyframe (the name of a bare MJCF file's <key> to start from).
 Warnings of the load go to stderr as the command line prints them.
 
 Raises frontier.LoadError (file, line, column, message) for a file that cannot be loaded or a

@@ -9,7 +9,8 @@
 #   (tests/robots) runs; and clang with libclang-rt-14-dev (libFuzzer)
 #   for the fuzz targets (fuzz/, scripts/fuzz.sh); and slurm-wlm with munge for the test of
 #   `frontier batch --slurm` on a private one-node cluster (tests/slurm).
-#   --with-peers also installs Bullet, ODE and MuJoCo for bench/peers (the comparison harness,
+#   libmujoco-dev is in the main list: MuJoCo's compiler reads MJCF files (io/mjcf_compile.h).
+#   --with-peers also installs Bullet and ODE for bench/peers (the comparison harness,
 #   cmake -DFRONTIER_PEERS=ON); scripts/test.sh builds and runs it.
 # Run as root, or as a user with sudo; otherwise it prints the apt-get line to run.
 set -euo pipefail
@@ -21,13 +22,14 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libssl-dev
   gnuplot-nox
   python3-dev pybind11-dev python3-numpy
+  libmujoco-dev
 )
 for option in "$@"; do
   case "$option" in
     --with-extras) packages+=(ffmpeg) ;;
     --for-tests) packages+=(python3-pytest dart-doc clang libclang-rt-14-dev slurm-wlm munge) ;;
-    --with-peers) packages+=(libbullet-dev libode-dev libmujoco-dev) ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --with-peers) packages+=(libbullet-dev libode-dev) ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "install-deps: unknown option '$option' (expected --with-extras, --for-tests, --with-peers or --help)" >&2; exit 2 ;;
   esac
 done

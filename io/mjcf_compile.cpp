@@ -1,0 +1,228 @@
+// io/mjcf_compile.cpp: MJCF text to MuJoCo's compiled model (io/mjcf_compile.h).
+#include "io/mjcf_compile.h"
+
+#include "io/file_util.h"
+#include "io/scene.h"
+#include "io/xml_scan.h"
+
+#include <cstring>
+#include <filesystem>
+#include <mujoco/mujoco.h>
+#include <mutex>
+#include <regex>
+#include <set>
+
+namespace frontier::io::detail
+{
+
+void MjcfModelDeleter::operator()(mjModel_* model) const
+{
+    mj_deleteModel(model);
+}
+
+namespace
+{
+
+// Elements whose meaning Frontier does not model (io/mjcf_model.cpp warns when the compiled
+// model holds any).
+const std::set<std::string, std::less<>> cUnsupportedElements = {"tendon", "equality", "sensor", "pair",
+                                                                 "hfield"};
+
+// One XML text of the model: the file, or a file it includes.
+struct MjcfText
+{
+    std::string path;
+    std::string text;
+    std::vector<std::size_t> compilerEnds; // offsets just past "<compiler" of each <compiler> tag
+    bool setsAutolimits = false;
+    std::size_t rootEnd = std::string::npos; // offset just past the root start tag's '>'
+    std::string root;                        // the root element's name
+};
+
+void scanText(MjcfText& source, std::vector<std::string>& includes,
+              std::map<std::string, MjcfUnsupported>& unsupported)
+{
+    XmlDepthCheck depth(source.path, source.text, "an MJCF file needs a few dozen");
+    scanXmlTags(
+        source.path, source.text, "MJCF file", "the <mujoco> element",
+        [&](const XmlTag& tag)
+        {
+            depth.visit(tag);
+            if (tag.end)
+            {
+                return;
+            }
+            if (source.root.empty())
+            {
+                source.root = std::string(tag.name);
+                const std::size_t after = static_cast<std::size_t>(
+                    tag.attributes.data() + tag.attributes.size() - source.text.data());
+                source.rootEnd = tag.empty ? std::string::npos : source.text.find('>', after);
+                source.rootEnd = source.rootEnd == std::string::npos ? source.rootEnd : source.rootEnd + 1;
+            }
+            if (tag.name == "compiler")
+            {
+                source.compilerEnds.push_back(tag.offset + std::strlen("<compiler"));
+                source.setsAutolimits = source.setsAutolimits || xmlAttribute(tag.attributes, "autolimits");
+            }
+            if (tag.name == "include")
+            {
+                if (const std::optional<std::string> file = xmlAttribute(tag.attributes, "file"))
+                {
+                    includes.push_back(*file);
+                }
+            }
+            if (cUnsupportedElements.count(tag.name) && !unsupported.count(std::string(tag.name)))
+            {
+                unsupported[std::string(tag.name)] = {source.path, positionOf(source.text, tag.offset).line};
+            }
+        });
+}
+
+// The file and the files it includes (MuJoCo resolves an include against the model's folder).
+std::vector<MjcfText> readTexts(const std::string& path, std::map<std::string, MjcfUnsupported>& unsupported)
+{
+    std::vector<MjcfText> texts;
+    std::vector<std::string> pending;
+    texts.push_back({path, readTextFile(path, "MJCF file"), {}, false, std::string::npos, {}});
+    scanText(texts.back(), pending, unsupported);
+    std::set<std::string> seen = {path};
+    while (!pending.empty())
+    {
+        const std::string file = resolvePath(directoryOf(path), pending.back());
+        pending.pop_back();
+        if (!seen.insert(file).second || !std::filesystem::exists(file))
+        {
+            continue; // the compiler names a missing include with its line
+        }
+        texts.push_back({file, readTextFile(file, "MJCF include file"), {}, false, std::string::npos, {}});
+        scanText(texts.back(), pending, unsupported);
+    }
+    return texts;
+}
+
+// autolimits="true" where the model does not choose (io/mjcf_compile.h): inserted into its first
+// <compiler> tag, or as a <compiler> element on the root element's line, so no line number moves.
+void defaultAutolimits(std::vector<MjcfText>& texts)
+{
+    for (const MjcfText& source : texts)
+    {
+        if (source.setsAutolimits)
+        {
+            return;
+        }
+    }
+    for (MjcfText& source : texts)
+    {
+        if (!source.compilerEnds.empty())
+        {
+            source.text.insert(source.compilerEnds.front(), " autolimits=\"true\"");
+            return;
+        }
+    }
+    MjcfText& main = texts.front();
+    if (main.rootEnd != std::string::npos)
+    {
+        main.text.insert(main.rootEnd, "<compiler autolimits=\"true\"/>");
+    }
+}
+
+// The line a compiler message names ("line = 25", "line 23"), 0 when it names none.
+int messageLine(const std::string& message)
+{
+    static const std::regex cLine("line =? ?([0-9]+)");
+    std::smatch match;
+    return std::regex_search(message, match, cLine) ? std::stoi(match[1].str()) : 0;
+}
+
+// The compiler's message on one line: its parts joined by "; ".
+std::string oneLine(const std::string& message)
+{
+    std::string joined;
+    std::size_t start = 0;
+    while (start < message.size())
+    {
+        std::size_t end = message.find('\n', start);
+        end = end == std::string::npos ? message.size() : end;
+        const std::string part = message.substr(start, end - start);
+        if (part.find_first_not_of(" \t\r") != std::string::npos)
+        {
+            joined += (joined.empty() ? "" : "; ") + part;
+        }
+        start = end + 1;
+    }
+    return joined;
+}
+
+struct VfsDeleter
+{
+    void operator()(mjVFS* vfs) const
+    {
+        mj_deleteVFS(vfs);
+        delete vfs;
+    }
+};
+
+} // namespace
+
+bool isUrdfText(const std::string& path, const std::string& text)
+{
+    std::string root;
+    scanXmlTags(path, text, "XML file", "a <mujoco> or <robot> element",
+                [&](const XmlTag& tag)
+                {
+                    if (root.empty() && !tag.end)
+                    {
+                        root = std::string(tag.name);
+                    }
+                });
+    return root == "robot";
+}
+
+CompiledMjcf compileMjcf(const std::string& path)
+{
+    CompiledMjcf compiled;
+    std::vector<MjcfText> texts = readTexts(path, compiled.unsupported);
+    if (texts.front().root != "mujoco")
+    {
+        throw InputError(path, 1, 0,
+                         "expected an MJCF file, whose root element is <mujoco>, got <" + texts.front().root +
+                             ">" + (texts.front().root == "robot" ? " (a URDF: name it .urdf)" : ""));
+    }
+    defaultAutolimits(texts);
+    // The texts go to the compiler through its virtual file system, which names files without their
+    // folder: a second file of the same name is left for the compiler to read from disk.
+    const std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+    mj_defaultVFS(vfs.get());
+    for (const MjcfText& source : texts)
+    {
+        if (mj_makeEmptyFileVFS(vfs.get(), source.path.c_str(), static_cast<int>(source.text.size())) == 0)
+        {
+            const int index = mj_findFileVFS(vfs.get(), source.path.c_str());
+            std::memcpy(vfs->filedata[index], source.text.data(), source.text.size());
+        }
+    }
+    std::string message(4096, '\0');
+    {
+        // The compiler keeps global state while it parses.
+        static std::mutex compiling;
+        const std::lock_guard<std::mutex> lock(compiling);
+        compiled.model.reset(
+            mj_loadXML(path.c_str(), vfs.get(), message.data(), static_cast<int>(message.size())));
+    }
+    message.resize(std::strlen(message.c_str()));
+    if (!compiled.model)
+    {
+        throw InputError(path, messageLine(message), 0,
+                         "MuJoCo's MJCF compiler (libmujoco " + std::string(mj_versionString()) +
+                             ") refused it: " + oneLine(message));
+    }
+    if (!message.empty())
+    {
+        compiled.warnings.push_back(
+            diagnostic(path, {messageLine(message), 0}, "warning", "MuJoCo's compiler: " + oneLine(message)));
+    }
+    return compiled;
+}
+
+} // namespace frontier::io::detail

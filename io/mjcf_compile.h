@@ -1,0 +1,46 @@
+// io/mjcf_compile.h: an MJCF file through MuJoCo's own compiler (private to io/).
+//
+// Frontier reads MJCF as MuJoCo reads it: defaults and classes, <include>, angle units, fromto,
+// euler sequences, inertia from geoms and meshes are all MuJoCo's compiler's work (Debian's
+// libmujoco 2.2). The file's text goes to the compiler with one change: autolimits="true" unless
+// the file sets it, as MuJoCo 2.3 and later default it (a `range` limits its joint without
+// `limited="true"`), so that files written for current MuJoCo load.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+struct mjModel_;
+
+namespace frontier::io::detail
+{
+
+struct MjcfModelDeleter
+{
+    void operator()(mjModel_* model) const;
+};
+
+// The elements of an MJCF file Frontier does not model, where each first appears.
+struct MjcfUnsupported
+{
+    std::string file;
+    int line = 0;
+};
+
+struct CompiledMjcf
+{
+    std::unique_ptr<mjModel_, MjcfModelDeleter> model;
+    // Element name ("tendon", "equality", ...) -> where it first appears in the file or its includes.
+    std::map<std::string, MjcfUnsupported> unsupported;
+    std::vector<std::string> warnings; // the compiler's, "FILE: warning: ..."
+};
+
+// Throws InputError naming the file and, where the compiler says it, the line.
+CompiledMjcf compileMjcf(const std::string& path);
+
+// True when the XML text's root element is <robot> (a URDF saved as .xml).
+bool isUrdfText(const std::string& path, const std::string& text);
+
+} // namespace frontier::io::detail
