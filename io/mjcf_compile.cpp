@@ -37,6 +37,8 @@ struct MjcfText
     bool setsAutolimits = false;
     std::size_t rootEnd = std::string::npos; // offset just past the root start tag's '>'
     std::string root;                        // the root element's name
+    std::vector<std::string> meshFiles;      // the `file` of each <mesh>
+    std::optional<std::string> meshdir;      // <compiler meshdir>
 };
 
 void scanText(MjcfText& source, std::vector<std::string>& includes,
@@ -64,6 +66,17 @@ void scanText(MjcfText& source, std::vector<std::string>& includes,
             {
                 source.compilerEnds.push_back(tag.offset + std::strlen("<compiler"));
                 source.setsAutolimits = source.setsAutolimits || xmlAttribute(tag.attributes, "autolimits");
+                if (std::optional<std::string> meshdir = xmlAttribute(tag.attributes, "meshdir"))
+                {
+                    source.meshdir = std::move(meshdir);
+                }
+            }
+            if (tag.name == "mesh")
+            {
+                if (std::optional<std::string> file = xmlAttribute(tag.attributes, "file"))
+                {
+                    source.meshFiles.push_back(std::move(*file));
+                }
             }
             if (tag.name == "include")
             {
@@ -84,7 +97,8 @@ std::vector<MjcfText> readTexts(const std::string& path, std::map<std::string, M
 {
     std::vector<MjcfText> texts;
     std::vector<std::string> pending;
-    texts.push_back({path, readTextFile(path, "MJCF file"), {}, false, std::string::npos, {}});
+    texts.push_back(
+        {path, readTextFile(path, "MJCF file"), {}, false, std::string::npos, {}, {}, std::nullopt});
     scanText(texts.back(), pending, unsupported);
     std::set<std::string> seen = {path};
     while (!pending.empty())
@@ -95,7 +109,14 @@ std::vector<MjcfText> readTexts(const std::string& path, std::map<std::string, M
         {
             continue; // the compiler names a missing include with its line
         }
-        texts.push_back({file, readTextFile(file, "MJCF include file"), {}, false, std::string::npos, {}});
+        texts.push_back({file,
+                         readTextFile(file, "MJCF include file"),
+                         {},
+                         false,
+                         std::string::npos,
+                         {},
+                         {},
+                         std::nullopt});
         scanText(texts.back(), pending, unsupported);
     }
     return texts;
@@ -163,6 +184,29 @@ struct VfsDeleter
     }
 };
 
+// The mesh files the compiler read, as inputs of the load (io/file_util.h's InputFileLog): each in
+// the model's folder + meshdir, as MuJoCo finds it.
+void recordMeshFiles(const std::vector<MjcfText>& texts)
+{
+    std::string meshdir;
+    for (const MjcfText& source : texts)
+    {
+        meshdir = source.meshdir.value_or(meshdir);
+    }
+    const std::string folder = resolvePath(directoryOf(texts.front().path), meshdir);
+    for (const MjcfText& source : texts)
+    {
+        for (const std::string& file : source.meshFiles)
+        {
+            const std::string path = resolvePath(folder, file);
+            if (std::filesystem::is_regular_file(path))
+            {
+                checkInputFile(path, "mesh file");
+            }
+        }
+    }
+}
+
 } // namespace
 
 bool isUrdfText(const std::string& path, const std::string& text)
@@ -217,6 +261,7 @@ CompiledMjcf compileMjcf(const std::string& path)
                          "MuJoCo's MJCF compiler (libmujoco " + std::string(mj_versionString()) +
                              ") refused it: " + oneLine(message));
     }
+    recordMeshFiles(texts);
     if (!message.empty())
     {
         compiled.warnings.push_back(

@@ -128,6 +128,31 @@ class MjcfTranslation
         mFragment.warnings.push_back(diagnostic(mPath, {line, 0}, "warning", message));
     }
 
+    // A <key> by its name, or by its index (0 first) among the file's keys: MJCF keys often have none.
+    int keyframeIndex(const std::string& wanted) const
+    {
+        const int key = mj_name2id(m, mjOBJ_KEY, wanted.c_str());
+        if (key >= 0)
+        {
+            return key;
+        }
+        if (const std::optional<long long> index = parseWholeNumber(wanted, 0, m->nkey - 1))
+        {
+            return static_cast<int>(*index);
+        }
+        std::vector<std::string> names;
+        for (int k = 0; k < m->nkey; ++k)
+        {
+            names.push_back(name(mjOBJ_KEY, k, "#" + std::to_string(k)));
+        }
+        throw InputError(mPath, 0, 0,
+                         "no keyframe " + quotedName(wanted) + " in the file: " +
+                             (m->nkey == 0
+                                  ? std::string("it has no <key>")
+                                  : "give a <key>'s name or its index from 0 to " +
+                                        std::to_string(m->nkey - 1) + suggestionSuffix(wanted, names, true)));
+    }
+
     // qpos, qvel and ctrl of the start: the keyframe's, or MuJoCo's reference pose at rest.
     void startPose()
     {
@@ -136,20 +161,7 @@ class MjcfTranslation
         mj_resetData(m, mData.get());
         if (mPlacement.keyframe)
         {
-            const int key = mj_name2id(m, mjOBJ_KEY, mPlacement.keyframe->c_str());
-            if (key < 0)
-            {
-                std::vector<std::string> names;
-                for (int k = 0; k < m->nkey; ++k)
-                {
-                    names.push_back(name(mjOBJ_KEY, k, ""));
-                }
-                throw InputError(mPath, 0, 0,
-                                 "no keyframe " + quotedName(*mPlacement.keyframe) + " in the file" +
-                                     (m->nkey == 0 ? " (it has no named <key>)"
-                                                   : suggestionSuffix(*mPlacement.keyframe, names, true)));
-            }
-            mj_resetDataKeyframe(m, mData.get(), key);
+            mj_resetDataKeyframe(m, mData.get(), keyframeIndex(*mPlacement.keyframe));
         }
         mj_forward(m, mData.get());
     }
