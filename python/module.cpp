@@ -519,5 +519,5 @@ PYBIND11_MODULE(_frontier, m)
           "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},
           "joint_positions"_a = std::map<std::string, double>{}, "self_collision"_a = py::none(),
           "dt"_a = py::none(), "integrator"_a = py::none(), "solver"_a = py::none(),
-          "pgs_iterations"_a = py::none());
+          "pgs_iterations"_a = py::none(), "keyframe"_a = py::none());
 }
