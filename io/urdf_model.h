@@ -5,6 +5,7 @@
 #include "io/scene.h"
 
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -66,6 +67,18 @@ UrdfFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& plac
 double lowestPoint(const core::Model& model);
 void translate(core::Model& model, const core::Vec3& offset);
 bool heldByWorld(const core::Model& model);
+
+// A robot file alone (a bare URDF, an SDF <model>): `model` (robot's bodies only, robot.name set)
+// placed and given a static floor. Held by the world (heldByWorld), it stays where the file puts it
+// (placement `heldBy`), the floor at z = 0 or under its lowest collision point if that is lower;
+// free-floating, it is moved so that its lowest collision point is dropHeight (default 0) above the
+// floor z = 0. fileKind names the file in messages ("URDF"). Then checkStartingState.
+void placeOnFloor(core::Model& model, const std::string& path, std::optional<double> dropHeight,
+                  const std::string& heldBy, const std::string& fileKind, RobotReport& robot,
+                  std::vector<std::string>& warnings);
+// Throws InputError(path, 0, 0, ...) naming a body whose starting state is out of range
+// (core::startingStateDefect).
+void checkStartingState(const core::Model& model, const std::string& path);
 
 // A URDF alone: the robot on a static floor with the default simulation settings. A free-floating
 // robot is moved so that its lowest collision point is options.dropHeight (default 0) above the
