@@ -2,6 +2,7 @@
 #include "io/scene.h"
 
 #include "io/file_util.h"
+#include "io/sdf_model.h"
 #include "io/urdf_model.h"
 #include "io/yaml_scene.h"
 
@@ -29,6 +30,10 @@ core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, L
     {
         return detail::loadUrdfScene(path, options, report);
     }
+    if (ext == ".sdf" || ext == ".world" || ext == ".model")
+    {
+        return detail::loadSdfScene(path, options, report);
+    }
     if (ext == ".yaml" || ext == ".yml")
     {
         if (options.fixedBase || options.freeBase || options.dropHeight || !options.jointPositions.empty())
@@ -42,7 +47,9 @@ core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, L
         return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }
     throw InputError(
-        path, 0, 0, "unknown scene file type '" + ext + "'; expected a .yaml or .yml scene or a .urdf model");
+        path, 0, 0,
+        "unknown scene file type '" + ext +
+            "'; expected a .yaml or .yml scene, a .urdf model or an SDF .sdf, .world or .model file");
 }
 } // namespace
 
