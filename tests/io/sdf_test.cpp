@@ -107,10 +107,12 @@ TEST(SdfDartDoc, EveryFileRunsOrIsRefusedNamingWhatAndWhere)
         SCOPED_TRACE(path);
         try
         {
-            const core::Model model = loadScene(path);
+            core::Model model = loadScene(path);
             ++loaded;
-            // Euler steps: a passive pendulum's energy swings by a few 1e-4 of itself about its start.
-            runChecked(model, 2.0, 1e-3, path);
+            // RATTLE steps: Euler's (the default) let a passive pendulum's energy swing a few 1e-4
+            // of itself about its start (docs/method.md §11).
+            model.simulation.integrator = core::IntegratorKind::Rattle;
+            runChecked(model, 2.0, 1e-6, path);
         }
         catch (const InputError& e)
         {
@@ -468,6 +470,10 @@ TEST(SdfFile, BadFilesAreInputErrorsWithFileAndLine)
     EXPECT_EQ(xml.file(), malformed);
     EXPECT_GT(xml.line(), 0) << xml.what();
 
+    const std::string empty =
+        dir.write("empty.world", "<?xml version=\"1.0\"?>\n<sdf version=\"1.7\"><world name=\"w\"/></sdf>\n");
+    EXPECT_NE(sdfLoadError(empty).message().find("no links"), std::string::npos);
+
     const std::string moving = dir.write("plane.sdf", text(R"(
 <?xml version="1.0"?>
 <sdf version="1.7">
@@ -481,6 +487,19 @@ TEST(SdfFile, BadFilesAreInputErrorsWithFileAndLine)
     const InputError plane = sdfLoadError(moving);
     EXPECT_EQ(plane.line(), 5) << plane.what();
     EXPECT_NE(plane.message().find("static"), std::string::npos) << plane.what();
+}
+
+TEST(SdfFile, WithoutLibsdformatTheErrorNamesThePackage)
+{
+    if (detail::sdfSupported())
+    {
+        GTEST_SKIP() << "built with libsdformat";
+    }
+    const TempDir dir;
+    const std::string path = dir.write("m.sdf", "<sdf version=\"1.7\"><model name=\"m\"/></sdf>\n");
+    const InputError e = sdfLoadError(path);
+    EXPECT_NE(e.message().find("no SDF support"), std::string::npos) << e.what();
+    EXPECT_NE(e.message().find("libsdformat-dev"), std::string::npos) << e.what();
 }
 
 } // namespace
