@@ -170,7 +170,7 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
             if (!fs::is_regular_file(full, error))
             {
                 failAt(source, entry,
-                       "no scene file '" + full + "'; expected a .yaml scene or a .urdf model");
+                       "no scene file '" + full + "'; expected a .yaml scene, a .urdf model or an SDF file");
             }
             scenes.emplace_back(pattern, full);
             continue;
@@ -615,10 +615,11 @@ BatchPlan readBatchPlan(const std::string& path)
             {
                 return;
             }
-            if (io::detail::lowerExtension(file) == ".urdf")
+            if (const std::string ext = io::detail::lowerExtension(file); ext != ".yaml" && ext != ".yml")
             {
                 failAt(source, value,
-                       "'" + key + "' is a scene path, and " + label + " is a .urdf model, not a scene");
+                       "'" + key + "' is a scene path, and " + label + " is a model file (" + ext +
+                           "), not a YAML scene");
             }
             if (!sceneRoot)
             {

@@ -84,6 +84,9 @@ const CLI::Validator cFrameHeight(
     },
     "PIXELS");
 
+// What the scene arguments take (io::loadScene).
+constexpr const char* cSceneFiles = "scene .yaml, model .urdf, MJCF .xml, or SDF .sdf/.world/.model";
+
 // Robot flags (README "Robots"): how a .urdf is read and placed.
 void addPackagePathOption(CLI::App& command, std::vector<std::string>& packagePaths)
 {
@@ -191,7 +194,7 @@ void addContactToleranceOptions(CLI::App& command, frontier::core::ContactTolera
 
 void addRunOptions(CLI::App& run, RunOptions& o)
 {
-    run.add_option("scenes", o.scenes, "scene .yaml, model .urdf or MJCF .xml; several make a batch run in parallel")
+    run.add_option("scenes", o.scenes, std::string(cSceneFiles) + "; several make a batch run in parallel")
         ->required()
         ->expected(1, -1);
     auto* duration = run.add_option("--duration", o.duration, "simulated time (s)")->check(cDuration);
@@ -235,7 +238,7 @@ void addRunOptions(CLI::App& run, RunOptions& o)
 }
 void addSweepOptions(CLI::App& sweep, SweepOptions& o)
 {
-    sweep.add_option("scene", o.scene, "scene .yaml, model .urdf or MJCF .xml")->required();
+    sweep.add_option("scene", o.scene, cSceneFiles)->required();
     sweep
         .add_option(
             "--dt", o.dts,
@@ -356,7 +359,7 @@ int main(int argc, char** argv)
     InfoOptions infoOptions;
     auto* info =
         app.add_subcommand("info", "bodies, joints, degrees of freedom, frontier order, loops, pairs");
-    info->add_option("scene", infoOptions.scene, "scene .yaml, model .urdf or MJCF .xml")->required();
+    info->add_option("scene", infoOptions.scene, cSceneFiles)->required();
     info->add_flag("--json", infoOptions.json, "machine-readable output");
     addRobotOptions(*info, infoOptions.urdf);
 
@@ -384,7 +387,7 @@ int main(int argc, char** argv)
     CheckOptions checkOptions;
     auto* check =
         app.add_subcommand("check", "re-simulate a scene and compare with a recorded reference trajectory");
-    check->add_option("scene", checkOptions.scene, "scene .yaml, model .urdf or MJCF .xml")->required();
+    check->add_option("scene", checkOptions.scene, cSceneFiles)->required();
     check->add_option("--reference", checkOptions.reference, "reference trajectory CSV")->required();
     check->add_option("--tol", checkOptions.positionTolerance, "position tolerance (m)")->check(cTolerance);
     check->add_option("--tol-orientation", checkOptions.orientationTolerance, "orientation tolerance (rad)")

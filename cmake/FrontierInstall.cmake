@@ -72,6 +72,11 @@ if(FRONTIER_LIBRARY_TYPE STREQUAL "STATIC_LIBRARY")
 else()
   set(FRONTIER_STATIC_LIBRARIES OFF)
 endif()
+if(sdformat12_FOUND)
+  set(FRONTIER_WITH_SDFORMAT ON)
+else()
+  set(FRONTIER_WITH_SDFORMAT OFF)
+endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/FrontierConfig.cmake.in
   ${PROJECT_BINARY_DIR}/FrontierConfig.cmake
   INSTALL_DESTINATION ${FRONTIER_INSTALL_CMAKEDIR}

@@ -772,7 +772,8 @@ core::Model loadMjcfScene(const std::string& path, const UrdfOptions& options, L
     {
         addHoldServos(model, 0, static_cast<int>(model.joints.size()));
     }
-    reportRobotScene(path, model, fragment, report);
+    checkStartingState(model, path);
+    reportRobot(fragment, report);
     return model;
 }
 

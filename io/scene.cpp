@@ -4,6 +4,7 @@
 #include "io/file_util.h"
 #include "io/mjcf_compile.h"
 #include "io/mjcf_model.h"
+#include "io/sdf_model.h"
 #include "io/urdf_model.h"
 #include "io/yaml_scene.h"
 
@@ -40,6 +41,10 @@ core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, L
     {
         return detail::loadMjcfScene(path, options, report);
     }
+    if (ext == ".sdf" || ext == ".world" || ext == ".model")
+    {
+        return detail::loadSdfScene(path, options, report);
+    }
     if (ext == ".yaml" || ext == ".yml")
     {
         if (options.fixedBase || options.freeBase || options.dropHeight || !options.jointPositions.empty())
@@ -52,9 +57,11 @@ core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, L
         }
         return detail::loadYamlScene(detail::readTextFile(path, "scene file"), path, options, report);
     }
-    throw InputError(path, 0, 0,
-                     "unknown scene file type '" + ext +
-                         "'; expected a .yaml or .yml scene, a .urdf model or an MJCF model (.xml)");
+    throw InputError(
+        path, 0, 0,
+        "unknown scene file type '" + ext +
+            "'; expected a .yaml or .yml scene, a .urdf model, an MJCF .xml model or an SDF .sdf, "
+            ".world or .model file");
 }
 } // namespace
 

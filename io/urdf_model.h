@@ -5,6 +5,7 @@
 #include "io/scene.h"
 
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -68,15 +69,26 @@ double lowestPoint(const core::Model& model);
 void translate(core::Model& model, const core::Vec3& offset);
 bool heldByWorld(const core::Model& model);
 
+// A robot file alone (a bare URDF, an SDF <model>): `model` (robot's bodies only, robot.name set)
+// placed and given a static floor. Held by the world (heldByWorld), it stays where the file puts it
+// (placement `heldBy`), the floor at z = 0 or under its lowest collision point if that is lower;
+// free-floating, it is moved so that its lowest collision point is dropHeight (default 0) above the
+// floor z = 0. fileKind names the file in messages ("URDF"). Then checkStartingState.
+void placeOnFloor(core::Model& model, const std::string& path, std::optional<double> dropHeight,
+                  const std::string& heldBy, const std::string& fileKind, RobotReport& robot,
+                  std::vector<std::string>& warnings);
+// Throws InputError(path, 0, 0, ...) naming a body whose starting state is out of range
+// (core::startingStateDefect).
+void checkStartingState(const core::Model& model, const std::string& path);
+
 // A URDF alone: the robot on a static floor with the default simulation settings. A free-floating
 // robot is moved so that its lowest collision point is options.dropHeight (default 0) above the
 // floor z = 0; a fixed one stays where the URDF puts it, the floor at z = 0 or under its lowest
 // collision point if that is lower.
 core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report);
 
-// The end of a bare robot file's load: every body's starting state checked (InputError naming the
-// body), then the fragment's report and warnings moved into `report` (when given).
-void reportRobotScene(const std::string& path, const core::Model& model, ModelFragment& fragment,
-                      LoadReport* report);
+// The end of a bare robot file's load: the fragment's report and warnings moved into `report` (when
+// given).
+void reportRobot(ModelFragment& fragment, LoadReport* report);
 
 } // namespace frontier::io::detail

@@ -63,15 +63,75 @@ bool heldByWorld(const core::Model& model)
     return false;
 }
 
+void checkStartingState(const core::Model& model, const std::string& path)
+{
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        // Placed on the floor, a body may have moved out of range (core::startingStateDefect).
+        const std::string defect = core::startingStateDefect(model, i);
+        if (!defect.empty())
+        {
+            throw InputError(path, 0, 0, "body '" + model.bodies[i].name + "': " + defect);
+        }
+    }
+}
+
+void placeOnFloor(core::Model& model, const std::string& path, std::optional<double> dropHeight,
+                  const std::string& heldBy, const std::string& fileKind, RobotReport& robot,
+                  std::vector<std::string>& warnings)
+{
+    if (dropHeight && !(std::isfinite(*dropHeight) && *dropHeight >= 0.0))
+    {
+        throw InputError(path, 0, 0, "--drop-height must be a non-negative number of metres");
+    }
+    const double lowest = lowestPoint(model);
+    double floorHeight = 0.0; // m
+    if (heldByWorld(model))
+    {
+        // The robot stays where the file puts it; the floor goes under it when a link reaches below
+        // z = 0 (an arm mounted on its side), so that no link starts inside the floor.
+        floorHeight = std::isfinite(lowest) ? std::min(0.0, lowest) : 0.0;
+        robot.placement = heldBy + "; floor at z = " + formatNumber(floorHeight) + " m";
+        if (dropHeight)
+        {
+            warnings.push_back(diagnostic(path, {}, "warning",
+                                          "--drop-height is for a free-floating robot; this one is " +
+                                              robot.placement + ", so it stays where it is"));
+        }
+    }
+    else if (std::isfinite(lowest))
+    {
+        const double height = dropHeight.value_or(0.0);
+        const double shift = height - lowest;
+        translate(model, core::Vec3(0.0, 0.0, shift));
+        robot.placement = "free-floating, moved " + std::string(shift < 0.0 ? "down " : "up ") +
+                          formatNumber(std::abs(shift)) + " m so that its lowest collision point is " +
+                          formatNumber(height) + " m above the floor";
+    }
+    else
+    {
+        robot.placement = "free-floating, where the " + fileKind + " puts it (it has no collision shapes)";
+        warnings.push_back(diagnostic(path, {}, "warning",
+                                      "the robot has no collision shapes: nothing stops it falling through "
+                                      "the floor"));
+    }
+    core::Body floor;
+    floor.name = model.findBody("floor") < 0 ? "floor" : "floor_";
+    floor.isStatic = true;
+    core::Shape plane;
+    plane.type = core::ShapeType::Plane;
+    plane.normal = core::Vec3::UnitZ();
+    plane.offset = floorHeight;
+    floor.shapes.push_back(plane);
+    model.bodies.push_back(std::move(floor));
+    checkStartingState(model, path);
+}
+
 core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     if (options.fixedBase && options.freeBase)
     {
         throw InputError(path, 0, 0, "--fixed-base and --free-base exclude each other");
-    }
-    if (options.dropHeight && !(std::isfinite(*options.dropHeight) && *options.dropHeight >= 0.0))
-    {
-        throw InputError(path, 0, 0, "--drop-height must be a non-negative number of metres");
     }
     const PackagePaths packages(options.packagePaths);
     UrdfPlacement placement;
@@ -91,75 +151,22 @@ core::Model loadUrdfScene(const std::string& path, const UrdfOptions& options, L
     core::Model model = std::move(fragment.model);
     model.sourceFile = path;
     RobotReport& robot = fragment.report;
-    const double lowest = lowestPoint(model);
-    double floorHeight = 0.0; // m
-    if (heldByWorld(model))
-    {
-        // The robot stays where the URDF puts it; the floor goes under it when a link reaches below
-        // z = 0 (an arm mounted on its side), so that no link starts inside the floor.
-        floorHeight = std::isfinite(lowest) ? std::min(0.0, lowest) : 0.0;
-        robot.placement =
-            std::string(options.fixedBase ? "fixed to the world where the URDF puts it (--fixed-base)"
-                                          : "fixed to the world by the URDF (a joint to its 'world' link)") +
-            "; floor at z = " + formatNumber(floorHeight) + " m";
-        if (options.dropHeight)
-        {
-            fragment.warnings.push_back(
-                diagnostic(path, {}, "warning",
-                           "--drop-height is for a free-floating robot; this one is " + robot.placement +
-                               ", so it stays where it is"));
-        }
-    }
-    else
-    {
-        if (std::isfinite(lowest))
-        {
-            const double height = options.dropHeight.value_or(0.0);
-            translate(model, core::Vec3(0.0, 0.0, height - lowest));
-            const double shift = height - lowest;
-            robot.placement = "free-floating, moved " + std::string(shift < 0.0 ? "down " : "up ") +
-                              formatNumber(std::abs(shift)) + " m so that its lowest collision point is " +
-                              formatNumber(height) + " m above the floor";
-        }
-        else
-        {
-            robot.placement = "free-floating, where the URDF puts it (it has no collision shapes)";
-            fragment.warnings.push_back(
-                diagnostic(path, {}, "warning",
-                           "the robot has no collision shapes: nothing stops it falling through the floor"));
-        }
-    }
     model.robots.push_back(
         {robot.name, path, 0, static_cast<int>(model.bodies.size()), placement.selfCollision});
     if (options.hold)
     {
         addHoldServos(model, 0, static_cast<int>(model.joints.size()));
     }
-    core::Body floor;
-    floor.name = model.findBody("floor") < 0 ? "floor" : "floor_";
-    floor.isStatic = true;
-    core::Shape plane;
-    plane.type = core::ShapeType::Plane;
-    plane.normal = core::Vec3::UnitZ();
-    plane.offset = floorHeight;
-    floor.shapes.push_back(plane);
-    model.bodies.push_back(std::move(floor));
-    reportRobotScene(path, model, fragment, report);
+    const std::string heldBy = options.fixedBase
+                                   ? "fixed to the world where the URDF puts it (--fixed-base)"
+                                   : "fixed to the world by the URDF (a joint to its 'world' link)";
+    placeOnFloor(model, path, options.dropHeight, heldBy, "URDF", robot, fragment.warnings);
+    reportRobot(fragment, report);
     return model;
 }
 
-void reportRobotScene(const std::string& path, const core::Model& model, ModelFragment& fragment,
-                      LoadReport* report)
+void reportRobot(ModelFragment& fragment, LoadReport* report)
 {
-    for (std::size_t i = 0; i < model.bodies.size(); ++i)
-    {
-        // Placed on the floor, a body may have moved out of range (core::startingStateDefect).
-        const std::string defect = core::startingStateDefect(model, i);
-        if (!defect.empty())
-        {
-            throw InputError(path, 0, 0, "body '" + model.bodies[i].name + "': " + defect);
-        }
-    }
     if (report)
     {
         report->robots.push_back(std::move(fragment.report));

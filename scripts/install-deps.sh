@@ -17,7 +17,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ pkg-config make
-  libeigen3-dev libfcl-dev libccd-dev libqhull-dev liburdfdom-dev libyaml-cpp-dev libassimp-dev
+  libeigen3-dev libfcl-dev libccd-dev libqhull-dev liburdfdom-dev libyaml-cpp-dev libassimp-dev libsdformat-dev
   libosmesa6-dev libpng-dev
   libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev nlohmann-json3-dev libssl-dev
   gnuplot-nox

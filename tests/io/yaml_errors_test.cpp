@@ -617,7 +617,8 @@ TEST(YamlErrors, FileDoesNotExist)
 TEST(YamlErrors, UnknownFileExtension)
 {
     const InputError e = captureInputError([] { loadScene("scene.txt"); });
-    EXPECT_INPUT_ERROR_AT(e, "scene.txt", 0, 0, "expected a .yaml or .yml scene, a .urdf model or an MJCF model (.xml)");
+    EXPECT_INPUT_ERROR_AT(e, "scene.txt", 0, 0,
+                          "expected a .yaml or .yml scene, a .urdf model, an MJCF .xml model or an SDF");
 }
 
 TEST(YamlErrors, ZeroQuaternion)
