@@ -95,6 +95,7 @@ class MjcfTranslation
         addJointSprings();
         filterCollisions();
         warnUnsupported();
+        dropEmptyWorld();
         mFragment.model.name = mModelName;
         mFragment.model.simulation.dt = m->opt.timestep;                                    // s
         mFragment.model.simulation.gravity = mPlacement.orientation * vec3(m->opt.gravity); // m/s^2
@@ -685,8 +686,32 @@ class MjcfTranslation
         {
             for (core::Body& body : model.bodies)
             {
-                body.group = mPlacement.prefix + mModelName;
+                // The model's own ground still holds it up.
+                body.group = body.isStatic ? std::string() : mPlacement.prefix + mModelName;
             }
+        }
+    }
+
+    // The static body (index 0) goes when nothing is drawn or collides there: joints to the world
+    // hold their anchors in world coordinates (core::cWorld).
+    void dropEmptyWorld()
+    {
+        core::Model& model = mFragment.model;
+        if (!model.bodies.front().shapes.empty() || !model.bodies.front().visuals.empty())
+        {
+            return;
+        }
+        std::erase_if(mFragment.report.welded,
+                      [&](const auto& welded) { return welded.second == model.bodies.front().name; });
+        model.bodies.erase(model.bodies.begin());
+        for (core::Joint& joint : model.joints)
+        {
+            joint.parent = joint.parent == core::cWorld ? core::cWorld : joint.parent - 1;
+            joint.child -= 1;
+        }
+        for (std::array<int, 2>& pair : model.contact.ignore)
+        {
+            pair = {pair[0] - 1, pair[1] - 1};
         }
     }
 

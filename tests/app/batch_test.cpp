@@ -222,6 +222,25 @@ TEST(Batch, BadPlansExit2WithFileLineAndWhatWasExpected)
     expectBatchMessages(dir, cases, "--list", 2, "plan.yaml");
 }
 
+// An MJCF model is a batch's scene like a URDF: its run settings vary, its paths are no YAML.
+TEST(Batch, MjcfModelsRunAndTheirPathsAreRefused)
+{
+    TestDir dir;
+    dir.write("pendulum.xml",
+              "<mujoco><worldbody><body pos=\"0 0 1\"><joint type=\"hinge\" axis=\"0 1 0\"/>"
+              "<geom type=\"sphere\" size=\"0.1\" pos=\"0.5 0 0\"/></body></worldbody></mujoco>\n");
+    const std::string plan =
+        dir.write("plan.yaml", "scenes: [pendulum.xml]\nduration: 0.01\nvary: {dt: [0.001, 0.002]}\n");
+    const Result ran = dir.run("batch " + shellQuote(plan) + " --out " + shellQuote(dir.out("b")));
+    EXPECT_EQ(ran.exitCode, 0) << ran.err;
+    expectBatchMessages(
+        dir,
+        {{"scenes: [pendulum.xml]\nduration: 0.01\nvary:\n  contact.friction: [0.1, 0.2]\n",
+          ":4:22: error: 'contact.friction' is a scene path, and pendulum.xml is a model file (.xml), not a "
+          "YAML scene"}},
+        "--list", 2, "plan.yaml");
+}
+
 // Standard YAML tags on a plan's values (!!float, !!int, !!str where the value is of that type)
 // are the values without them: the same jobs (ids) as the plain plan, run with those settings.
 TEST(Batch, TaggedValuesAreThePlainValues)
