@@ -209,6 +209,44 @@ void recordMeshFiles(const std::vector<MjcfText>& texts)
 
 } // namespace
 
+namespace
+{
+std::mutex gMujocoMessagesMutex;
+// The load holding MuJoCo's handlers (MujocoMessages).
+const std::string* gPath = nullptr;
+std::vector<std::string>* gWarnings = nullptr;
+
+void onMujocoWarning(const char* message)
+{
+    gWarnings->push_back(diagnostic(*gPath, {}, "warning", std::string("MuJoCo: ") + message));
+}
+
+[[noreturn]] void onMujocoError(const char* message)
+{
+    throw InputError(*gPath, 0, 0, std::string("MuJoCo cannot use this model: ") + message);
+}
+} // namespace
+
+MujocoMessages::MujocoMessages(const std::string& path, std::vector<std::string>& warnings)
+{
+    gMujocoMessagesMutex.lock();
+    gPath = &path;
+    gWarnings = &warnings;
+    mWarning = mju_user_warning;
+    mError = mju_user_error;
+    mju_user_warning = onMujocoWarning;
+    mju_user_error = onMujocoError;
+}
+
+MujocoMessages::~MujocoMessages()
+{
+    mju_user_warning = mWarning;
+    mju_user_error = mError;
+    gPath = nullptr;
+    gWarnings = nullptr;
+    gMujocoMessagesMutex.unlock();
+}
+
 bool isUrdfText(const std::string& path, const std::string& text)
 {
     std::string root;
@@ -247,13 +285,8 @@ CompiledMjcf compileMjcf(const std::string& path)
         }
     }
     std::string message(4096, '\0');
-    {
-        // The compiler keeps global state while it parses.
-        static std::mutex compiling;
-        const std::lock_guard<std::mutex> lock(compiling);
-        compiled.model.reset(
-            mj_loadXML(path.c_str(), vfs.get(), message.data(), static_cast<int>(message.size())));
-    }
+    compiled.model.reset(
+        mj_loadXML(path.c_str(), vfs.get(), message.data(), static_cast<int>(message.size())));
     message.resize(std::strlen(message.c_str()));
     if (!compiled.model)
     {

@@ -37,7 +37,26 @@ struct CompiledMjcf
     std::vector<std::string> warnings; // the compiler's, "FILE: warning: ..."
 };
 
-// Throws InputError naming the file and, where the compiler says it, the line.
+// While it lives, MuJoCo's messages about the model of `path` are this load's: a warning goes to
+// `warnings` ("FILE: warning: MuJoCo: ..."), an error (MuJoCo's default handler prints it and ends
+// the process; its default warning handler writes MUJOCO_LOG.TXT into the working folder) throws
+// InputError naming the file. MuJoCo's handlers are global: one load at a time holds them (a
+// mutex), and the ones before are restored.
+class MujocoMessages
+{
+  public:
+    MujocoMessages(const std::string& path, std::vector<std::string>& warnings);
+    ~MujocoMessages();
+    MujocoMessages(const MujocoMessages&) = delete;
+    MujocoMessages& operator=(const MujocoMessages&) = delete;
+
+  private:
+    void (*mWarning)(const char*);
+    void (*mError)(const char*);
+};
+
+// Throws InputError naming the file and, where the compiler says it, the line. Call it with a
+// MujocoMessages alive.
 CompiledMjcf compileMjcf(const std::string& path);
 
 // True when the XML text's root element is <robot> (a URDF saved as .xml).

@@ -770,7 +770,14 @@ class MjcfTranslation
 
 ModelFragment loadMjcfFragment(const std::string& path, const MjcfPlacement& placement)
 {
-    return MjcfTranslation(path, placement).run();
+    std::vector<std::string> warnings;
+    ModelFragment fragment;
+    {
+        const MujocoMessages messages(path, warnings);
+        fragment = MjcfTranslation(path, placement).run();
+    }
+    fragment.warnings.insert(fragment.warnings.end(), warnings.begin(), warnings.end());
+    return fragment;
 }
 
 core::Model loadMjcfScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
