@@ -148,12 +148,19 @@ void defaultAutolimits(std::vector<MjcfText>& texts)
     }
 }
 
-// The line a compiler message names ("line = 25", "line 23"), 0 when it names none.
+// The line a compiler message names ("line = 25", "line 23", the XML parser's "Line number=4"), 0
+// when it names none. A message about an included file names the line of the <include> last.
 int messageLine(const std::string& message)
 {
-    static const std::regex cLine("line =? ?([0-9]+)");
-    std::smatch match;
-    return std::regex_search(message, match, cLine) ? std::stoi(match[1].str()) : 0;
+    static const std::regex cLine("[Ll]ine(?: number)? ?=? ?([0-9]+)");
+    int line = 0;
+    for (auto match = std::sregex_iterator(message.begin(), message.end(), cLine);
+         match != std::sregex_iterator(); ++match)
+    {
+        const int named = std::stoi((*match)[1].str());
+        line = named > 0 ? named : line;
+    }
+    return line;
 }
 
 // The compiler's message on one line: its parts joined by "; ".

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <mujoco/mujoco.h>
 #include <numbers>
@@ -157,8 +158,12 @@ class MjcfTranslation
     // qpos, qvel and ctrl of the start: the keyframe's, or MuJoCo's reference pose at rest.
     void startPose()
     {
-        const char* modelName = m->names;
-        mModelName = modelName != nullptr && *modelName != '\0' ? modelName : "mjcf";
+        // MuJoCo names a <mujoco> without model="..." "MuJoCo Model": it is named after its file, as an
+        // unnamed URDF robot is.
+        const std::string modelName = m->names != nullptr ? m->names : "";
+        mModelName = modelName.empty() || modelName == "MuJoCo Model"
+                         ? std::filesystem::path(mPath).stem().string()
+                         : modelName;
         mj_resetData(m, mData.get());
         if (mPlacement.keyframe)
         {
@@ -285,9 +290,12 @@ class MjcfTranslation
         return k < static_cast<int>(frames.size()) ? frames[k] : mBodyOfWeld.at(b);
     }
 
-    // A joint's armature (rotor inertia, kg m^2 or kg) as inertia of the body it moves: about the
-    // axis for a hinge, about every axis for a ball, as mass for a slide that moves a frame
-    // (docs/mjcf.md says how this differs from MuJoCo's joint-space term).
+    // A joint's armature (rotor inertia, kg m^2 or kg) as inertia of the body it moves: for a hinge
+    // a thin disc spinning on the axis (armature about the axis, half of it about every axis across
+    // it, so that the body's inertia stays one a rigid body can have: added about the axis alone it
+    // breaks the triangle inequality of a light link, whose rotation then blows up), about every
+    // axis for a ball, as mass for a slide that moves a frame (docs/mjcf.md says how this differs
+    // from MuJoCo's joint-space term).
     void addArmature()
     {
         for (int j = 0; j < m->njnt; ++j)
@@ -302,7 +310,7 @@ class MjcfTranslation
                 body.orientation_WB.conjugate() * (mPlacement.orientation * vec3(mData->xaxis + 3 * j));
             if (m->jnt_type[j] == mjJNT_HINGE)
             {
-                body.inertia_B += armature * axis_B * axis_B.transpose();
+                body.inertia_B += 0.5 * armature * (core::Mat3::Identity() + axis_B * axis_B.transpose());
             }
             else if (m->jnt_type[j] == mjJNT_BALL)
             {
@@ -598,7 +606,8 @@ class MjcfTranslation
             if (m->actuator_forcelimited[u])
             {
                 const mjtNum* range = m->actuator_forcerange + 2 * u;
-                actuator.effortLimit = std::max(std::abs(range[0]), std::abs(range[1])) * std::abs(gear);
+                actuator.effortLimit = std::min(
+                    actuator.effortLimit, std::max(std::abs(range[0]), std::abs(range[1])) * std::abs(gear));
             }
             if (!driven.insert(mJointIndex[j]).second)
             {
