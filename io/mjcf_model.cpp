@@ -446,7 +446,8 @@ class MjcfTranslation
                 body.visuals.push_back(std::move(shape));
                 continue;
             }
-            // MuJoCo gives a pair the larger friction of its two geoms; a body takes its largest.
+            // A body takes the largest friction of its geoms; two bodies then mix theirs by Frontier's
+            // rule (core::contactFriction), not MuJoCo's larger-of-the-pair (docs/mjcf.md).
             const double friction = m->geom_condim[g] == 1 ? 0.0 : m->geom_friction[3 * g];
             body.friction = std::max(body.friction.value_or(0.0), friction);
             if (m->geom_condim[g] > 3 && !mWarnedCondim)
@@ -623,6 +624,7 @@ class MjcfTranslation
     void addJointSprings()
     {
         core::Model& model = mFragment.model;
+        std::string stiffDriven; // joints with both, named in one warning
         for (int j = 0; j < m->njnt; ++j)
         {
             if (m->jnt_stiffness[j] == 0.0 || mJointIndex[j] < 0 || m->jnt_type[j] == mjJNT_BALL)
@@ -634,8 +636,7 @@ class MjcfTranslation
                             [&](const core::Actuator& a) { return a.joint == mJointIndex[j]; });
             if (driven)
             {
-                warn("joint " + quotedName(jointName(j)) +
-                     ": its stiffness is ignored, as it has an actuator (Frontier takes one per joint)");
+                stiffDriven += (stiffDriven.empty() ? "" : ", ") + quotedName(jointName(j));
                 continue;
             }
             core::Actuator spring;
@@ -646,6 +647,11 @@ class MjcfTranslation
             spring.kp = m->jnt_stiffness[j];
             spring.target = core::constantFunction(m->qpos_spring[m->jnt_qposadr[j]]);
             model.actuators.push_back(std::move(spring));
+        }
+        if (!stiffDriven.empty())
+        {
+            warn("the stiffness of joints " + stiffDriven +
+                 " is ignored, as each has an actuator (Frontier takes one per joint)");
         }
     }
 
