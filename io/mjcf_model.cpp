@@ -97,6 +97,11 @@ class MjcfTranslation
         filterCollisions();
         warnUnsupported();
         dropEmptyWorld();
+        if (mFragment.model.bodies.empty())
+        {
+            throw InputError(mPath, 0, 0,
+                             "the model has no bodies: its <worldbody> holds nothing to simulate");
+        }
         mFragment.model.name = mModelName;
         mFragment.model.simulation.dt = m->opt.timestep;                                    // s
         mFragment.model.simulation.gravity = mPlacement.orientation * vec3(m->opt.gravity); // m/s^2

@@ -968,6 +968,14 @@ TEST(MjcfErrors, MalformedXmlNamesTheLine)
     EXPECT_EQ(e.line(), 4) << e.what();
 }
 
+TEST(MjcfErrors, AModelWithNothingInItIsRefused)
+{
+    const TempDir dir;
+    const std::string path = dir.write("empty.xml", "<mujoco model=\"nothing\"><worldbody/></mujoco>\n");
+    const InputError e = captureInputError([&] { loadScene(path); });
+    EXPECT_INPUT_ERROR_AT(e, path, 0, 0, "the model has no bodies");
+}
+
 TEST(MjcfErrors, UnknownAttributeIsMuJoCosSchemaErrorWithTheLine)
 {
     const TempDir dir;
