@@ -23,6 +23,7 @@
 // an error (by default: print and exit) ends the run with an EngineError.
 #include "bench/peers/contacts.h"
 #include "bench/peers/engine.h"
+#include "bench/peers/mujoco_messages.h"
 #include "bench/peers/tree.h"
 
 #include <algorithm>
@@ -38,6 +39,44 @@
 
 namespace frontier::peers
 {
+
+// MuJoCo's message handlers are global: a warning goes to the messages of the engine that is
+// stepping (or being set up) on this thread, an error ends its run.
+namespace
+{
+
+thread_local std::vector<std::string>* tMessages = nullptr;
+
+void onWarning(const char* message)
+{
+    if (tMessages)
+        tMessages->emplace_back(message);
+}
+
+[[noreturn]] void onError(const char* message)
+{
+    throw EngineError(std::string("MuJoCo error: ") + message);
+}
+
+} // namespace
+
+MessageScope::MessageScope(std::vector<std::string>& messages)
+{
+    static const bool installed = []
+    {
+        mju_user_warning = onWarning;
+        mju_user_error = onError;
+        return true;
+    }();
+    (void)installed;
+    tMessages = &messages;
+}
+
+MessageScope::~MessageScope()
+{
+    tMessages = nullptr;
+}
+
 namespace
 {
 
@@ -199,41 +238,6 @@ Buffers mujocoBuffers(const core::Model& model, int growth)
     buffers.rows = growth * std::max(500, 4 * static_cast<int>(std::ceil(contacts)) + limits);
     return buffers;
 }
-
-// MuJoCo's message handlers are global: a warning goes to the messages of the engine that is
-// stepping (or being set up) on this thread, an error ends its run.
-thread_local std::vector<std::string>* tMessages = nullptr;
-
-void onWarning(const char* message)
-{
-    if (tMessages)
-        tMessages->emplace_back(message);
-}
-
-[[noreturn]] void onError(const char* message)
-{
-    throw EngineError(std::string("MuJoCo error: ") + message);
-}
-
-// Sends MuJoCo's messages to `messages` while it lives.
-class MessageScope
-{
-  public:
-    explicit MessageScope(std::vector<std::string>& messages)
-    {
-        static const bool installed = []
-        {
-            mju_user_warning = onWarning;
-            mju_user_error = onError;
-            return true;
-        }();
-        (void)installed;
-        tMessages = &messages;
-    }
-    ~MessageScope() { tMessages = nullptr; }
-    MessageScope(const MessageScope&) = delete;
-    MessageScope& operator=(const MessageScope&) = delete;
-};
 
 // MJCF text of the model's joint trees.
 std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, MujocoIntegrator integrator,

@@ -6,6 +6,11 @@
 //   frontier_peers --scene scenes/pileup44.yaml --rounds 5 --baseline bullet-si --variants 6
 //   frontier_peers --scene scenes/chain30.yaml --dt 0.002,0.001,0.0005 --reference-dt 5e-6 --chart out/peers
 //
+// An MJCF file (--mjcf FILE, mjcf_peers.h) runs in MuJoCo from the file itself and in Frontier from
+// its import: masses and inertias of every body, --duration s of passive motion (MuJoCo RK4 and
+// Frontier rattle4 at 1e-4 s, contacts off) and the time per step of each on the file as it is:
+//   frontier_peers --mjcf /usr/share/doc/dart/data/mjcf/openai/inverted_pendulum.xml --duration 1
+//
 // Per engine: wall time of its steps alone (us per step and per body-step), the largest joint gap
 // after any step (m), the energy by central differences of its poses (engine-independent: the
 // change from the first to the last measurable step, in J and in % of the largest kinetic energy),
@@ -51,6 +56,7 @@
 #include "bench/peers/harness.h"
 #include "bench/peers/jitter.h"
 #include "bench/peers/measures.h"
+#include "bench/peers/mjcf_peers.h"
 #include "io/scene.h"
 #include "run/scene_loading.h"
 
@@ -264,6 +270,17 @@ int runHarness(int argc, char** argv)
     std::string csvPath, markdownPath;
     Settings s;
     app.add_option("--scene", scene, "a scene file (YAML or URDF)");
+    std::string mjcfFile;
+    bool noContacts = false;
+    app.add_option("--mjcf", mjcfFile,
+                   "an MJCF file in MuJoCo (from the file) beside Frontier (from its import): masses and "
+                   "inertias, --duration s of passive motion, time per step (mjcf_peers.h)");
+    double motionDt = 1e-4;
+    app.add_option("--motion-dt", motionDt, "--mjcf: the time step of both engines' passive runs (s)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_flag("--no-contacts", noContacts,
+                 "--mjcf: compare the motion with contacts off even where geoms may collide");
     app.add_option("--chain", chain, "a generated chain of N boxes on ball joints instead")
         ->check(CLI::Range(1, 10000000));
     app.add_option("--tip-mass-ratio", tipRatio, "the chain's last link's mass over the others'")
@@ -310,10 +327,17 @@ int runHarness(int argc, char** argv)
     app.add_option("--csv", csvPath, "write the rows as CSV");
     app.add_option("--markdown", markdownPath, "write the rows as a markdown table");
     CLI11_PARSE(app, argc, argv);
-    if (scene.empty() == (chain == 0))
+    if (int(!scene.empty()) + int(chain != 0) + int(!mjcfFile.empty()) != 1)
     {
-        std::cerr << "frontier_peers: give --scene FILE or --chain N (one of them)\n";
+        std::cerr << "frontier_peers: give --scene FILE, --chain N or --mjcf FILE (one of them)\n";
         return 2;
+    }
+    if (!mjcfFile.empty())
+    {
+        MjcfMotionSettings motion;
+        motion.duration = s.run.duration;
+        motion.mujocoDt = motion.frontierDt = motionDt;
+        return runMjcfComparison(mjcfFile, motion, noContacts, s.rounds, std::cout);
     }
     std::vector<std::string> names = engineNames();
     if (!engines.empty())
