@@ -316,7 +316,7 @@ MjcfInertia compareInertia(const std::string& path)
         MjcfBodyInertia& entry = out.bodies[row.at(m->body_weldid[b])];
         const core::Vec3 axis = vec3(d->xaxis + 3 * j);
         if (m->jnt_type[j] == mjJNT_HINGE)
-            entry.frontierInertia_W -= armature * axis * axis.transpose();
+            entry.frontierInertia_W -= 0.5 * armature * (core::Mat3::Identity() + axis * axis.transpose());
         else if (m->jnt_type[j] == mjJNT_BALL)
             entry.frontierInertia_W -= armature * core::Mat3::Identity();
         else if (j - m->body_jntadr[b] < m->body_jntnum[b] - 1) // a slide that moves a frame

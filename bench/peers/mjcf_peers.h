@@ -12,7 +12,8 @@
 // it, named as its root body); its frames ("BODY:JOINT", in front of it) are summed into it. MuJoCo's
 // group is merged here from body_mass, xipos, ximat and body_inertia after mj_forward at qpos0, by
 // the parallel axis theorem. Frontier adds a joint's armature to the inertia of the body it moves
-// (a hinge's about its axis, a ball's about every axis, a slide's into a frame as mass): that term
+// (a hinge's as a disc on its axis: the armature about it, half about each axis across; a ball's
+// about every axis; a slide's into a frame as mass; docs/mjcf.md): that term
 // is subtracted from Frontier's figures before they are compared. A difference is relative to the
 // larger of MuJoCo's figure and what Frontier stores (with the armature): a joint's armature of
 // 0.75 kg m^2 on a link of 1e-12 kg m^2 (Debian's gym thrower) leaves only round-off of the armature
