@@ -38,7 +38,9 @@ double contactFriction(const Model& model, int a, int b)
     {
         return model.contact.friction; // the scene's, exactly
     }
-    return std::sqrt(muA.value_or(model.contact.friction) * muB.value_or(model.contact.friction));
+    const double mixA = muA.value_or(model.contact.friction);
+    const double mixB = muB.value_or(model.contact.friction);
+    return model.contact.frictionMix == FrictionMix::Larger ? std::max(mixA, mixB) : std::sqrt(mixA * mixB);
 }
 
 double contactRestitution(const Model& model, int a, int b)

@@ -181,9 +181,17 @@ struct Camera
     double fovDegrees = 45.0;
 };
 
+// How a contact between two bodies takes its friction from theirs (contactFriction).
+enum class FrictionMix
+{
+    GeometricMean, // sqrt(mu_a mu_b), as Box2D mixes materials
+    Larger,        // max(mu_a, mu_b), as MuJoCo mixes geoms (an MJCF file's)
+};
+
 struct ContactSettings
 {
-    double friction = 0.5;    // Coulomb mu
+    double friction = 0.5; // Coulomb mu
+    FrictionMix frictionMix = FrictionMix::GeometricMean;
     double restitution = 0.0; // Newton e
     // When the contact solve stops (docs/method.md §5): each row's condition met to
     // max(tolerance, relativeTolerance x the largest residual when the step's solve starts), in m/s
@@ -312,8 +320,9 @@ inline bool isLength(double m)
 double shapeReach(const Shape& shape);
 
 // The friction and restitution of a contact between bodies a and b (b may be cWorld), as Box2D
-// mixes materials: friction the geometric mean sqrt(mu_a mu_b), restitution the larger, each body
-// taking the scene's value (Model::contact) when it has none of its own.
+// mixes materials: friction the geometric mean sqrt(mu_a mu_b) (or the larger, by
+// ContactSettings::frictionMix), restitution the larger, each body taking the scene's value
+// (Model::contact) when it has none of its own.
 double contactFriction(const Model& model, int a, int b);
 // The values a material may take: friction >= 0, restitution in [0, 1] (NaN neither).
 inline bool isFriction(double mu)

@@ -103,7 +103,8 @@ class MjcfTranslation
                              "the model has no bodies: its <worldbody> holds nothing to simulate");
         }
         mFragment.model.name = mModelName;
-        mFragment.model.simulation.dt = m->opt.timestep;                                    // s
+        mFragment.model.contact.frictionMix = core::FrictionMix::Larger; // MuJoCo's rule for a pair
+        mFragment.model.simulation.dt = m->opt.timestep;                 // s
         mFragment.model.simulation.gravity = mPlacement.orientation * vec3(m->opt.gravity); // m/s^2
         mFragment.report.name = mModelName;
         mFragment.report.prefix = mPlacement.prefix;
@@ -451,8 +452,8 @@ class MjcfTranslation
                 body.visuals.push_back(std::move(shape));
                 continue;
             }
-            // A body takes the largest friction of its geoms; two bodies then mix theirs by Frontier's
-            // rule (core::contactFriction), not MuJoCo's larger-of-the-pair (docs/mjcf.md).
+            // A body takes the largest friction of its geoms, a pair the larger of its two bodies'
+            // (core::FrictionMix::Larger): MuJoCo's larger of the two geoms' where each body has one.
             const double friction = m->geom_condim[g] == 1 ? 0.0 : m->geom_friction[3 * g];
             body.friction = std::max(body.friction.value_or(0.0), friction);
             if (m->geom_condim[g] > 3 && !mWarnedCondim)

@@ -968,6 +968,30 @@ TEST(MjcfErrors, MalformedXmlNamesTheLine)
     EXPECT_EQ(e.line(), 4) << e.what();
 }
 
+// MuJoCo gives a pair of geoms the larger of their frictions: a box of 0.5 on a floor of 1.0 slides
+// with 1.0 (the geometric mean would be 0.707).
+TEST(Mjcf, AContactTakesTheLargerFrictionAsInMuJoCo)
+{
+    const TempDir dir;
+    const std::string path = dir.write("friction.xml", R"(<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1" friction="1.0"/>
+    <body name="box" pos="0 0 0.1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.1" friction="0.5"/>
+    </body>
+  </worldbody>
+</mujoco>
+)");
+    const core::Model model = loadScene(path);
+    const int box = model.findBody("box");
+    const int floor = model.findBody("world");
+    ASSERT_GE(box, 0);
+    ASSERT_GE(floor, 0);
+    EXPECT_EQ(model.bodies[box].friction, 0.5);
+    EXPECT_EQ(core::contactFriction(model, box, floor), 1.0);
+}
+
 TEST(MjcfErrors, AModelWithNothingInItIsRefused)
 {
     const TempDir dir;
