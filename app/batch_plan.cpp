@@ -170,7 +170,8 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
             if (!fs::is_regular_file(full, error))
             {
                 failAt(source, entry,
-                       "no scene file '" + full + "'; expected a .yaml scene, a .urdf model or an SDF file");
+                       "no scene file '" + full +
+                           "'; expected a .yaml scene, a .urdf model, an MJCF .xml model or an SDF file");
             }
             scenes.emplace_back(pattern, full);
             continue;

@@ -4,6 +4,7 @@
 
 #include "io/file_util.h"
 #include "io/hold_servos.h"
+#include "io/mass_properties.h"
 #include "io/mjcf_compile.h"
 #include "io/suggest.h"
 
@@ -185,40 +186,19 @@ class MjcfTranslation
 
     // Mass, centre of mass and inertia of a weld group (MuJoCo bodies with no joint between them),
     // in the scene's world frame.
-    struct GroupInertial
+    CompositeMass groupInertial(int weld) const
     {
-        double mass = 0.0;                       // kg
-        core::Vec3 centre = core::Vec3::Zero();  // m
-        core::Mat3 inertia = core::Mat3::Zero(); // kg m^2 about the centre, world axes
-    };
-    GroupInertial groupInertial(int weld) const
-    {
-        GroupInertial group;
-        for (int b = 1; b < m->nbody; ++b)
-        {
-            if (m->body_weldid[b] == weld)
-            {
-                group.mass += m->body_mass[b];
-                group.centre += m->body_mass[b] * toScene(vec3(mData->xipos + 3 * b));
-            }
-        }
-        if (group.mass <= 0.0)
-        {
-            return group;
-        }
-        group.centre /= group.mass;
+        std::vector<MassPart> parts;
         for (int b = 1; b < m->nbody; ++b)
         {
             if (m->body_weldid[b] == weld)
             {
                 const core::Mat3 r = toScene(mat3(mData->ximat + 9 * b));
-                const core::Vec3 d = toScene(vec3(mData->xipos + 3 * b)) - group.centre;
-                group.inertia +=
-                    r * vec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose() +
-                    m->body_mass[b] * (d.squaredNorm() * core::Mat3::Identity() - d * d.transpose());
+                parts.push_back({m->body_mass[b], toScene(vec3(mData->xipos + 3 * b)),
+                                 r * vec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose()});
             }
         }
-        return group;
+        return combineMassParts(parts);
     }
 
     // The world's weld group (one static body, made when something needs it) and one moving body per
@@ -246,7 +226,7 @@ class MjcfTranslation
                 mFragment.report.welded.emplace_back(bodyName(b), mPlacement.prefix + bodyName(group));
                 continue;
             }
-            GroupInertial group = groupInertial(b);
+            CompositeMass group = groupInertial(b);
             if (group.mass <= 0.0)
             {
                 // A massless body with joints: it carries its subtree, as a frame does.
@@ -467,7 +447,6 @@ class MjcfTranslation
             mColliders[index].push_back(g);
             body.shapes.push_back(std::move(shape));
         }
-        // A body drawn from visual geoms shows its colliding ones too only when it has no visual ones.
     }
 
     core::Shape meshShape(int mesh) const
@@ -568,7 +547,11 @@ class MjcfTranslation
             actuator.joint = mJointIndex[j];
             actuator.coordinate = m->jnt_type[j] == mjJNT_HINGE ? core::JointCoordinate::Rotation
                                                                 : core::JointCoordinate::Slide;
-            const double ctrl = mData->ctrl[u];
+            // MuJoCo clamps a control into its range.
+            const double ctrl = m->actuator_ctrllimited[u]
+                                    ? std::clamp(mData->ctrl[u], m->actuator_ctrlrange[2 * u],
+                                                 m->actuator_ctrlrange[2 * u + 1])
+                                    : mData->ctrl[u];
             if (m->actuator_gaintype[u] != mjGAIN_FIXED || gear == 0.0)
             {
                 warn(what + ": only fixed gains and a nonzero gear are supported; it is ignored");

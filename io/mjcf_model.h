@@ -16,8 +16,8 @@ namespace frontier::io::detail
 {
 
 // The share of a multi-joint body's mass and inertia each of its frames takes. Frontier's bodies
-// need mass; a frame of 1e-4 of its body's mass or less makes the position correction fail at the
-// humanoid's first impact.
+// need mass, and the position correction (docs/method.md §7) converges poorly when a frame carries
+// less than about 1e-3 of what it joins: the gym humanoid's hips then come apart at its first impact.
 inline constexpr double cFrameMassFraction = 0.01;
 
 // How an MJCF model is placed in a scene: its world frame at `position`, `orientation`.

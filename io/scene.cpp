@@ -28,16 +28,20 @@ template <typename Load> core::Model recordingInputs(LoadReport* report, const L
 core::Model loadSceneFile(const std::string& path, const UrdfOptions& options, LoadReport* report)
 {
     const std::string ext = detail::lowerExtension(path);
-    if (options.keyframe && ext != ".xml" && ext != ".mjcf")
+    if (options.keyframe && ext != ".xml")
     {
         throw InputError(path, 0, 0, "--keyframe chooses a <key> of a bare MJCF file (.xml)");
     }
     if (ext == ".urdf" ||
         (ext == ".xml" && detail::isUrdfText(path, detail::readTextFile(path, "model file"))))
     {
+        if (options.keyframe)
+        {
+            throw InputError(path, 0, 0, "--keyframe chooses a <key> of an MJCF file; this .xml is a URDF");
+        }
         return detail::loadUrdfScene(path, options, report);
     }
-    if (ext == ".xml" || ext == ".mjcf")
+    if (ext == ".xml")
     {
         return detail::loadMjcfScene(path, options, report);
     }

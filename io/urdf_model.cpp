@@ -1043,7 +1043,7 @@ std::string formatVector(const core::Vec3& v)
 }
 
 ModelFragment loadUrdfFragment(const std::string& path, const UrdfPlacement& placement,
-                              const PackagePaths& packages)
+                               const PackagePaths& packages)
 {
     const std::string original = readTextFile(path, "URDF file");
     const UrdfXmlIndex index(path, original); // XML syntax errors with row and column

@@ -245,6 +245,11 @@ std::string placeModel(const MapNode& map, core::Model& fragment, UrdfPlacement&
         return std::string(held ? "fixed to the world" : "placed") + " by the scene, root link frame at (" +
                formatVector(placement.position) + ") m";
     }
+    if (map.has("mjcf") && !dropHeight)
+    {
+        // An MJCF file places its bodies itself (a keyframe's qpos too): dropped only when asked.
+        return "where the MJCF file puts it, its world frame at the origin";
+    }
     const double height = dropHeight.value_or(0.0); // m
     const core::Vec3 shift(0.0, 0.0, height - lowest);
     translate(fragment, shift);
@@ -350,7 +355,8 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         }
         core::Model& fragment = loaded.model;
         const std::string placedAt = placeModel(map, fragment, placement);
-        // A rigid motion of the whole model: v at the root link origin, w about it.
+        // A rigid motion of the whole model: v at the root link origin, w about it, added to the
+        // motion it starts with (an MJCF keyframe's qvel).
         const core::Vec3 velocity = map.optVelocity("velocity").value_or(core::Vec3::Zero());
         const core::Vec3 angularVelocity =
             map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
@@ -358,8 +364,8 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
         {
             if (!body.isStatic)
             {
-                body.velocity_W = velocity + angularVelocity.cross(body.position_W - placement.position);
-                body.angularVelocity_W = angularVelocity;
+                body.velocity_W += velocity + angularVelocity.cross(body.position_W - placement.position);
+                body.angularVelocity_W += angularVelocity;
             }
         }
         const int firstBody = static_cast<int>(builder.model.bodies.size());

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
-#include <regex>
 #include <sstream>
 #include <unistd.h>
 #include <zlib.h>
@@ -157,7 +156,10 @@ std::string editedCopy(const std::string& relative, const std::string& name,
     for (const auto& [from, to] : edits)
     {
         EXPECT_NE(text.find(from), std::string::npos) << relative << ": " << from;
-        text = std::regex_replace(text, std::regex(from), to);
+        for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+        {
+            text.replace(at, from.size(), to);
+        }
     }
     const std::string path = (fs::path(dartFile(relative)).parent_path() / name).string();
     std::ofstream(path) << text;

@@ -98,7 +98,9 @@ TEST(MjcfCli, MisusedFlagsExitTwoSayingWhy)
     EXPECT_NE(unknown.err.find("no keyframe 'raise'"), std::string::npos) << unknown.err;
     EXPECT_NE(unknown.err.find("raised"), std::string::npos) << unknown.err;
 
-    const Result scene = dir.run("run scenes/pendulum.yaml --keyframe raised");
+    const std::string yaml =
+        dir.write("scene.yaml", "bodies:\n  - {name: ball, shape: {type: sphere, radius: 0.1}}\n");
+    const Result scene = dir.run("run " + shellQuote(yaml) + " --keyframe raised");
     EXPECT_EQ(scene.exitCode, 2) << scene.err;
     EXPECT_NE(scene.err.find("--keyframe"), std::string::npos) << scene.err;
 

@@ -129,6 +129,8 @@ bool ignoresPair(const core::Model& model, const std::string& a, const std::stri
 {
     const int i = model.findBody(a);
     const int j = model.findBody(b);
+    EXPECT_GE(i, 0) << a;
+    EXPECT_GE(j, 0) << b;
     return std::any_of(model.contact.ignore.begin(), model.contact.ignore.end(),
                        [&](const std::array<int, 2>& p)
                        { return (p[0] == i && p[1] == j) || (p[0] == j && p[1] == i); });
@@ -954,6 +956,33 @@ models:
     EXPECT_DOUBLE_EQ(model.actuators[0].target.constant, 0.5);
 }
 
+// A scene's MJCF entry without a position keeps the file's pose and the keyframe's velocity: a
+// ball the key puts 2 m up, moving at 1 m/s along x and spinning at 3 rad/s about z; a scene
+// `velocity` adds to it.
+TEST(Mjcf, SceneModelEntryKeepsTheKeyframesPoseAndVelocity)
+{
+    const TempDir dir;
+    dir.write("thrown.xml", R"(<mujoco>
+  <worldbody>
+    <body name="ball">
+      <freejoint/>
+      <geom type="sphere" size="0.1"/>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key name="thrown" qpos="0 0 2 1 0 0 0" qvel="1 0 0 0 0 3"/>
+  </keyframe>
+</mujoco>
+)");
+    const core::Model model = loadScene(dir.write("scene.yaml", R"(models:
+  - {mjcf: thrown.xml, keyframe: thrown, velocity: [0, 0.5, 0]}
+)"));
+    const core::Body& ball = mjcfBody(model, "ball");
+    EXPECT_VEC_NEAR(ball.position_W, Vec3(0.0, 0.0, 2.0), 1e-15);
+    EXPECT_VEC_NEAR(ball.velocity_W, Vec3(1.0, 0.5, 0.0), 1e-15);
+    EXPECT_VEC_NEAR(ball.angularVelocity_W, Vec3(0.0, 0.0, 3.0), 1e-15);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad files and misuse: InputError naming the file and line
 
@@ -1074,6 +1103,11 @@ TEST(MjcfErrors, XmlWhoseRootIsRobotLoadsAsUrdf)
 )"),
                                         {}, &report);
     EXPECT_DOUBLE_EQ(mjcfBody(model, "block").mass, 2.0);
+    // A URDF has no <key> to start from.
+    UrdfOptions options;
+    options.keyframe = "home";
+    const InputError e = captureInputError([&] { loadScene(dir.file("robot.xml"), options); });
+    EXPECT_NE(e.message().find("this .xml is a URDF"), std::string::npos) << e.what();
 }
 
 TEST(MjcfErrors, KeyframeOnAYamlSceneIsRefused)
