@@ -250,7 +250,8 @@ void printText(const nlohmann::json& info)
         std::cout << "\nrobot " << robot["name"].get<std::string>() << " ("
                   << robot["file"].get<std::string>() << "): " << robot["links"].get<int>()
                   << " links\n  placement: " << robot["placement"].get<std::string>()
-                  << "\n  welded (no joint between them): " << (robot["welded"].empty() ? "none" : "");
+                  << "\n  welded (by fixed joints, or no joint between them): "
+                  << (robot["welded"].empty() ? "none" : "");
         for (const auto& w : robot["welded"])
         {
             std::cout << "\n    " << w["link"].get<std::string>() << " -> " << w["body"].get<std::string>();

@@ -519,7 +519,16 @@ int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion,
     {
         out << "\nPassive motion: stopped: " << e.what() << "\n";
     }
-    const MjcfTiming timing = timeSteps(path, 2.0, rounds);
+    MjcfTiming timing;
+    try
+    {
+        timing = timeSteps(path, 2.0, rounds);
+    }
+    catch (const std::exception& e)
+    {
+        out << "\nTime per step: stopped: " << e.what() << "\n";
+        return 1;
+    }
     out << "\nTime per step, 2 s, the file as loaded (median of " << rounds
         << " alternating rounds): Frontier euler at dt " << number(timing.frontierDt, "%g")
         << " s, contacts on: " << number(timing.frontierMicroseconds) << " us"
