@@ -3,6 +3,7 @@
 // inertias equal MuJoCo's compiled values to 1e-9 relative; the gym pendulums' passive motion
 // follows MuJoCo's RK4 (mjcf_peers.h).
 #include "bench/peers/mjcf_peers.h"
+#include "tests/decompressed_copy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,6 @@
 #include <gtest/gtest.h>
 #include <sstream>
 #include <unistd.h>
-#include <zlib.h>
 
 namespace frontier::peers
 {
@@ -45,19 +45,6 @@ struct MjcfCopy
     }
 };
 
-void gunzip(const fs::path& from, const fs::path& to)
-{
-    gzFile in = gzopen(from.c_str(), "rb");
-    ASSERT_NE(in, nullptr) << from;
-    std::ofstream out(to, std::ios::binary);
-    char buffer[1 << 16];
-    int read = 0;
-    while ((read = gzread(in, buffer, sizeof buffer)) > 0)
-        out.write(buffer, read);
-    EXPECT_EQ(read, 0) << from;
-    gzclose(in);
-}
-
 const MjcfCopy& dartMjcfFiles()
 {
     static const MjcfCopy copy = []
@@ -65,24 +52,11 @@ const MjcfCopy& dartMjcfFiles()
         MjcfCopy out;
         out.folder = fs::temp_directory_path() / ("frontier_mjcf_peers_" + std::to_string(::getpid()));
         fs::remove_all(out.folder);
-        for (const fs::directory_entry& entry : fs::recursive_directory_iterator(cDartMjcf))
+        for (const std::string& file : copyDecompressed(cDartMjcf, out.folder))
         {
-            if (!entry.is_regular_file())
-                continue;
-            const fs::path relative = fs::relative(entry.path(), cDartMjcf);
-            fs::path target = out.folder / relative;
-            fs::create_directories(target.parent_path());
-            if (target.extension() == ".gz")
-            {
-                target.replace_extension();
-                gunzip(entry.path(), target);
-            }
-            else
-                fs::copy_file(entry.path(), target);
-            if (target.extension() == ".xml")
-                out.files.push_back(target.string());
+            if (file.ends_with(".xml"))
+                out.files.push_back((out.folder / file).string());
         }
-        std::sort(out.files.begin(), out.files.end());
         return out;
     }();
     return copy;

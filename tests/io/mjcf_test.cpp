@@ -11,6 +11,7 @@
 #include "run/run_loop.h"
 #include "run/scene_loading.h"
 #include "run/simulation.h"
+#include "tests/decompressed_copy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,6 @@
 #include <numbers>
 #include <string>
 #include <vector>
-#include <zlib.h>
 
 namespace frontier::io::test
 {
@@ -1153,43 +1153,12 @@ TEST(MjcfErrors, MjcfAndUrdfInOneModelEntryIsRefused)
 
 const std::filesystem::path cDartMjcf = "/usr/share/doc/dart/data/mjcf";
 
-// Decompresses gzip file `from` into `to`.
-void gunzipFile(const std::filesystem::path& from, const std::filesystem::path& to)
-{
-    gzFile in = gzopen(from.c_str(), "rb");
-    ASSERT_NE(in, nullptr) << from;
-    std::ofstream out(to, std::ios::binary);
-    char buffer[1 << 16];
-    int n = 0;
-    while ((n = gzread(in, buffer, sizeof buffer)) > 0)
-    {
-        out.write(buffer, n);
-    }
-    EXPECT_EQ(n, 0) << "cannot decompress " << from;
-    gzclose(in);
-}
-
-// The dart-doc MJCF folder copied into `to`, each FILE.xml.gz decompressed to FILE.xml beside it
-// (so that includes and meshes resolve as in the package); the model files, relative to `to`.
+// The dart-doc MJCF folder copied into `to` (tests/decompressed_copy.h); the model files, relative
+// to `to`.
 std::vector<std::string> copyDartMjcf(const std::filesystem::path& to)
 {
-    std::filesystem::copy(cDartMjcf, to, std::filesystem::copy_options::recursive);
-    std::vector<std::string> models;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(to))
-    {
-        std::string path = entry.path().string();
-        if (path.ends_with(".xml.gz"))
-        {
-            path.resize(path.size() - 3);
-            gunzipFile(entry.path(), path);
-        }
-        if (path.ends_with(".xml"))
-        {
-            models.push_back(std::filesystem::relative(path, to).string());
-        }
-    }
-    std::sort(models.begin(), models.end());
-    models.erase(std::unique(models.begin(), models.end()), models.end());
+    std::vector<std::string> models = copyDecompressed(cDartMjcf, to);
+    std::erase_if(models, [](const std::string& file) { return !file.ends_with(".xml"); });
     return models;
 }
 

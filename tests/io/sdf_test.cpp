@@ -6,6 +6,7 @@
 #include "io/sdf_model.h"
 #include "io_test_util.h"
 #include "run/simulation.h"
+#include "tests/decompressed_copy.h"
 
 #include <cmath>
 #include <filesystem>
@@ -85,25 +86,14 @@ TEST(SdfDartDoc, EveryFileRunsOrIsRefusedNamingWhatAndWhere)
     const TempDir dir;
     int loaded = 0;
     int refused = 0;
-    for (const auto& entry : std::filesystem::recursive_directory_iterator(cDartSdf))
+    for (const std::string& file : copyDecompressed(cDartSdf, dir.path()))
     {
-        std::string path = entry.path().string();
-        std::string ext = entry.path().extension().string();
-        if (ext == ".gz")
-        {
-            ext = entry.path().stem().extension().string();
-            if (ext != ".sdf" && ext != ".world" && ext != ".model")
-            {
-                continue;
-            }
-            const std::string plain = dir.file(entry.path().stem().string());
-            ASSERT_EQ(std::system(("gzip -dc '" + path + "' > '" + plain + "'").c_str()), 0);
-            path = plain;
-        }
+        const std::string ext = std::filesystem::path(file).extension().string();
         if (ext != ".sdf" && ext != ".world" && ext != ".model")
         {
             continue;
         }
+        const std::string path = dir.file(file);
         SCOPED_TRACE(path);
         try
         {
