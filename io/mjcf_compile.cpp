@@ -15,11 +15,6 @@
 namespace frontier::io::detail
 {
 
-void MjcfModelDeleter::operator()(mjModel_* model) const
-{
-    mj_deleteModel(model);
-}
-
 namespace
 {
 
@@ -182,15 +177,6 @@ std::string oneLine(const std::string& message)
     return joined;
 }
 
-struct VfsDeleter
-{
-    void operator()(mjVFS* vfs) const
-    {
-        mj_deleteVFS(vfs);
-        delete vfs;
-    }
-};
-
 // The mesh files the compiler read, as inputs of the load (io/file_util.h's InputFileLog): each in
 // the model's folder + meshdir, as MuJoCo finds it.
 void recordMeshFiles(const std::vector<MjcfText>& texts)
@@ -281,7 +267,7 @@ CompiledMjcf compileMjcf(const std::string& path)
     defaultAutolimits(texts);
     // The texts go to the compiler through its virtual file system, which names files without their
     // folder: a second file of the same name is left for the compiler to read from disk.
-    const std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+    const MujocoVfs vfs(new mjVFS);
     mj_defaultVFS(vfs.get());
     for (const MjcfText& source : texts)
     {

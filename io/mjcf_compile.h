@@ -7,20 +7,15 @@
 // `limited="true"`), so that files written for current MuJoCo load.
 #pragma once
 
+#include "io/mujoco_util.h"
+
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
-struct mjModel_;
-
 namespace frontier::io::detail
 {
-
-struct MjcfModelDeleter
-{
-    void operator()(mjModel_* model) const;
-};
 
 // The elements of an MJCF file Frontier does not model, where each first appears.
 struct MjcfUnsupported
@@ -31,7 +26,7 @@ struct MjcfUnsupported
 
 struct CompiledMjcf
 {
-    std::unique_ptr<mjModel_, MjcfModelDeleter> model;
+    MujocoModel model;
     // Element name ("tendon", "equality", ...) -> where it first appears in the file or its includes.
     std::map<std::string, MjcfUnsupported> unsupported;
     std::vector<std::string> warnings; // the compiler's, "FILE: warning: ..."

@@ -6,6 +6,7 @@
 #include "io/hold_servos.h"
 #include "io/mass_properties.h"
 #include "io/mjcf_compile.h"
+#include "io/mujoco_util.h"
 #include "io/suggest.h"
 
 #include <algorithm>
@@ -21,22 +22,6 @@ namespace frontier::io::detail
 
 namespace
 {
-
-core::Vec3 vec3(const mjtNum* v)
-{
-    return {v[0], v[1], v[2]};
-}
-
-// MuJoCo's 3x3 matrices are row-major.
-core::Mat3 mat3(const mjtNum* m)
-{
-    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(m);
-}
-
-struct DataDeleter
-{
-    void operator()(mjData* data) const { mj_deleteData(data); }
-};
 
 // The surface of an ellipsoid of semi-axes r (m) as a closed polyhedron: cEllipsoidRings rings of
 // cEllipsoidSegments vertices between two poles, every vertex on the surface (docs/mjcf.md).
@@ -106,7 +91,7 @@ class MjcfTranslation
         mFragment.model.name = mModelName;
         mFragment.model.contact.frictionMix = core::FrictionMix::Larger; // MuJoCo's rule for a pair
         mFragment.model.simulation.dt = m->opt.timestep;                 // s
-        mFragment.model.simulation.gravity = mPlacement.orientation * vec3(m->opt.gravity); // m/s^2
+        mFragment.model.simulation.gravity = mPlacement.orientation * mujocoVec3(m->opt.gravity); // m/s^2
         mFragment.report.name = mModelName;
         mFragment.report.prefix = mPlacement.prefix;
         mFragment.report.file = mPath;
@@ -193,9 +178,9 @@ class MjcfTranslation
         {
             if (m->body_weldid[b] == weld)
             {
-                const core::Mat3 r = toScene(mat3(mData->ximat + 9 * b));
-                parts.push_back({m->body_mass[b], toScene(vec3(mData->xipos + 3 * b)),
-                                 r * vec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose()});
+                const core::Mat3 r = toScene(mujocoMat3(mData->ximat + 9 * b));
+                parts.push_back({m->body_mass[b], toScene(mujocoVec3(mData->xipos + 3 * b)),
+                                 r * mujocoVec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose()});
             }
         }
         return combineMassParts(parts);
@@ -234,10 +219,10 @@ class MjcfTranslation
                 warn("body " + quotedName(bodyName(b)) + " has no mass: given " + formatNumber(mass) +
                      " kg, a frame's share of what it carries");
                 group.mass = mass;
-                group.centre = toScene(vec3(mData->xpos + 3 * b));
+                group.centre = toScene(mujocoVec3(mData->xpos + 3 * b));
                 group.inertia = mass * 1e-4 * core::Mat3::Identity(); // a 1 cm radius of gyration
             }
-            const core::Mat3 rotation = toScene(mat3(mData->ximat + 9 * b));
+            const core::Mat3 rotation = toScene(mujocoMat3(mData->ximat + 9 * b));
             core::Body body;
             body.name = mPlacement.prefix + bodyName(b);
             body.mass = group.mass;
@@ -293,7 +278,7 @@ class MjcfTranslation
             }
             core::Body& body = mFragment.model.bodies[movedBy(j)];
             const core::Vec3 axis_B =
-                body.orientation_WB.conjugate() * (mPlacement.orientation * vec3(mData->xaxis + 3 * j));
+                body.orientation_WB.conjugate() * (mPlacement.orientation * mujocoVec3(mData->xaxis + 3 * j));
             if (m->jnt_type[j] == mjJNT_HINGE)
             {
                 body.inertia_B += 0.5 * armature * (core::Mat3::Identity() + axis_B * axis_B.transpose());
@@ -320,10 +305,10 @@ class MjcfTranslation
     {
         mjtNum motion[6]; // angular, then linear at the body's inertial frame origin (world axes)
         mj_objectVelocity(m, mData.get(), mjOBJ_BODY, b, motion, 0);
-        const core::Vec3 omega = mPlacement.orientation * vec3(motion);
-        const core::Vec3 v = mPlacement.orientation * vec3(motion + 3);
+        const core::Vec3 omega = mPlacement.orientation * mujocoVec3(motion);
+        const core::Vec3 v = mPlacement.orientation * mujocoVec3(motion + 3);
         body.angularVelocity_W = omega;
-        body.velocity_W = v + omega.cross(body.position_W - toScene(vec3(mData->xipos + 3 * b)));
+        body.velocity_W = v + omega.cross(body.position_W - toScene(mujocoVec3(mData->xipos + 3 * b)));
     }
 
     // Starting velocities from qvel (a keyframe's): a frame moves as its body would with the joints
@@ -368,8 +353,8 @@ class MjcfTranslation
         {
             const int index = bodyOf(m->geom_bodyid[g]);
             core::Body& body = model.bodies[index];
-            const core::Vec3 p_W = toScene(vec3(mData->geom_xpos + 3 * g));
-            const core::Mat3 r_W = toScene(mat3(mData->geom_xmat + 9 * g));
+            const core::Vec3 p_W = toScene(mujocoVec3(mData->geom_xpos + 3 * g));
+            const core::Mat3 r_W = toScene(mujocoMat3(mData->geom_xmat + 9 * g));
             const mjtNum* size = m->geom_size + 3 * g;
             core::Shape shape;
             switch (m->geom_type[g])
@@ -401,10 +386,10 @@ class MjcfTranslation
                 break;
             case mjGEOM_BOX:
                 shape.type = core::ShapeType::Box;
-                shape.size = 2.0 * vec3(size);
+                shape.size = 2.0 * mujocoVec3(size);
                 break;
             case mjGEOM_ELLIPSOID:
-                shape = ellipsoidMesh(vec3(size));
+                shape = ellipsoidMesh(mujocoVec3(size));
                 break;
             case mjGEOM_MESH:
                 shape = meshShape(m->geom_dataid[g]);
@@ -515,8 +500,8 @@ class MjcfTranslation
                     }
                 }
             }
-            core::setJointFrames(model, joint, toScene(vec3(mData->xanchor + 3 * j)),
-                                 mPlacement.orientation * vec3(mData->xaxis + 3 * j));
+            core::setJointFrames(model, joint, toScene(mujocoVec3(mData->xanchor + 3 * j)),
+                                 mPlacement.orientation * mujocoVec3(mData->xaxis + 3 * j));
             mJointIndex[j] = static_cast<int>(model.joints.size());
             model.joints.push_back(std::move(joint));
         }
@@ -760,7 +745,7 @@ class MjcfTranslation
     MjcfPlacement mPlacement;
     CompiledMjcf mCompiled;
     const mjModel* m;
-    std::unique_ptr<mjData, DataDeleter> mData;
+    MujocoData mData;
     std::string mModelName;
     ModelFragment mFragment;
     std::map<int, int> mBodyOfWeld;             // MuJoCo weld group -> Frontier body (0: the static body)

@@ -24,38 +24,10 @@
 namespace frontier::peers
 {
 
-void MujocoModelDeleter::operator()(mjModel_* model) const
-{
-    mj_deleteModel(model);
-}
-
 namespace
 {
-
-struct MujocoDataDeleter
-{
-    void operator()(mjData* data) const { mj_deleteData(data); }
-};
-using MujocoData = std::unique_ptr<mjData, MujocoDataDeleter>;
-
-struct VfsDeleter
-{
-    void operator()(mjVFS* vfs) const
-    {
-        mj_deleteVFS(vfs);
-        delete vfs;
-    }
-};
-
-core::Vec3 vec3(const mjtNum* v)
-{
-    return {v[0], v[1], v[2]};
-}
-
-core::Mat3 mat3(const mjtNum* m) // MuJoCo's 3x3 matrices are row-major
-{
-    return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(m);
-}
+using io::detail::mujocoMat3;
+using io::detail::mujocoVec3;
 
 // The offset just past the <mujoco ...> start tag, skipping comments and the XML declaration.
 std::size_t afterRootTag(const std::string& text)
@@ -129,9 +101,9 @@ Inertial mujocoGroup(const mjModel* m, const mjData* d, int weld)
     for (int b = 1; b < m->nbody; ++b)
         if (m->body_weldid[b] == weld)
         {
-            const core::Mat3 r = mat3(d->ximat + 9 * b);
-            group.add(m->body_mass[b], vec3(d->xipos + 3 * b),
-                      r * vec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose());
+            const core::Mat3 r = mujocoMat3(d->ximat + 9 * b);
+            group.add(m->body_mass[b], mujocoVec3(d->xipos + 3 * b),
+                      r * mujocoVec3(m->body_inertia + 3 * b).asDiagonal() * r.transpose());
         }
     group.finish();
     return group;
@@ -151,7 +123,7 @@ std::map<std::string, int> bodiesByName(const core::Model& model)
 struct MujocoAtStart
 {
     MujocoModel model;
-    MujocoData data;
+    io::detail::MujocoData data;
     std::vector<std::string> messages;
 };
 
@@ -242,7 +214,7 @@ MujocoModel loadMujocoModel(const std::string& path)
     if (root == std::string::npos)
         throw std::runtime_error(path + ": no <mujoco> root element");
     text.insert(root, "<compiler autolimits=\"true\"/>");
-    const std::unique_ptr<mjVFS, VfsDeleter> vfs(new mjVFS);
+    const io::detail::MujocoVfs vfs(new mjVFS);
     mj_defaultVFS(vfs.get());
     if (mj_makeEmptyFileVFS(vfs.get(), path.c_str(), static_cast<int>(text.size())) != 0)
         throw std::runtime_error(path + ": MuJoCo's virtual file system refused it");
@@ -314,7 +286,7 @@ MjcfInertia compareInertia(const std::string& path)
         if (armature == 0.0 || m->jnt_type[j] == mjJNT_FREE || !row.count(m->body_weldid[b]))
             continue;
         MjcfBodyInertia& entry = out.bodies[row.at(m->body_weldid[b])];
-        const core::Vec3 axis = vec3(d->xaxis + 3 * j);
+        const core::Vec3 axis = mujocoVec3(d->xaxis + 3 * j);
         if (m->jnt_type[j] == mjJNT_HINGE)
             entry.frontierInertia_W -= 0.5 * armature * (core::Mat3::Identity() + axis * axis.transpose());
         else if (m->jnt_type[j] == mjJNT_BALL)
@@ -389,8 +361,8 @@ MjcfMotion compareMotion(const std::string& path, const MjcfMotionSettings& s)
         {
             const auto [b, index] = pairs[p];
             const Inertial group = mujocoGroup(m, d, b);
-            const core::Vec3 centre = group.mass > 0.0 ? group.centre : vec3(d->xpos + 3 * b);
-            const core::Quat q(mat3(d->ximat + 9 * b));
+            const core::Vec3 centre = group.mass > 0.0 ? group.centre : mujocoVec3(d->xpos + 3 * b);
+            const core::Quat q(mujocoMat3(d->ximat + 9 * b));
             if (k == 0)
                 start.push_back({centre, q});
             out.travelM = std::max(out.travelM, (centre - start[p].position_W).norm());

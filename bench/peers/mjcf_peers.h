@@ -21,21 +21,16 @@
 #pragma once
 
 #include "core/model.h"
+#include "io/mujoco_util.h"
 
 #include <memory>
 #include <string>
 #include <vector>
 
-struct mjModel_;
-
 namespace frontier::peers
 {
 
-struct MujocoModelDeleter
-{
-    void operator()(mjModel_* model) const;
-};
-using MujocoModel = std::unique_ptr<mjModel_, MujocoModelDeleter>;
+using io::detail::MujocoModel;
 
 // MuJoCo's compiled model of the file (see above). Throws std::runtime_error with MuJoCo's message.
 MujocoModel loadMujocoModel(const std::string& path);
