@@ -2,7 +2,7 @@
 // core/extra_rows_solve.cpp; loop rows: core::buildLoopBlocks).
 #include "core/extra_rows.h"
 
-#include "core/collision_response.h"
+#include "core/contact_rows.h"
 #include "core/frontier_order.h"
 #include "core/joints/coordinates.h"
 

@@ -22,7 +22,7 @@
 // The contact impulse of the step is the change of the chain's total linear momentum (joint
 // impulses are internal).
 #include "contact_harness.h"
-#include "core/collision_response.h"
+#include "tests/support/collision_response.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>

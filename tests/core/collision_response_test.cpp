@@ -1,9 +1,10 @@
 // tests/core/collision_response_test.cpp: the paper's one-collision response (docs/method.md §1):
 // a sphere hitting the floor (closed forms for sticking and sliding), a chain struck at its end
 // (linear against dense, and against one dense KKT system with the three collision rows).
-#include "core/collision_response.h"
+#include "core/contact_rows.h"
 #include "core/dense_solver.h"
 #include "random_model.h"
+#include "tests/support/collision_response.h"
 
 #include <cmath>
 #include <cstdio>

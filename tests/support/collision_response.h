@@ -1,4 +1,4 @@
-// core/collision_response.h: the paper's collision response (docs/method.md §1): one collision of
+// tests/support/collision_response.h: the paper's collision response (docs/method.md §1): one collision of
 // articulated bodies, Moore and Wilhelms' impulse model with restitution and Coulomb friction.
 //
 // The collision is three rows (normal n, tangents t1, t2) at the contact point between body A
@@ -37,20 +37,5 @@ struct CollisionOutcome
 
 CollisionOutcome respondToCollision(const Model& model, const State& state, const CollisionEvent& event,
                                     SolverKind solver, int pgsIterations = 20);
-
-// The three collision rows: row k is d_k . (velocity of B's point - velocity of A's point),
-// d_0 = n, d_1, d_2 tangents. J_A, J_B are 3 x 6 (J_B zero for a world/static B).
-struct ContactRows
-{
-    Eigen::Matrix<double, 3, 6> J_A = Eigen::Matrix<double, 3, 6>::Zero();
-    Eigen::Matrix<double, 3, 6> J_B = Eigen::Matrix<double, 3, 6>::Zero();
-    Mat3 directions = Mat3::Identity(); // columns n, t1, t2
-};
-ContactRows contactRows(const Model& model, const State& state, int bodyA, int bodyB, const Vec3& point_W,
-                        const Vec3& normal_W);
-// The same rows, the first `count` of them, written into rows 0 .. count - 1 of J_A and J_B (the
-// 6 x 6 storage of an extra-row block; other rows untouched, J_B untouched for a world/static B).
-void writeContactRows(const Model& model, const State& state, int bodyA, int bodyB, const Vec3& point_W,
-                      const Vec3& normal_W, int count, Mat6& J_A, Mat6& J_B);
 
 } // namespace frontier::core
