@@ -33,28 +33,30 @@ const std::vector<std::string> cBodyKeys = {
     "position",   "orientation", "velocity", "angular_velocity", "color", "group",   "friction",
     "restitution"};
 
-const std::vector<std::string> cShapeTypes = {"box", "sphere", "capsule", "cylinder", "plane", "mesh"};
+// Each shape type's YAML name and the keys its map may hold: one row per core::ShapeType.
+struct ShapeSyntax
+{
+    core::ShapeType type;
+    std::string name;
+    std::vector<std::string> keys;
+};
+const std::vector<ShapeSyntax> cShapeSyntax = {
+    {core::ShapeType::Box, "box", {"type", "size", "position", "orientation"}},
+    {core::ShapeType::Sphere, "sphere", {"type", "radius", "position", "orientation"}},
+    {core::ShapeType::Capsule, "capsule", {"type", "radius", "length", "position", "orientation"}},
+    {core::ShapeType::Cylinder, "cylinder", {"type", "radius", "length", "position", "orientation"}},
+    {core::ShapeType::Plane, "plane", {"type", "normal", "offset"}},
+    {core::ShapeType::Mesh, "mesh", {"type", "file", "scale", "position", "orientation"}},
+};
+const std::vector<std::string> cShapeTypes = []
+{
+    std::vector<std::string> names;
+    for (const ShapeSyntax& syntax : cShapeSyntax)
+        names.push_back(syntax.name);
+    return names;
+}();
 const std::vector<std::string> cAllShapeKeys = {"type",   "size", "radius", "length",   "normal",
                                                 "offset", "file", "scale",  "position", "orientation"};
-
-std::vector<std::string> shapeKeys(core::ShapeType type)
-{
-    switch (type)
-    {
-    case core::ShapeType::Box:
-        return {"type", "size", "position", "orientation"};
-    case core::ShapeType::Sphere:
-        return {"type", "radius", "position", "orientation"};
-    case core::ShapeType::Capsule:
-    case core::ShapeType::Cylinder:
-        return {"type", "radius", "length", "position", "orientation"};
-    case core::ShapeType::Plane:
-        return {"type", "normal", "offset"};
-    case core::ShapeType::Mesh:
-        return {"type", "file", "scale", "position", "orientation"};
-    }
-    return {};
-}
 
 struct ShapeEntry
 {
@@ -130,9 +132,9 @@ ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::
                    " (known: " + joinNames(cShapeTypes) + ")");
     }
     core::Shape& shape = entry.shape;
-    shape.type = static_cast<core::ShapeType>(typeIndex); // cShapeTypes follows the enum's order
+    shape.type = cShapeSyntax[typeIndex].type;
     map.setContext(typeName + " " + context);
-    map.checkKeys(shapeKeys(shape.type));
+    map.checkKeys(cShapeSyntax[typeIndex].keys);
     switch (shape.type)
     {
     case core::ShapeType::Box:
