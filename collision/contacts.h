@@ -80,8 +80,11 @@ class ContactDetector final : public core::ContactSource
     double margin() const;
     const DetectorStats& stats() const;
 
-  private:
+    // The detector's state, defined in collision/detector.h (private to collision/: its narrowphase
+    // table names Impl's pair functions).
     struct Impl;
+
+  private:
     std::unique_ptr<Impl> mImpl;
 };
 

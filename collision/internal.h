@@ -55,6 +55,27 @@ struct ShapeGeometry
     double hullDeviation = 0.0;
 };
 
+// How a shape collides: the key of the narrowphase table (narrowphase.cpp). A mesh is a Hull when
+// it collides as its convex hull (a moving mesh), Triangles when as its triangles (FCL's BVH: a
+// static mesh, or one without a 3-d hull). Planes are not instances (the plane pass handles them).
+enum class CollisionKind : std::uint8_t
+{
+    Sphere,
+    Capsule,
+    Box,
+    Cylinder,
+    Hull,
+    Triangles,
+};
+inline constexpr int cCollisionKinds = 6;
+
+// "sphere", "capsule", "box", "cylinder", "hull", "triangles".
+const char* collisionKindName(CollisionKind kind);
+
+// The name of the narrowphase function of a pair of kinds (narrowphase.cpp's table), in either
+// order; nullptr when the table has no entry for the pair.
+const char* narrowphaseName(CollisionKind a, CollisionKind b);
+
 // One non-plane shape of one body, with its geometry in its own frame S and its current pose.
 struct ShapeInstance
 {
@@ -64,6 +85,7 @@ struct ShapeInstance
     // triangles (FCL's BVH). False for static meshes (terrain may be concave) and for meshes
     // without a 3-d hull (flat or collinear vertices: they keep the triangles).
     bool convexHull = false;
+    CollisionKind kind = CollisionKind::Box;       // set with type and convexHull
     Vec3 halfExtents = Vec3::Zero();               // Box (m)
     double radius = 0.0;                           // Sphere, Capsule, Cylinder (m)
     double halfLength = 0.0;                       // Capsule: half segment; Cylinder: half height (m)
@@ -143,12 +165,8 @@ void featureContacts(const ShapeInstance& a, const ShapeInstance& b, const RawCo
                      double margin, std::vector<RawContact>& out);
 
 // --- polytope_manifold.cpp -----------------------------------------------------------------
-// A box or a convex-hull mesh: it has a `hull` to clip faces with.
-bool isPolytope(const ShapeInstance& s);
-
-// True for two polytopes of which at least one is a hull mesh (box-box keeps FCL's own
-// box-box manifold).
-bool usesPolytopeManifold(const ShapeInstance& a, const ShapeInstance& b);
+// The narrowphase table (narrowphase.cpp) sends here a hull against a hull or a box, and a box
+// or a hull against each triangle of a triangle mesh (box-box keeps FCL's own manifold).
 
 // Appends the contacts of two polytopes whose separation is below margin (m), normals from a
 // towards b: one face clipped against the other along the best of the reference normal and
@@ -178,8 +196,8 @@ bool separatedAlongAxis(const ShapeInstance& a, const ShapeInstance& b, const Ve
                         double* separation = nullptr);
 
 // --- swept_spheres.cpp ----------------------------------------------------------------------
-// Spheres and capsules (sphere-swept segments) against each other in closed form.
-bool isSweptSphere(core::ShapeType type);
+// Spheres and capsules (sphere-swept segments) against each other in closed form (the
+// narrowphase table's sweptSpherePair).
 
 // The contact of two spheres or capsules when their separation is below margin (m): on the line
 // joining the closest points of their segments, normal from a towards b, depth = the radii less

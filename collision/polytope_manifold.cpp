@@ -141,16 +141,6 @@ bool setTrianglePolytope(const Vec3& t0_W, const Vec3& t1_W, const Vec3& t2_W, S
     return true;
 }
 
-bool isPolytope(const ShapeInstance& s)
-{
-    return s.convexHull || s.type == core::ShapeType::Box;
-}
-
-bool usesPolytopeManifold(const ShapeInstance& a, const ShapeInstance& b)
-{
-    return isPolytope(a) && isPolytope(b) && (a.convexHull || b.convexHull);
-}
-
 void polytopeContacts(const ShapeInstance& a, const ShapeInstance& b, const RawContact& reference,
                       double margin, std::vector<RawContact>& out)
 {

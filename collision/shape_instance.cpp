@@ -2,6 +2,7 @@
 #include "collision/internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -51,7 +52,134 @@ ConvexHull boxPolytope(const Vec3& half)
     return box;
 }
 
+// The hull of a mesh that collides as one (meshAsHull), of at most maxHullCorners corners when
+// that is positive (collision/README.md "Meshes"): the capped hull lies inside the full one, at
+// most hullDeviation from it. Should qhull fail on the subset (it never has), the full hull stays.
+// False when the mesh has no 3-d hull (flat, collinear, under 4 points): it keeps its triangles,
+// and still collides as before; a flat plate has no volume for GJK/EPA to work in.
+bool buildHull(const core::Shape& shape, bool meshAsHull, int maxHullCorners, ShapeGeometry& g)
+{
+    std::string reason;
+    if (!meshAsHull || !computeConvexHull(shape.vertices, g.hull, reason))
+        return false;
+    if (maxHullCorners > 0 && g.hull.vertices.size() > static_cast<std::size_t>(maxHullCorners))
+    {
+        ConvexHull capped;
+        if (capConvexHull(g.hull, maxHullCorners, capped, reason))
+        {
+            g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
+            g.hullDeviation = hullDeviation(g.hull, capped);
+            g.hull = std::move(capped);
+        }
+    }
+    if (g.fullHullCorners == 0)
+        g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
+    return true;
+}
+
+// Each hull corner's neighbours along its edges, and the seeds of the climb (hullExtremeCorner).
+void buildHullClimb(ShapeGeometry& g)
+{
+    g.hullNeighbours.assign(g.hull.vertices.size(), {});
+    for (const int start : g.hull.faceStart)
+    {
+        const int n = g.hull.faces[static_cast<std::size_t>(start)];
+        for (int k = 0; k < n; ++k)
+        {
+            const int i = g.hull.faces[static_cast<std::size_t>(start + 1 + k)];
+            const int j = g.hull.faces[static_cast<std::size_t>(start + 1 + (k + 1) % n)];
+            g.hullNeighbours[static_cast<std::size_t>(i)].push_back(j); // each edge is in two faces,
+        }                                                               // once either way round
+    }
+    g.hullSeeds = {0};
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z)
+                if (x != 0 || y != 0 || z != 0)
+                    g.hullSeeds.push_back(hullExtremeCorner(g, Vec3(x, y, z)));
+    std::sort(g.hullSeeds.begin(), g.hullSeeds.end());
+    g.hullSeeds.erase(std::unique(g.hullSeeds.begin(), g.hullSeeds.end()), g.hullSeeds.end());
+}
+
+// The box along the shape frame's axes that holds the mesh's vertices.
+void setMeshBox(ShapeGeometry& g)
+{
+    if (g.meshVertices.empty())
+        return;
+    Vec3 lo = g.meshVertices.front(), hi = lo;
+    for (const Vec3& v : g.meshVertices)
+    {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    g.meshBoxCentre = 0.5 * (lo + hi);
+    g.meshBoxHalf = 0.5 * (hi - lo);
+}
+
+// A mesh's sizes and geometry: its hull (Hull) or its unique vertices (Triangles).
+void setMesh(const core::Shape& shape, bool meshAsHull, int maxHullCorners, ShapeInstance& s,
+             ShapeGeometry& g)
+{
+    s.convexHull = buildHull(shape, meshAsHull, maxHullCorners, g);
+    s.kind = s.convexHull ? CollisionKind::Hull : CollisionKind::Triangles;
+    // Only the hull's corners can be a deepest point (against a plane, a face, along an axis), so
+    // the plane and feature contacts, bounds and support functions use them.
+    g.meshVertices = s.convexHull ? g.hull.vertices : uniqueVertices(shape.vertices);
+    for (const Vec3& v : g.meshVertices)
+        s.boundingRadius = std::max(s.boundingRadius, v.norm());
+    if (s.convexHull)
+        buildHullClimb(g);
+    setMeshBox(g);
+    s.mergeDistance = 0.05 * s.boundingRadius;
+}
+
+// The sizes of a primitive (box, sphere, capsule, cylinder); a box's polytope into g when built.
+void setPrimitive(const core::Shape& shape, bool buildGeometry, ShapeInstance& s, ShapeGeometry& g)
+{
+    switch (shape.type)
+    {
+    case core::ShapeType::Box:
+        s.kind = CollisionKind::Box;
+        s.halfExtents = 0.5 * shape.size;
+        if (buildGeometry)
+            g.hull = boxPolytope(s.halfExtents);
+        s.boundingRadius = s.halfExtents.norm();
+        s.mergeDistance = 0.25 * shape.size.minCoeff();
+        break;
+    case core::ShapeType::Sphere:
+        s.kind = CollisionKind::Sphere;
+        s.radius = shape.radius;
+        s.boundingRadius = shape.radius;
+        s.mergeDistance = 0.25 * shape.radius;
+        break;
+    case core::ShapeType::Capsule:
+        s.kind = CollisionKind::Capsule;
+        s.radius = shape.radius;
+        s.halfLength = 0.5 * shape.length;
+        s.boundingRadius = s.radius + s.halfLength;
+        s.mergeDistance = 0.25 * shape.radius;
+        break;
+    case core::ShapeType::Cylinder:
+        s.kind = CollisionKind::Cylinder;
+        s.radius = shape.radius;
+        s.halfLength = 0.5 * shape.length;
+        s.boundingRadius = std::hypot(s.radius, s.halfLength);
+        s.mergeDistance = 0.25 * shape.radius;
+        break;
+    case core::ShapeType::Mesh:
+    case core::ShapeType::Plane:
+        break; // a mesh: setMesh; planes are not instances (contacts.cpp keeps them apart)
+    }
+}
+
 } // namespace
+
+const char* collisionKindName(CollisionKind kind)
+{
+    static constexpr std::array<const char*, cCollisionKinds> names = {"sphere",   "capsule", "box",
+                                                                       "cylinder", "hull",    "triangles"};
+    return names[static_cast<std::size_t>(kind)];
+}
 
 ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsHull,
                                 std::shared_ptr<const ShapeGeometry> shared, int maxHullCorners)
@@ -61,103 +189,15 @@ ShapeInstance makeShapeInstance(const core::Shape& shape, int body, bool meshAsH
         shared = nullptr; // a mesh's geometry is its own
     std::shared_ptr<ShapeGeometry> own = shared ? nullptr : std::make_shared<ShapeGeometry>();
     ShapeGeometry unused;
-    ShapeGeometry& g = own ? *own : unused; // what the switch below builds
+    ShapeGeometry& g = own ? *own : unused; // what the steps below build
     s.body = body;
     s.type = shape.type;
     s.R_BS = shape.rotation_BS.normalized().toRotationMatrix();
     s.p_BS = shape.position_BS;
-    switch (shape.type)
-    {
-    case core::ShapeType::Box:
-        s.halfExtents = 0.5 * shape.size;
-        if (own)
-            g.hull = boxPolytope(s.halfExtents);
-        s.boundingRadius = s.halfExtents.norm();
-        s.mergeDistance = 0.25 * shape.size.minCoeff();
-        break;
-    case core::ShapeType::Sphere:
-        s.radius = shape.radius;
-        s.boundingRadius = shape.radius;
-        s.mergeDistance = 0.25 * shape.radius;
-        break;
-    case core::ShapeType::Capsule:
-        s.radius = shape.radius;
-        s.halfLength = 0.5 * shape.length;
-        s.boundingRadius = s.radius + s.halfLength;
-        s.mergeDistance = 0.25 * shape.radius;
-        break;
-    case core::ShapeType::Cylinder:
-        s.radius = shape.radius;
-        s.halfLength = 0.5 * shape.length;
-        s.boundingRadius = std::hypot(s.radius, s.halfLength);
-        s.mergeDistance = 0.25 * shape.radius;
-        break;
-    case core::ShapeType::Mesh:
-    {
-        // A mesh without a 3-d hull (flat, collinear, under 4 points) keeps its triangles: it
-        // still collides as before, and a flat plate has no volume for GJK/EPA to work in.
-        std::string reason;
-        s.convexHull = meshAsHull && computeConvexHull(shape.vertices, g.hull, reason);
-        if (s.convexHull && maxHullCorners > 0 &&
-            g.hull.vertices.size() > static_cast<std::size_t>(maxHullCorners))
-        {
-            // At most maxHullCorners corners (collision/README.md "Meshes"): the capped hull lies
-            // inside the full one, at most hullDeviation from it. Should qhull fail on the subset
-            // (it never has), the full hull stays.
-            ConvexHull capped;
-            if (capConvexHull(g.hull, maxHullCorners, capped, reason))
-            {
-                g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
-                g.hullDeviation = hullDeviation(g.hull, capped);
-                g.hull = std::move(capped);
-            }
-        }
-        if (s.convexHull && g.fullHullCorners == 0)
-            g.fullHullCorners = static_cast<int>(g.hull.vertices.size());
-        // Only the hull's corners can be a deepest point (against a plane, a face, along an
-        // axis), so the plane and feature contacts, bounds and support functions use them.
-        g.meshVertices = s.convexHull ? g.hull.vertices : uniqueVertices(shape.vertices);
-        for (const Vec3& v : g.meshVertices)
-            s.boundingRadius = std::max(s.boundingRadius, v.norm());
-        if (s.convexHull)
-        {
-            g.hullNeighbours.assign(g.hull.vertices.size(), {});
-            for (const int start : g.hull.faceStart)
-            {
-                const int n = g.hull.faces[static_cast<std::size_t>(start)];
-                for (int k = 0; k < n; ++k)
-                {
-                    const int i = g.hull.faces[static_cast<std::size_t>(start + 1 + k)];
-                    const int j = g.hull.faces[static_cast<std::size_t>(start + 1 + (k + 1) % n)];
-                    g.hullNeighbours[static_cast<std::size_t>(i)].push_back(j); // each edge is in two faces,
-                }                                                               // once either way round
-            }
-            g.hullSeeds = {0};
-            for (int x = -1; x <= 1; ++x)
-                for (int y = -1; y <= 1; ++y)
-                    for (int z = -1; z <= 1; ++z)
-                        if (x != 0 || y != 0 || z != 0)
-                            g.hullSeeds.push_back(hullExtremeCorner(g, Vec3(x, y, z)));
-            std::sort(g.hullSeeds.begin(), g.hullSeeds.end());
-            g.hullSeeds.erase(std::unique(g.hullSeeds.begin(), g.hullSeeds.end()), g.hullSeeds.end());
-        }
-        if (!g.meshVertices.empty())
-        {
-            Vec3 lo = g.meshVertices.front(), hi = lo;
-            for (const Vec3& v : g.meshVertices)
-            {
-                lo = lo.cwiseMin(v);
-                hi = hi.cwiseMax(v);
-            }
-            g.meshBoxCentre = 0.5 * (lo + hi);
-            g.meshBoxHalf = 0.5 * (hi - lo);
-        }
-        s.mergeDistance = 0.05 * s.boundingRadius;
-        break;
-    }
-    case core::ShapeType::Plane:
-        break; // planes are not instances (contacts.cpp keeps them apart)
-    }
+    if (shape.type == core::ShapeType::Mesh)
+        setMesh(shape, meshAsHull, maxHullCorners, s, g);
+    else
+        setPrimitive(shape, own != nullptr, s, g);
     s.mergeDistance = std::max(s.mergeDistance, 1e-9);
     s.geometry = shared ? std::move(shared) : std::move(own);
     return s;

@@ -78,11 +78,6 @@ void closestParameters(const Segment& one, const Segment& two, double& s, double
 
 } // namespace
 
-bool isSweptSphere(core::ShapeType type)
-{
-    return type == core::ShapeType::Sphere || type == core::ShapeType::Capsule;
-}
-
 bool sweptSphereContact(const ShapeInstance& a, const ShapeInstance& b, double margin, RawContact& out,
                         double* separation)
 {
