@@ -289,9 +289,12 @@ void writeStats(const std::string& path, const RunStats& stats)
     file.commit();
 }
 
-RunStats readStats(const std::string& path)
+namespace
 {
-    const std::string text = detail::readTextFile(path);
+
+// The file's text as a JSON object: nested no deeper than a stats file may be, errors located.
+nlohmann::json parseStatsJson(const std::string& path, const std::string& text)
+{
     if (const std::size_t deep = tooDeep(text, cMaxStatsDepth); deep != std::string::npos)
     {
         const detail::TextPosition at = detail::positionOf(text, deep);
@@ -315,8 +318,12 @@ RunStats readStats(const std::string& path)
     {
         throw InputError(path, 1, 1, "expected a JSON object");
     }
-    const Reader r(path, json);
-    RunStats s;
+    return json;
+}
+
+// The keys every stats file has.
+void readRequired(const Reader& r, RunStats& s)
+{
     s.scene = r.string("scene");
     s.solver = r.string("solver");
     s.integrator = r.string("integrator");
@@ -337,6 +344,11 @@ RunStats readStats(const std::string& path)
     s.energyFinalJ = r.number("energy_final_j");
     s.maxContacts = static_cast<int>(r.integer("max_contacts"));
     s.finite = r.boolean("finite");
+}
+
+// The keys a stats file may leave out, and numbers under keys of their own (kept as extras).
+void readOptional(const std::string& path, nlohmann::json& json, const Reader& r, RunStats& s)
+{
     s.completed = !json.contains("completed") || r.boolean("completed");
     if (json.contains("failure"))
     {
@@ -367,6 +379,18 @@ RunStats readStats(const std::string& path)
             s.extra[key] = r.number(key);
         }
     }
+}
+
+} // namespace
+
+RunStats readStats(const std::string& path)
+{
+    const std::string text = detail::readTextFile(path);
+    nlohmann::json json = parseStatsJson(path, text);
+    const Reader r(path, json);
+    RunStats s;
+    readRequired(r, s);
+    readOptional(path, json, r, s);
     return s;
 }
 
