@@ -226,6 +226,28 @@ void fillModelCounts(RunStats& stats, const core::Model& model)
     stats.degreesOfFreedom = 6 * stats.bodies - stats.constraintRows;
 }
 
+namespace
+{
+// One actuator's entry: its joint, coordinate and type, tracking (not for an effort actuator),
+// effort and steps at its limit.
+Json actuatorJson(const ActuatorStats& a)
+{
+    Json entry;
+    entry["joint"] = a.joint;
+    entry["coordinate"] = a.coordinate;
+    entry["type"] = a.type;
+    if (a.type != "effort")
+    {
+        entry["tracking_rms"] = number(a.trackingRms);
+        entry["tracking_max"] = number(a.trackingMax);
+    }
+    entry["effort_rms"] = number(a.effortRms);
+    entry["effort_max"] = number(a.effortMax);
+    entry["limit_steps"] = a.limitSteps;
+    return entry;
+}
+} // namespace
+
 void writeStats(const std::string& path, const RunStats& stats)
 {
     Json json;
@@ -263,19 +285,7 @@ void writeStats(const std::string& path, const RunStats& stats)
     json["actuators"] = Json::array();
     for (const ActuatorStats& a : stats.actuators)
     {
-        Json entry;
-        entry["joint"] = a.joint;
-        entry["coordinate"] = a.coordinate;
-        entry["type"] = a.type;
-        if (a.type != "effort")
-        {
-            entry["tracking_rms"] = number(a.trackingRms);
-            entry["tracking_max"] = number(a.trackingMax);
-        }
-        entry["effort_rms"] = number(a.effortRms);
-        entry["effort_max"] = number(a.effortMax);
-        entry["limit_steps"] = a.limitSteps;
-        json["actuators"].push_back(entry);
+        json["actuators"].push_back(actuatorJson(a));
     }
     for (const auto& [key, value] : stats.extra)
     {
