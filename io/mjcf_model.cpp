@@ -15,6 +15,7 @@
 #include <map>
 #include <mujoco/mujoco.h>
 #include <numbers>
+#include <optional>
 #include <set>
 
 namespace frontier::io::detail
@@ -344,6 +345,12 @@ class MjcfTranslation
         }
     }
 
+    // "geom 'NAME'" (or "geom '#N'" for an unnamed one), as messages name it.
+    std::string geomWhat(int g) const
+    {
+        return "geom " + quotedName(name(mjOBJ_GEOM, g, "#" + std::to_string(g)));
+    }
+
     // Each geom as a shape of its body (docs/mjcf.md: planes, ellipsoids, meshes, visual-only geoms).
     void addShapes()
     {
@@ -355,56 +362,13 @@ class MjcfTranslation
             core::Body& body = model.bodies[index];
             const core::Vec3 p_W = toScene(mujocoVec3(mData->geom_xpos + 3 * g));
             const core::Mat3 r_W = toScene(mujocoMat3(mData->geom_xmat + 9 * g));
-            const mjtNum* size = m->geom_size + 3 * g;
-            core::Shape shape;
-            switch (m->geom_type[g])
+            std::optional<core::Shape> shape = geomShape(g, body, p_W, r_W);
+            if (!shape)
             {
-            case mjGEOM_PLANE:
-                if (!body.isStatic)
-                {
-                    warn("geom " + quotedName(name(mjOBJ_GEOM, g, "#" + std::to_string(g))) +
-                         ": a plane on a moving body is not supported; it is ignored");
-                    continue;
-                }
-                shape.type = core::ShapeType::Plane;
-                shape.normal = r_W.col(2);
-                shape.offset = shape.normal.dot(p_W);
-                break;
-            case mjGEOM_SPHERE:
-                shape.type = core::ShapeType::Sphere;
-                shape.radius = size[0];
-                break;
-            case mjGEOM_CAPSULE:
-                shape.type = core::ShapeType::Capsule;
-                shape.radius = size[0];
-                shape.length = 2.0 * size[1];
-                break;
-            case mjGEOM_CYLINDER:
-                shape.type = core::ShapeType::Cylinder;
-                shape.radius = size[0];
-                shape.length = 2.0 * size[1];
-                break;
-            case mjGEOM_BOX:
-                shape.type = core::ShapeType::Box;
-                shape.size = 2.0 * mujocoVec3(size);
-                break;
-            case mjGEOM_ELLIPSOID:
-                shape = ellipsoidMesh(mujocoVec3(size));
-                break;
-            case mjGEOM_MESH:
-                shape = meshShape(m->geom_dataid[g]);
-                break;
-            default:
-            {
-                const auto where = mCompiled.unsupported.find("hfield");
-                warn("geom " + quotedName(name(mjOBJ_GEOM, g, "#" + std::to_string(g))) +
-                         ": height fields are not supported; it is ignored (nothing collides with it)",
-                     where == mCompiled.unsupported.end() ? 0 : where->second.line);
                 continue;
             }
-            }
-            shape.position_BS = body.orientation_WB.conjugate() * (p_W - body.position_W);
-            shape.rotation_BS = (body.orientation_WB.conjugate() * core::Quat(r_W)).normalized();
+            shape->position_BS = body.orientation_WB.conjugate() * (p_W - body.position_W);
+            shape->rotation_BS = (body.orientation_WB.conjugate() * core::Quat(r_W)).normalized();
             if (colored.insert(index).second)
             {
                 const int material = m->geom_matid[g];
@@ -414,24 +378,83 @@ class MjcfTranslation
             const bool collides = m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0;
             if (!collides)
             {
-                body.visuals.push_back(std::move(shape));
+                body.visuals.push_back(std::move(*shape));
                 continue;
             }
-            // A body takes the largest friction of its geoms, a pair the larger of its two bodies'
-            // (core::FrictionMix::Larger): MuJoCo's larger of the two geoms' where each body has one.
-            const double friction = m->geom_condim[g] == 1 ? 0.0 : m->geom_friction[3 * g];
-            body.friction = std::max(body.friction.value_or(0.0), friction);
-            if (m->geom_condim[g] > 3 && !mWarnedCondim)
-            {
-                mWarnedCondim = true;
-                warn("geom " + quotedName(name(mjOBJ_GEOM, g, "#" + std::to_string(g))) + ": condim " +
-                     std::to_string(m->geom_condim[g]) +
-                     " asks for torsional or rolling friction, which Frontier does not model (sliding "
-                     "friction only); the same holds for every such geom");
-            }
-            mColliders[index].push_back(g);
-            body.shapes.push_back(std::move(shape));
+            addCollider(g, index, body, std::move(*shape));
         }
+    }
+
+    // The geom's shape without its pose in the body (a plane's in the world: p_W, r_W); none, after
+    // a warning, for a geom Frontier does not take.
+    std::optional<core::Shape> geomShape(int g, const core::Body& body, const core::Vec3& p_W,
+                                         const core::Mat3& r_W)
+    {
+        const mjtNum* size = m->geom_size + 3 * g;
+        core::Shape shape;
+        switch (m->geom_type[g])
+        {
+        case mjGEOM_PLANE:
+            if (!body.isStatic)
+            {
+                warn(geomWhat(g) + ": a plane on a moving body is not supported; it is ignored");
+                return std::nullopt;
+            }
+            shape.type = core::ShapeType::Plane;
+            shape.normal = r_W.col(2);
+            shape.offset = shape.normal.dot(p_W);
+            break;
+        case mjGEOM_SPHERE:
+            shape.type = core::ShapeType::Sphere;
+            shape.radius = size[0];
+            break;
+        case mjGEOM_CAPSULE:
+            shape.type = core::ShapeType::Capsule;
+            shape.radius = size[0];
+            shape.length = 2.0 * size[1];
+            break;
+        case mjGEOM_CYLINDER:
+            shape.type = core::ShapeType::Cylinder;
+            shape.radius = size[0];
+            shape.length = 2.0 * size[1];
+            break;
+        case mjGEOM_BOX:
+            shape.type = core::ShapeType::Box;
+            shape.size = 2.0 * mujocoVec3(size);
+            break;
+        case mjGEOM_ELLIPSOID:
+            shape = ellipsoidMesh(mujocoVec3(size));
+            break;
+        case mjGEOM_MESH:
+            shape = meshShape(m->geom_dataid[g]);
+            break;
+        default:
+        {
+            const auto where = mCompiled.unsupported.find("hfield");
+            warn(geomWhat(g) + ": height fields are not supported; it is ignored (nothing collides with it)",
+                 where == mCompiled.unsupported.end() ? 0 : where->second.line);
+            return std::nullopt;
+        }
+        }
+        return shape;
+    }
+
+    // A colliding geom's shape into its body (index), with its friction.
+    void addCollider(int g, int index, core::Body& body, core::Shape shape)
+    {
+        // A body takes the largest friction of its geoms, a pair the larger of its two bodies'
+        // (core::FrictionMix::Larger): MuJoCo's larger of the two geoms' where each body has one.
+        const double friction = m->geom_condim[g] == 1 ? 0.0 : m->geom_friction[3 * g];
+        body.friction = std::max(body.friction.value_or(0.0), friction);
+        if (m->geom_condim[g] > 3 && !mWarnedCondim)
+        {
+            mWarnedCondim = true;
+            warn(geomWhat(g) + ": condim " + std::to_string(m->geom_condim[g]) +
+                 " asks for torsional or rolling friction, which Frontier does not model (sliding "
+                 "friction only); the same holds for every such geom");
+        }
+        mColliders[index].push_back(g);
+        body.shapes.push_back(std::move(shape));
     }
 
     core::Shape meshShape(int mesh) const
@@ -525,52 +548,12 @@ class MjcfTranslation
                             "sites, ball or free joints); it is ignored");
                 continue;
             }
-            const double gear = m->actuator_gear[6 * u];
-            const double gain = m->actuator_gainprm[mjNGAIN * u];
-            const mjtNum* bias = m->actuator_biasprm + mjNBIAS * u;
             core::Actuator actuator;
             actuator.joint = mJointIndex[j];
             actuator.coordinate = m->jnt_type[j] == mjJNT_HINGE ? core::JointCoordinate::Rotation
                                                                 : core::JointCoordinate::Slide;
-            // MuJoCo clamps a control into its range.
-            const double ctrl = m->actuator_ctrllimited[u]
-                                    ? std::clamp(mData->ctrl[u], m->actuator_ctrlrange[2 * u],
-                                                 m->actuator_ctrlrange[2 * u + 1])
-                                    : mData->ctrl[u];
-            if (m->actuator_gaintype[u] != mjGAIN_FIXED || gear == 0.0)
+            if (!setActuatorKind(u, what, actuator))
             {
-                warn(what + ": only fixed gains and a nonzero gear are supported; it is ignored");
-                continue;
-            }
-            if (m->actuator_biastype[u] == mjBIAS_NONE)
-            {
-                actuator.kind = core::ActuatorKind::Effort;
-                actuator.target = core::constantFunction(gain * gear * ctrl); // N m or N
-                if (m->actuator_ctrllimited[u])
-                {
-                    const mjtNum* range = m->actuator_ctrlrange + 2 * u;
-                    actuator.effortLimit =
-                        std::max(std::abs(range[0]), std::abs(range[1])) * std::abs(gain * gear);
-                }
-            }
-            else if (m->actuator_biastype[u] == mjBIAS_AFFINE && bias[0] == 0.0 && bias[1] == -gain &&
-                     bias[2] == 0.0)
-            {
-                actuator.kind = core::ActuatorKind::Position;
-                actuator.kp = gain * gear * gear; // N m/rad or N/m
-                actuator.target = core::constantFunction(ctrl / gear);
-            }
-            else if (m->actuator_biastype[u] == mjBIAS_AFFINE && bias[0] == 0.0 && bias[1] == 0.0 &&
-                     bias[2] == -gain)
-            {
-                actuator.kind = core::ActuatorKind::Velocity;
-                actuator.kd = gain * gear * gear; // N m s/rad or N s/m
-                actuator.target = core::constantFunction(ctrl / gear);
-            }
-            else
-            {
-                warn(what + ": a general actuator other than a motor, position or velocity servo is not "
-                            "supported; it is ignored");
                 continue;
             }
             if (m->actuator_dyntype[u] != mjDYN_NONE)
@@ -581,8 +564,9 @@ class MjcfTranslation
             if (m->actuator_forcelimited[u])
             {
                 const mjtNum* range = m->actuator_forcerange + 2 * u;
-                actuator.effortLimit = std::min(
-                    actuator.effortLimit, std::max(std::abs(range[0]), std::abs(range[1])) * std::abs(gear));
+                actuator.effortLimit =
+                    std::min(actuator.effortLimit, std::max(std::abs(range[0]), std::abs(range[1])) *
+                                                       std::abs(m->actuator_gear[6 * u]));
             }
             if (!driven.insert(mJointIndex[j]).second)
             {
@@ -592,6 +576,57 @@ class MjcfTranslation
             }
             model.actuators.push_back(std::move(actuator));
         }
+    }
+
+    // The actuator's kind, gain and constant target from its gain, bias, gear and control; false,
+    // after a warning, for one Frontier does not take.
+    bool setActuatorKind(int u, const std::string& what, core::Actuator& actuator)
+    {
+        const double gear = m->actuator_gear[6 * u];
+        const double gain = m->actuator_gainprm[mjNGAIN * u];
+        const mjtNum* bias = m->actuator_biasprm + mjNBIAS * u;
+        // MuJoCo clamps a control into its range.
+        const double ctrl =
+            m->actuator_ctrllimited[u]
+                ? std::clamp(mData->ctrl[u], m->actuator_ctrlrange[2 * u], m->actuator_ctrlrange[2 * u + 1])
+                : mData->ctrl[u];
+        if (m->actuator_gaintype[u] != mjGAIN_FIXED || gear == 0.0)
+        {
+            warn(what + ": only fixed gains and a nonzero gear are supported; it is ignored");
+            return false;
+        }
+        if (m->actuator_biastype[u] == mjBIAS_NONE)
+        {
+            actuator.kind = core::ActuatorKind::Effort;
+            actuator.target = core::constantFunction(gain * gear * ctrl); // N m or N
+            if (m->actuator_ctrllimited[u])
+            {
+                const mjtNum* range = m->actuator_ctrlrange + 2 * u;
+                actuator.effortLimit =
+                    std::max(std::abs(range[0]), std::abs(range[1])) * std::abs(gain * gear);
+            }
+        }
+        else if (m->actuator_biastype[u] == mjBIAS_AFFINE && bias[0] == 0.0 && bias[1] == -gain &&
+                 bias[2] == 0.0)
+        {
+            actuator.kind = core::ActuatorKind::Position;
+            actuator.kp = gain * gear * gear; // N m/rad or N/m
+            actuator.target = core::constantFunction(ctrl / gear);
+        }
+        else if (m->actuator_biastype[u] == mjBIAS_AFFINE && bias[0] == 0.0 && bias[1] == 0.0 &&
+                 bias[2] == -gain)
+        {
+            actuator.kind = core::ActuatorKind::Velocity;
+            actuator.kd = gain * gear * gear; // N m s/rad or N s/m
+            actuator.target = core::constantFunction(ctrl / gear);
+        }
+        else
+        {
+            warn(what + ": a general actuator other than a motor, position or velocity servo is not "
+                        "supported; it is ignored");
+            return false;
+        }
+        return true;
     }
 
     // A joint's spring (stiffness, springref) is a servo of that stiffness towards springref.

@@ -269,56 +269,103 @@ std::string PackagePaths::placesLooked(const std::string& name, bool gazeboModel
     return out;
 }
 
-ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urdfFile) const
+namespace
+{
+
+// A plain path or file:// URI, against the URDF's folder.
+ResolvedUri resolveFileUri(const std::string& uri, const std::string& baseDir)
 {
     ResolvedUri out;
-    const std::string baseDir = directoryOf(urdfFile);
-    const bool package = uri.starts_with("package://");
-    const bool model = uri.starts_with("model://");
-    if (!package && !model)
+    std::string path = uri;
+    if (uri.starts_with("file://"))
     {
-        std::string path = uri;
-        if (uri.starts_with("file://"))
-        {
-            path = percentDecoded(uri.substr(7));
-        }
-        else if (uri.find("://") != std::string::npos)
-        {
-            out.notFound = "unsupported URI scheme in '" + uri +
-                           "'; expected a file path, package://, model:// or file://";
-            return out;
-        }
-        path = resolvePath(baseDir, path);
-        if (!pathExists(path))
-        {
-            out.notFound = "no such file '" + path + "'";
-            return out;
-        }
-        out.path = path;
+        path = percentDecoded(uri.substr(7));
+    }
+    else if (uri.find("://") != std::string::npos)
+    {
+        out.notFound =
+            "unsupported URI scheme in '" + uri + "'; expected a file path, package://, model:// or file://";
         return out;
     }
+    path = resolvePath(baseDir, path);
+    if (!pathExists(path))
+    {
+        out.notFound = "no such file '" + path + "'";
+        return out;
+    }
+    out.path = path;
+    return out;
+}
+
+// package://NAME/PATH or model://NAME/PATH taken apart; `notFound` says why it names no file
+// inside its package.
+struct PackageUri
+{
+    std::string name;
+    std::string rest; // PATH
+    std::string notFound;
+};
+
+PackageUri packageUriParts(const std::string& uri, bool package)
+{
+    PackageUri out;
     std::string body = percentDecoded(uri.substr(package ? 10 : 8));
     if (body.starts_with('/'))
     {
         body.erase(0, 1); // package:///NAME/PATH, as some exporters write it, is package://NAME/PATH
     }
     const std::size_t slash = body.find('/');
-    const std::string name = body.substr(0, slash);
-    const std::string rest = slash == std::string::npos ? std::string() : body.substr(slash + 1);
-    if (name.empty() || rest.empty())
+    out.name = body.substr(0, slash);
+    out.rest = slash == std::string::npos ? std::string() : body.substr(slash + 1);
+    if (out.name.empty() || out.rest.empty())
     {
         out.notFound =
             "'" + uri + "' names no file; expected " + (package ? "package" : "model") + "://NAME/PATH";
         return out;
     }
-    const fs::path inside = fs::path(rest).lexically_normal();
-    if (name == "." || name == ".." || inside.has_root_path() || (!inside.empty() && *inside.begin() == ".."))
+    const fs::path inside = fs::path(out.rest).lexically_normal();
+    if (out.name == "." || out.name == ".." || inside.has_root_path() ||
+        (!inside.empty() && *inside.begin() == ".."))
     {
         out.notFound = "'" + uri + "' leads out of its package folder; expected " +
                        (package ? "package" : "model") +
                        "://NAME/PATH with PATH inside the package (no '..' " + "above it, not absolute)";
+    }
+    return out;
+}
+
+// The file in the package's folder `dir`.
+ResolvedUri resolveInPackage(const PackageUri& parts, const std::string& dir)
+{
+    ResolvedUri out;
+    const fs::path path = fs::path(dir) / parts.rest;
+    if (!pathExists(path))
+    {
+        out.notFound = "package '" + parts.name + "' is " + dir + ", which has no '" + parts.rest + "'";
         return out;
     }
+    out.path = path.lexically_normal().string();
+    return out;
+}
+
+} // namespace
+
+ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urdfFile) const
+{
+    const bool package = uri.starts_with("package://");
+    const bool model = uri.starts_with("model://");
+    if (!package && !model)
+    {
+        return resolveFileUri(uri, directoryOf(urdfFile));
+    }
+    const PackageUri parts = packageUriParts(uri, package);
+    ResolvedUri out;
+    if (!parts.notFound.empty())
+    {
+        out.notFound = parts.notFound;
+        return out;
+    }
+    const std::string& name = parts.name;
     std::optional<std::string> dir = findPackage(name, model);
     const std::vector<fs::path> ancestors = ancestorsOf(urdfFile);
     for (std::size_t i = 0; !dir && i < ancestors.size(); ++i) // 3: the URDF's own package
@@ -330,18 +377,11 @@ ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urd
     }
     if (dir)
     {
-        const fs::path path = fs::path(*dir) / rest;
-        if (!pathExists(path))
-        {
-            out.notFound = "package '" + name + "' is " + *dir + ", which has no '" + rest + "'";
-            return out;
-        }
-        out.path = path.lexically_normal().string();
-        return out;
+        return resolveInPackage(parts, *dir);
     }
     for (const fs::path& ancestor : ancestors) // 4: the files beside the URDF
     {
-        const fs::path path = ancestor / rest;
+        const fs::path path = ancestor / parts.rest;
         if (pathExists(path))
         {
             out.path = path.lexically_normal().string();
@@ -351,7 +391,7 @@ ResolvedUri PackagePaths::resolve(const std::string& uri, const std::string& urd
         }
     }
     out.notFound = "package '" + name + "' not found; looked in: " + placesLooked(name, model, urdfFile) +
-                   "; and found no '" + rest +
+                   "; and found no '" + parts.rest +
                    "' beside the URDF. Give --package-path DIR (the package, or a folder of packages) or "
                    "--package-path " +
                    name + "=DIR";

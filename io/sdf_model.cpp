@@ -471,11 +471,53 @@ class SdfConverter
         const Pose shapeWorld = place.world * toPose(pose);
         const sdf::Geometry& geometry = *collision.Geom();
         const sdf::ElementPtr at = geometry.Element() ? geometry.Element() : collision.Element();
+        if (geometry.Type() == sdf::GeometryType::EMPTY)
+        {
+            return;
+        }
+        if (geometry.Type() == sdf::GeometryType::PLANE)
+        {
+            body.shapes.push_back(
+                planeShape(geometry, at, what, shapeWorld, body)); // world frame: no pose in the body
+            takeFriction(place, collision, body);
+            return;
+        }
+        core::Shape shape = solidShape(geometry, at, what);
+        const Pose inBody = worldToBody * shapeWorld;
+        shape.position_BS = inBody.translation();
+        shape.rotation_BS = rotationOf(inBody);
+        body.shapes.push_back(std::move(shape));
+        takeFriction(place, collision, body);
+    }
+
+    // A <plane> (of a static link only) in the world frame, where shapeWorld puts it.
+    core::Shape planeShape(const sdf::Geometry& geometry, const sdf::ElementPtr& at, const std::string& what,
+                           const Pose& shapeWorld, const core::Body& body) const
+    {
+        if (!body.isStatic)
+        {
+            fail(at, what + " is a <plane>, which only a static link may have (a plane has no mass); "
+                            "make the model <static>, or fix the link to the world");
+        }
+        const core::Vec3 normal = toVec(geometry.PlaneShape()->Normal());
+        if (!(normal.allFinite() && normal.norm() > 1e-12))
+        {
+            fail(at, "the <normal> of " + what + " is (" + formatVector(normal) +
+                         "); expected a non-zero direction");
+        }
+        core::Shape shape;
+        shape.type = core::ShapeType::Plane;
+        shape.normal = (shapeWorld.linear() * normal.normalized()).normalized();
+        shape.offset = shape.normal.dot(shapeWorld.translation());
+        return shape;
+    }
+
+    // A box, sphere, cylinder, capsule or mesh, without its pose in the body.
+    core::Shape solidShape(const sdf::Geometry& geometry, const sdf::ElementPtr& at, const std::string& what)
+    {
         core::Shape shape;
         switch (geometry.Type())
         {
-        case sdf::GeometryType::EMPTY:
-            return;
         case sdf::GeometryType::BOX:
             shape.type = core::ShapeType::Box;
             shape.size = toVec(geometry.BoxShape()->Size());
@@ -503,26 +545,6 @@ class SdfConverter
             shape.length = geometry.CapsuleShape()->Length();
             checkLengths(at, what, "capsule radius and length", shape.radius, shape.length);
             break;
-        case sdf::GeometryType::PLANE:
-        {
-            if (!body.isStatic)
-            {
-                fail(at, what + " is a <plane>, which only a static link may have (a plane has no mass); "
-                                "make the model <static>, or fix the link to the world");
-            }
-            const core::Vec3 normal = toVec(geometry.PlaneShape()->Normal());
-            if (!(normal.allFinite() && normal.norm() > 1e-12))
-            {
-                fail(at, "the <normal> of " + what + " is (" + formatVector(normal) +
-                             "); expected a non-zero direction");
-            }
-            shape.type = core::ShapeType::Plane;
-            shape.normal = (shapeWorld.linear() * normal.normalized()).normalized();
-            shape.offset = shape.normal.dot(shapeWorld.translation());
-            body.shapes.push_back(std::move(shape)); // world frame: no pose in the body
-            takeFriction(place, collision, body);
-            return;
-        }
         case sdf::GeometryType::MESH:
             shape = readMesh(*geometry.MeshShape(), at, what);
             break;
@@ -530,11 +552,7 @@ class SdfConverter
             fail(at, what + " has a geometry Frontier does not support (supported: box, sphere, cylinder, "
                             "capsule, mesh, plane)");
         }
-        const Pose inBody = worldToBody * shapeWorld;
-        shape.position_BS = inBody.translation();
-        shape.rotation_BS = rotationOf(inBody);
-        body.shapes.push_back(std::move(shape));
-        takeFriction(place, collision, body);
+        return shape;
     }
 
     void checkLengths(const sdf::ElementPtr& at, const std::string& what, const std::string& quantity,
@@ -645,21 +663,47 @@ class SdfConverter
         }
         core::Joint j;
         j.name = name;
+        j.type = jointType(type, name, element);
+        const std::string reason = invalidNameReason(name);
+        if (!reason.empty())
+        {
+            fail(element, "invalid joint name '" + name + "': " + reason);
+        }
+        if (!setJointBodies(m, joint, element, j))
+        {
+            return;
+        }
+        ignition::math::Pose3d pose;
+        failOn(joint.SemanticPose().Resolve(pose, "__model__"), element, "the pose of joint '" + name + "'");
+        const Pose jointWorld = m.world * toPose(pose);
+        const core::Vec3 anchor = jointWorld.translation();
+        const std::array<core::Vec3, 2> axes = readAxes(m, joint, type, element, j);
+        if (type == sdf::JointType::UNIVERSAL)
+        {
+            setUniversalFrames(j, anchor, axes, name, element);
+        }
+        else
+        {
+            core::setJointFrames(mOut, j, anchor, axes[0]);
+        }
+        mOut.joints.push_back(std::move(j));
+    }
+
+    // Frontier's joint type for a moving SDF joint type.
+    core::JointType jointType(sdf::JointType type, const std::string& name,
+                              const sdf::ElementPtr& element) const
+    {
         switch (type)
         {
         case sdf::JointType::REVOLUTE:
         case sdf::JointType::CONTINUOUS:
-            j.type = core::JointType::Revolute;
-            break;
+            return core::JointType::Revolute;
         case sdf::JointType::PRISMATIC:
-            j.type = core::JointType::Prismatic;
-            break;
+            return core::JointType::Prismatic;
         case sdf::JointType::BALL:
-            j.type = core::JointType::Ball;
-            break;
+            return core::JointType::Ball;
         case sdf::JointType::UNIVERSAL:
-            j.type = core::JointType::Angle;
-            break;
+            return core::JointType::Angle;
         default:
         {
             const std::string word = element ? element->Get<std::string>("type") : "unknown";
@@ -669,11 +713,13 @@ class SdfConverter
                      "ball, universal, fixed)");
         }
         }
-        const std::string reason = invalidNameReason(name);
-        if (!reason.empty())
-        {
-            fail(element, "invalid joint name '" + name + "': " + reason);
-        }
+    }
+
+    // The joint's parent and child bodies; false (after a warning) for a joint between two static links.
+    bool setJointBodies(const ModelPlace& m, const sdf::Joint& joint, const sdf::ElementPtr& element,
+                        core::Joint& j)
+    {
+        const std::string& name = j.name;
         j.parent = bodyOfLink(linkOf(m, joint, true));
         j.child = bodyOfLink(linkOf(m, joint, false));
         const bool parentStatic =
@@ -684,7 +730,7 @@ class SdfConverter
             {
                 warn(element,
                      "joint '" + name + "' joins two static links (fixed to the world); it is ignored");
-                return;
+                return false;
             }
             fail(element, "joint '" + name +
                               "' has a static child link (fixed to the world); expected a moving "
@@ -694,10 +740,15 @@ class SdfConverter
         {
             fail(element, "joint '" + name + "' joins links that fixed joints weld into one body");
         }
-        ignition::math::Pose3d pose;
-        failOn(joint.SemanticPose().Resolve(pose, "__model__"), element, "the pose of joint '" + name + "'");
-        const Pose jointWorld = m.world * toPose(pose);
-        const core::Vec3 anchor = jointWorld.translation();
+        return true;
+    }
+
+    // The joint's axes in the world (none for a ball, two for a universal joint), each axis's
+    // settings into the joint.
+    std::array<core::Vec3, 2> readAxes(const ModelPlace& m, const sdf::Joint& joint, sdf::JointType type,
+                                       const sdf::ElementPtr& element, core::Joint& j)
+    {
+        const std::string& name = j.name;
         std::array<core::Vec3, 2> axes{core::Vec3::UnitZ(), core::Vec3::UnitX()};
         const int axisCount = type == sdf::JointType::BALL ? 0 : type == sdf::JointType::UNIVERSAL ? 2 : 1;
         for (int k = 0; k < axisCount; ++k)
@@ -717,15 +768,7 @@ class SdfConverter
             axes[static_cast<std::size_t>(k)] = (m.world.linear() * local.normalized()).normalized();
             readAxisSettings(name, type, k, *axis, j);
         }
-        if (type == sdf::JointType::UNIVERSAL)
-        {
-            setUniversalFrames(j, anchor, axes, name, element);
-        }
-        else
-        {
-            core::setJointFrames(mOut, j, anchor, axes[0]);
-        }
-        mOut.joints.push_back(std::move(j));
+        return axes;
     }
 
     // Limits, effort, damping and friction of axis k (the first axis only for all but universal).
@@ -991,6 +1034,135 @@ void addStandardModels(const std::vector<IncludeText>& includes, const std::set<
     }
 }
 
+// The text as XML: libsdformat reports bad XML as "Unable to read file" without a place, TinyXML
+// has it.
+void checkXml(const std::string& path, const std::string& text)
+{
+    TiXmlDocument document;
+    document.Parse(text.c_str());
+    if (document.Error())
+    {
+        throw InputError(path, std::max(1, document.ErrorRow()), std::max(1, document.ErrorCol()),
+                         std::string("invalid XML: ") + document.ErrorDesc());
+    }
+}
+
+// libsdformat's lookup of model:// URIs through the package paths, and what it did not find.
+struct ModelLookup
+{
+    const PackagePaths& packages;
+    const std::string& path;
+    std::set<std::string> missingStandard;       // model://sun, model://ground_plane not on the path
+    std::map<std::string, std::string> notFound; // uri -> where it was looked for
+
+    std::string find(const std::string& uri)
+    {
+        if (!uri.starts_with("model://"))
+        {
+            return {};
+        }
+        std::string name = uri.substr(8);
+        while (!name.empty() && name.back() == '/')
+        {
+            name.pop_back();
+        }
+        const ResolvedUri found = packages.resolve("model://" + name + "/model.config", path);
+        if (!found.path.empty() && found.note.empty())
+        {
+            return std::filesystem::path(found.path).parent_path().string();
+        }
+        if (uri == cSunUri || uri == cGroundPlaneUri)
+        {
+            missingStandard.insert(uri);
+        }
+        notFound[uri] =
+            found.notFound.empty() ? "not found (only files beside the SDF file match)" : found.notFound;
+        return {};
+    }
+
+    // libsdformat's errors as InputErrors; a standard model not on the path is none (added after).
+    void throwErrors(const sdf::Errors& errors) const
+    {
+        for (const sdf::Error& error : errors)
+        {
+            const std::string file = error.FilePath().value_or(path);
+            const int line = error.LineNumber().value_or(0);
+            if (error.Code() == sdf::ErrorCode::URI_LOOKUP)
+            {
+                const auto it =
+                    std::find_if(notFound.begin(), notFound.end(),
+                                 [&](const auto& entry)
+                                 { return error.Message().find(entry.first) != std::string::npos; });
+                if (it != notFound.end() && missingStandard.contains(it->first))
+                {
+                    continue;
+                }
+                throw InputError(
+                    file, line, 0,
+                    "<include> " +
+                        (it == notFound.end() ? error.Message() : "'" + it->first + "': " + it->second) +
+                        "; add its folder with --package-path or GAZEBO_MODEL_PATH");
+            }
+            throw InputError(file, line, 0, "invalid SDF: " + error.Message());
+        }
+    }
+};
+
+bool hasPlane(const core::Model& model)
+{
+    bool plane = false;
+    for (const core::Body& body : model.bodies)
+    {
+        for (const core::Shape& shape : body.shapes)
+        {
+            plane = plane || shape.type == core::ShapeType::Plane;
+        }
+    }
+    return plane;
+}
+
+// A world (or a file with its own ground) stays where it is; a robot alone is put on a floor.
+void placeScene(core::Model& model, bool isWorld, const UrdfOptions& options, const std::string& path,
+                std::vector<RobotReport>& robots, std::vector<std::string>& warnings)
+{
+    if (isWorld || hasPlane(model))
+    {
+        if (options.dropHeight)
+        {
+            throw InputError(
+                path, 0, 0,
+                "--drop-height places a robot alone on a floor; this file is a world (or has its "
+                "own ground plane) and places its models itself");
+        }
+        checkStartingState(model, path);
+        return;
+    }
+    if (model.name.empty() && !robots.empty())
+    {
+        model.name = robots.front().name;
+    }
+    if (robots.empty())
+    {
+        throw InputError(path, 0, 0, "the file has no <model>");
+    }
+    placeOnFloor(model, path, options.dropHeight,
+                 "held by the world as the SDF file says (static, or a joint "
+                 "to 'world')",
+                 "SDF file", robots.front(), warnings);
+}
+
+// The file through libsdformat (the caller holds its lock), its messages turned into InputErrors.
+// Gives back the standard models it found missing.
+std::set<std::string> loadRoot(sdf::Root& root, const std::string& path, const PackagePaths& packages)
+{
+    sdf::Console::Instance()->SetQuiet(true);
+    ModelLookup lookup{packages, path, {}, {}};
+    sdf::ParserConfig config;
+    config.SetFindCallback([&lookup](const std::string& uri) -> std::string { return lookup.find(uri); });
+    lookup.throwErrors(root.Load(path, config));
+    return lookup.missingStandard;
+}
+
 } // namespace
 
 core::Model loadSdfScene(const std::string& path, const UrdfOptions& options, LoadReport* report)
@@ -1004,72 +1176,13 @@ core::Model loadSdfScene(const std::string& path, const UrdfOptions& options, Lo
     }
     const std::string text = readTextFile(path, "SDF file");
     const std::vector<IncludeText> includes = scanIncludes(path, text);
-    {
-        // libsdformat reports bad XML as "Unable to read file" without a place: TinyXML has it.
-        TiXmlDocument document;
-        document.Parse(text.c_str());
-        if (document.Error())
-        {
-            throw InputError(path, std::max(1, document.ErrorRow()), std::max(1, document.ErrorCol()),
-                             std::string("invalid XML: ") + document.ErrorDesc());
-        }
-    }
+    checkXml(path, text);
     const PackagePaths packages(options.packagePaths);
     // The library's console and parse are process-global; its messages become InputErrors here.
     static std::mutex parseMutex;
     const std::lock_guard<std::mutex> lock(parseMutex);
-    sdf::Console::Instance()->SetQuiet(true);
-    std::set<std::string> missingStandard;       // model://sun, model://ground_plane not on the path
-    std::map<std::string, std::string> notFound; // uri -> where it was looked for
-    sdf::ParserConfig config;
-    config.SetFindCallback(
-        [&](const std::string& uri) -> std::string
-        {
-            if (!uri.starts_with("model://"))
-            {
-                return {};
-            }
-            std::string name = uri.substr(8);
-            while (!name.empty() && name.back() == '/')
-            {
-                name.pop_back();
-            }
-            const ResolvedUri found = packages.resolve("model://" + name + "/model.config", path);
-            if (!found.path.empty() && found.note.empty())
-            {
-                return std::filesystem::path(found.path).parent_path().string();
-            }
-            if (uri == cSunUri || uri == cGroundPlaneUri)
-            {
-                missingStandard.insert(uri);
-            }
-            notFound[uri] =
-                found.notFound.empty() ? "not found (only files beside the SDF file match)" : found.notFound;
-            return {};
-        });
     sdf::Root root;
-    const sdf::Errors errors = root.Load(path, config);
-    for (const sdf::Error& error : errors)
-    {
-        const std::string file = error.FilePath().value_or(path);
-        const int line = error.LineNumber().value_or(0);
-        if (error.Code() == sdf::ErrorCode::URI_LOOKUP)
-        {
-            const auto it = std::find_if(notFound.begin(), notFound.end(),
-                                         [&](const auto& entry)
-                                         { return error.Message().find(entry.first) != std::string::npos; });
-            if (it != notFound.end() && missingStandard.contains(it->first))
-            {
-                continue;
-            }
-            throw InputError(
-                file, line, 0,
-                "<include> " +
-                    (it == notFound.end() ? error.Message() : "'" + it->first + "': " + it->second) +
-                    "; add its folder with --package-path or GAZEBO_MODEL_PATH");
-        }
-        throw InputError(file, line, 0, "invalid SDF: " + error.Message());
-    }
+    const std::set<std::string> missingStandard = loadRoot(root, path, packages);
     SdfConverter converter(path, options, packages);
     core::Model model = converter.convert(root);
     model.sourceFile = path;
@@ -1093,40 +1206,7 @@ core::Model loadSdfScene(const std::string& path, const UrdfOptions& options, Lo
     {
         addHoldServos(model, 0, static_cast<int>(model.joints.size()));
     }
-    bool hasPlane = false;
-    for (const core::Body& body : model.bodies)
-    {
-        for (const core::Shape& shape : body.shapes)
-        {
-            hasPlane = hasPlane || shape.type == core::ShapeType::Plane;
-        }
-    }
-    if (converter.isWorld() || hasPlane)
-    {
-        if (options.dropHeight)
-        {
-            throw InputError(
-                path, 0, 0,
-                "--drop-height places a robot alone on a floor; this file is a world (or has its "
-                "own ground plane) and places its models itself");
-        }
-        checkStartingState(model, path);
-    }
-    else
-    {
-        if (model.name.empty() && !robots.empty())
-        {
-            model.name = robots.front().name;
-        }
-        if (robots.empty())
-        {
-            throw InputError(path, 0, 0, "the file has no <model>");
-        }
-        placeOnFloor(model, path, options.dropHeight,
-                     "held by the world as the SDF file says (static, or a joint "
-                     "to 'world')",
-                     "SDF file", robots.front(), warnings);
-    }
+    placeScene(model, converter.isWorld(), options, path, robots, warnings);
     if (report)
     {
         for (RobotReport& robot : robots)

@@ -226,6 +226,28 @@ void fillModelCounts(RunStats& stats, const core::Model& model)
     stats.degreesOfFreedom = 6 * stats.bodies - stats.constraintRows;
 }
 
+namespace
+{
+// One actuator's entry: its joint, coordinate and type, tracking (not for an effort actuator),
+// effort and steps at its limit.
+Json actuatorJson(const ActuatorStats& a)
+{
+    Json entry;
+    entry["joint"] = a.joint;
+    entry["coordinate"] = a.coordinate;
+    entry["type"] = a.type;
+    if (a.type != "effort")
+    {
+        entry["tracking_rms"] = number(a.trackingRms);
+        entry["tracking_max"] = number(a.trackingMax);
+    }
+    entry["effort_rms"] = number(a.effortRms);
+    entry["effort_max"] = number(a.effortMax);
+    entry["limit_steps"] = a.limitSteps;
+    return entry;
+}
+} // namespace
+
 void writeStats(const std::string& path, const RunStats& stats)
 {
     Json json;
@@ -263,19 +285,7 @@ void writeStats(const std::string& path, const RunStats& stats)
     json["actuators"] = Json::array();
     for (const ActuatorStats& a : stats.actuators)
     {
-        Json entry;
-        entry["joint"] = a.joint;
-        entry["coordinate"] = a.coordinate;
-        entry["type"] = a.type;
-        if (a.type != "effort")
-        {
-            entry["tracking_rms"] = number(a.trackingRms);
-            entry["tracking_max"] = number(a.trackingMax);
-        }
-        entry["effort_rms"] = number(a.effortRms);
-        entry["effort_max"] = number(a.effortMax);
-        entry["limit_steps"] = a.limitSteps;
-        json["actuators"].push_back(entry);
+        json["actuators"].push_back(actuatorJson(a));
     }
     for (const auto& [key, value] : stats.extra)
     {
@@ -289,9 +299,12 @@ void writeStats(const std::string& path, const RunStats& stats)
     file.commit();
 }
 
-RunStats readStats(const std::string& path)
+namespace
 {
-    const std::string text = detail::readTextFile(path);
+
+// The file's text as a JSON object: nested no deeper than a stats file may be, errors located.
+nlohmann::json parseStatsJson(const std::string& path, const std::string& text)
+{
     if (const std::size_t deep = tooDeep(text, cMaxStatsDepth); deep != std::string::npos)
     {
         const detail::TextPosition at = detail::positionOf(text, deep);
@@ -315,8 +328,12 @@ RunStats readStats(const std::string& path)
     {
         throw InputError(path, 1, 1, "expected a JSON object");
     }
-    const Reader r(path, json);
-    RunStats s;
+    return json;
+}
+
+// The keys every stats file has.
+void readRequired(const Reader& r, RunStats& s)
+{
     s.scene = r.string("scene");
     s.solver = r.string("solver");
     s.integrator = r.string("integrator");
@@ -337,6 +354,11 @@ RunStats readStats(const std::string& path)
     s.energyFinalJ = r.number("energy_final_j");
     s.maxContacts = static_cast<int>(r.integer("max_contacts"));
     s.finite = r.boolean("finite");
+}
+
+// The keys a stats file may leave out, and numbers under keys of their own (kept as extras).
+void readOptional(const std::string& path, nlohmann::json& json, const Reader& r, RunStats& s)
+{
     s.completed = !json.contains("completed") || r.boolean("completed");
     if (json.contains("failure"))
     {
@@ -367,6 +389,18 @@ RunStats readStats(const std::string& path)
             s.extra[key] = r.number(key);
         }
     }
+}
+
+} // namespace
+
+RunStats readStats(const std::string& path)
+{
+    const std::string text = detail::readTextFile(path);
+    nlohmann::json json = parseStatsJson(path, text);
+    const Reader r(path, json);
+    RunStats s;
+    readRequired(r, s);
+    readOptional(path, json, r, s);
     return s;
 }
 

@@ -69,48 +69,39 @@ int indexOf(const std::vector<std::string>& names, const std::string& name)
     }
     return -1;
 }
-} // namespace
-
-TargetColumn readTargetColumn(const std::string& path, const std::string& column)
+// The file's header and rows, one line at a time.
+struct TargetReader
 {
-    const std::string text = readTextFile(path, "target table file");
-    std::stringstream in(text);
-    std::string line;
-    int lineNumber = 0;
-    std::vector<std::string> header;
+    const std::string& path;
+    const std::string& column;
+    std::vector<std::string> header{};
     int timeIndex = -1;
     int valueIndex = -1;
     int headerLine = 0;
-    TargetColumn out;
-    while (std::getline(in, line))
+    TargetColumn out{};
+
+    void readHeader(int lineNumber, const std::vector<std::string>& row)
     {
-        ++lineNumber;
-        const std::string content = trimmed(line);
-        if (content.empty() || content.front() == '#')
+        header = row;
+        headerLine = lineNumber;
+        checkDistinctNames(path, lineNumber, header);
+        timeIndex = indexOf(header, "time");
+        valueIndex = indexOf(header, column);
+        if (timeIndex < 0)
         {
-            continue;
+            throw InputError(path, lineNumber, 1,
+                             "the header has no 'time' column (columns: " + joinNames(header) + ")");
         }
-        const std::vector<std::string> row = fields(content);
-        if (header.empty())
+        if (valueIndex < 0)
         {
-            header = row;
-            headerLine = lineNumber;
-            checkDistinctNames(path, lineNumber, header);
-            timeIndex = indexOf(header, "time");
-            valueIndex = indexOf(header, column);
-            if (timeIndex < 0)
-            {
-                throw InputError(path, lineNumber, 1,
-                                 "the header has no 'time' column (columns: " + joinNames(header) + ")");
-            }
-            if (valueIndex < 0)
-            {
-                throw InputError(path, lineNumber, 1,
-                                 "no column " + quotedName(column) + " in the header (columns: " +
-                                     joinNames(header) + ")" + suggestionSuffix(column, header, false));
-            }
-            continue;
+            throw InputError(path, lineNumber, 1,
+                             "no column " + quotedName(column) + " in the header (columns: " +
+                                 joinNames(header) + ")" + suggestionSuffix(column, header, false));
         }
+    }
+
+    void readRow(int lineNumber, const std::vector<std::string>& row)
+    {
         if (row.size() != header.size())
         {
             throw InputError(path, lineNumber, 1,
@@ -142,15 +133,42 @@ TargetColumn readTargetColumn(const std::string& path, const std::string& column
         out.values.push_back(numbers[1]);
         out.lines.push_back(lineNumber);
     }
-    if (header.empty())
+};
+} // namespace
+
+TargetColumn readTargetColumn(const std::string& path, const std::string& column)
+{
+    const std::string text = readTextFile(path, "target table file");
+    std::stringstream in(text);
+    std::string line;
+    int lineNumber = 0;
+    TargetReader reader{path, column};
+    while (std::getline(in, line))
+    {
+        ++lineNumber;
+        const std::string content = trimmed(line);
+        if (content.empty() || content.front() == '#')
+        {
+            continue;
+        }
+        if (reader.header.empty())
+        {
+            reader.readHeader(lineNumber, fields(content));
+        }
+        else
+        {
+            reader.readRow(lineNumber, fields(content));
+        }
+    }
+    if (reader.header.empty())
     {
         throw InputError(path, 0, 0, "no header line; expected column names, one of them 'time'");
     }
-    if (out.times.empty())
+    if (reader.out.times.empty())
     {
-        throw InputError(path, headerLine, 1, "no rows of values after the header");
+        throw InputError(path, reader.headerLine, 1, "no rows of values after the header");
     }
-    return out;
+    return std::move(reader.out);
 }
 
 } // namespace frontier::io::detail

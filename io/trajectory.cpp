@@ -152,91 +152,116 @@ core::BodyState TrajectoryRow::state() const
     return s;
 }
 
-Trajectory readTrajectory(const std::string& path)
+namespace
 {
-    const std::string text = detail::readTextFile(path, "trajectory file");
-    Trajectory out;
-    std::map<std::string, double> lastTime; // s, of each body's latest row
+
+// One line of the file at a time; the state its steps share.
+struct TrajectoryReader
+{
+    const std::string& path;
+    const std::string& text;
+    Trajectory out{};
+    std::map<std::string, double> lastTime{}; // s, of each body's latest row
     bool haveHeader = false;
     int lineNumber = 0;
     std::size_t pos = 0;
-    while (pos < text.size())
+
+    // The next line without its line ending; false at the end of the text.
+    bool nextLine(std::string_view& line)
     {
+        if (pos >= text.size())
+        {
+            return false;
+        }
         const std::size_t end = text.find('\n', pos);
-        std::string_view line(text.data() + pos, (end == std::string::npos ? text.size() : end) - pos);
+        line = std::string_view(text.data() + pos, (end == std::string::npos ? text.size() : end) - pos);
         pos = end == std::string::npos ? text.size() : end + 1;
         ++lineNumber;
         if (!line.empty() && line.back() == '\r')
         {
             line.remove_suffix(1);
         }
-        if (line.empty())
+        return true;
+    }
+
+    // A comment before the header: the settings of the metadata line, any other comment skipped.
+    void readComment(std::string_view line)
+    {
+        if (!line.starts_with(cMetadataPrefix))
         {
-            continue;
+            return;
         }
-        if (!haveHeader && line.front() == '#')
+        const std::size_t offset = cMetadataPrefix.size();
+        for (const Field& pair : splitFields(line.substr(offset), ' '))
         {
-            if (line.starts_with(cMetadataPrefix))
+            if (pair.text.empty())
             {
-                const std::size_t offset = cMetadataPrefix.size();
-                for (const Field& pair : splitFields(line.substr(offset), ' '))
-                {
-                    if (pair.text.empty())
-                    {
-                        continue;
-                    }
-                    const std::size_t eq = pair.text.find('=');
-                    if (eq == std::string_view::npos)
-                    {
-                        throw InputError(path, lineNumber, static_cast<int>(offset) + pair.column,
-                                         "expected key=value in the trajectory comment, got '" +
-                                             std::string(pair.text) + "'");
-                    }
-                    const std::string key = decodeMetadataField(pair.text.substr(0, eq));
-                    const std::string value = decodeMetadataField(pair.text.substr(eq + 1));
-                    const std::string problem = settingProblem(key, value);
-                    if (!problem.empty())
-                    {
-                        throw InputError(path, lineNumber,
-                                         static_cast<int>(offset) + pair.column + static_cast<int>(eq) + 1,
-                                         "'" + key + "' in the trajectory comment is '" + value + "'; " +
-                                             problem);
-                    }
-                    out.metadata[key] = value;
-                }
-                out.metadataLine = lineNumber;
+                continue;
             }
-            continue;
+            const std::size_t eq = pair.text.find('=');
+            if (eq == std::string_view::npos)
+            {
+                throw InputError(path, lineNumber, static_cast<int>(offset) + pair.column,
+                                 "expected key=value in the trajectory comment, got '" +
+                                     std::string(pair.text) + "'");
+            }
+            const std::string key = decodeMetadataField(pair.text.substr(0, eq));
+            const std::string value = decodeMetadataField(pair.text.substr(eq + 1));
+            const std::string problem = settingProblem(key, value);
+            if (!problem.empty())
+            {
+                throw InputError(path, lineNumber,
+                                 static_cast<int>(offset) + pair.column + static_cast<int>(eq) + 1,
+                                 "'" + key + "' in the trajectory comment is '" + value + "'; " + problem);
+            }
+            out.metadata[key] = value;
         }
-        const std::vector<Field> fields = splitFields(line, ',');
-        if (!haveHeader)
+        out.metadataLine = lineNumber;
+    }
+
+    void readHeader(std::string_view line, const std::vector<Field>& fields)
+    {
+        for (std::size_t i = 0; i < cColumns.size(); ++i)
         {
-            for (std::size_t i = 0; i < cColumns.size(); ++i)
+            if (i >= fields.size())
             {
-                if (i >= fields.size())
-                {
-                    throw InputError(path, lineNumber, static_cast<int>(line.size()) + 1,
-                                     std::string("missing column '") + cColumns[i] +
-                                         "' in the header; expected '" + cTrajectoryHeader + "'");
-                }
-                if (fields[i].text != cColumns[i])
-                {
-                    throw InputError(path, lineNumber, fields[i].column,
-                                     std::string("expected column '") + cColumns[i] +
-                                         "' in the header, got '" + std::string(fields[i].text) +
-                                         "' (a trajectory CSV, as `frontier run " +
-                                         "--trajectory` writes, has the header '" + cTrajectoryHeader + "')");
-                }
-            }
-            if (fields.size() > cColumns.size())
-            {
-                throw InputError(path, lineNumber, fields[cColumns.size()].column,
-                                 "unexpected column '" + std::string(fields[cColumns.size()].text) +
+                throw InputError(path, lineNumber, static_cast<int>(line.size()) + 1,
+                                 std::string("missing column '") + cColumns[i] +
                                      "' in the header; expected '" + cTrajectoryHeader + "'");
             }
-            haveHeader = true;
-            continue;
+            if (fields[i].text != cColumns[i])
+            {
+                throw InputError(path, lineNumber, fields[i].column,
+                                 std::string("expected column '") + cColumns[i] + "' in the header, got '" +
+                                     std::string(fields[i].text) + "' (a trajectory CSV, as `frontier run " +
+                                     "--trajectory` writes, has the header '" + cTrajectoryHeader + "')");
+            }
         }
+        if (fields.size() > cColumns.size())
+        {
+            throw InputError(path, lineNumber, fields[cColumns.size()].column,
+                             "unexpected column '" + std::string(fields[cColumns.size()].text) +
+                                 "' in the header; expected '" + cTrajectoryHeader + "'");
+        }
+        haveHeader = true;
+    }
+
+    double number(const std::vector<Field>& fields, std::size_t index) const
+    {
+        const Field& field = fields[index];
+        const std::optional<double> value = detail::parseFiniteNumber(field.text);
+        if (!value)
+        {
+            throw InputError(path, lineNumber, field.column,
+                             std::string("expected a finite number for '") + cColumns[index] + "', got '" +
+                                 std::string(field.text) + "'");
+        }
+        return *value;
+    }
+
+    // The row's fields as numbers and a body name, without checking what they say.
+    TrajectoryRow parseRow(std::string_view line, const std::vector<Field>& fields) const
+    {
         if (fields.size() != cColumns.size())
         {
             const int column = fields.size() > cColumns.size() ? fields[cColumns.size()].column
@@ -247,19 +272,7 @@ Trajectory readTrajectory(const std::string& path)
         }
         TrajectoryRow row;
         row.line = lineNumber;
-        const auto number = [&](std::size_t index)
-        {
-            const Field& field = fields[index];
-            const std::optional<double> value = detail::parseFiniteNumber(field.text);
-            if (!value)
-            {
-                throw InputError(path, lineNumber, field.column,
-                                 std::string("expected a finite number for '") + cColumns[index] +
-                                     "', got '" + std::string(field.text) + "'");
-            }
-            return *value;
-        };
-        row.time = number(0);
+        row.time = number(fields, 0);
         if (fields[1].text.empty())
         {
             throw InputError(path, lineNumber, fields[1].column, "expected a body name, got an empty field");
@@ -267,8 +280,14 @@ Trajectory readTrajectory(const std::string& path)
         row.body = std::string(fields[1].text);
         for (std::size_t i = 0; i < row.values.size(); ++i)
         {
-            row.values[i] = number(i + 2);
+            row.values[i] = number(fields, i + 2);
         }
+        return row;
+    }
+
+    // A pose in range with a unit quaternion.
+    void checkState(const TrajectoryRow& row, const std::vector<Field>& fields) const
+    {
         const core::BodyState state = row.state();
         if (!core::isPosition(state.position_W)) // the scenes' rule: farther is a corrupt row
         {
@@ -283,6 +302,11 @@ Trajectory readTrajectory(const std::string& path)
                              "orientation quaternion has norm " + formatNumber(state.orientation_WB.norm()) +
                                  "; expected a unit quaternion (norm 1 within 1e-6)");
         }
+    }
+
+    // Times increase over the file and strictly for each body.
+    void checkTime(const TrajectoryRow& row, const std::vector<Field>& fields)
+    {
         if (!out.rows.empty() && row.time < out.rows.back().time)
         {
             throw InputError(path, lineNumber, fields[0].column,
@@ -300,14 +324,48 @@ Trajectory readTrajectory(const std::string& path)
             }
             last->second = row.time;
         }
+    }
+
+    void readLine(std::string_view line)
+    {
+        if (line.empty())
+        {
+            return;
+        }
+        if (!haveHeader && line.front() == '#')
+        {
+            readComment(line);
+            return;
+        }
+        const std::vector<Field> fields = splitFields(line, ',');
+        if (!haveHeader)
+        {
+            readHeader(line, fields);
+            return;
+        }
+        TrajectoryRow row = parseRow(line, fields);
+        checkState(row, fields);
+        checkTime(row, fields);
         out.rows.push_back(std::move(row));
     }
-    if (!haveHeader)
+};
+
+} // namespace
+
+Trajectory readTrajectory(const std::string& path)
+{
+    const std::string text = detail::readTextFile(path, "trajectory file");
+    TrajectoryReader reader{path, text};
+    for (std::string_view line; reader.nextLine(line);)
     {
-        throw InputError(path, lineNumber, 0,
+        reader.readLine(line);
+    }
+    if (!reader.haveHeader)
+    {
+        throw InputError(path, reader.lineNumber, 0,
                          std::string("no header line; expected '") + cTrajectoryHeader + "'");
     }
-    return out;
+    return std::move(reader.out);
 }
 
 namespace

@@ -315,25 +315,13 @@ class UrdfConverter
     // deep, and a joint from a link to itself must not loop).
     void placeLinks(const urdf::Link& root)
     {
-        const bool worldRoot = root.name == "world";
-        const bool dropWorld = worldRoot && mPlacement.freeRoot;
-        LinkPlace& rootPlace = mPlaces[root.name];
-        rootPlace.world = Pose{mPlacement.position, mPlacement.orientation.normalized()};
-        rootPlace.group = newGroup(root.name, worldRoot || mPlacement.fixedRoot, nullptr);
-        mGroups.back().isWorld = worldRoot;
-        if (worldRoot && (root.inertial || !root.collision_array.empty()))
-        {
-            fail(mIndex.element("link", root.name),
-                 "link 'world' is the fixed world frame; it cannot have <inertial> or <collision> (attach a "
-                 "link to it with a fixed joint)");
-        }
+        placeRoot(root);
         std::vector<const urdf::Link*> stack{&root};
         while (!stack.empty())
         {
             const urdf::Link& parent = *stack.back();
             stack.pop_back();
             const LinkPlace parentPlace = mPlaces[parent.name];
-            const bool parentIsWorld = mGroups[static_cast<std::size_t>(parentPlace.group)].isWorld;
             for (const urdf::JointSharedPtr& joint : parent.child_joints)
             {
                 const std::string& childName = joint->child_link_name;
@@ -344,52 +332,81 @@ class UrdfConverter
                              "' its own ancestor; the links must form a tree");
                 }
                 const urdf::Link& child = link(childName);
-                const TextPosition origin = mIndex.element("joint", joint->name, "origin");
-                checkPosition(origin, fromUrdf(joint->parent_to_joint_origin_transform).p,
-                              "the <origin xyz> of joint '" + joint->name + "'");
-                LinkPlace place;
-                place.world = parentPlace.world * fromUrdf(joint->parent_to_joint_origin_transform);
-                switch (joint->type)
-                {
-                case urdf::Joint::FIXED:
-                    if (parentIsWorld)
-                    {
-                        place.group = newGroup(childName, !dropWorld, nullptr);
-                        break;
-                    }
-                    place.group = parentPlace.group;
-                    place.inTop = parentPlace.inTop.value_or(Pose{}) *
-                                  fromUrdf(joint->parent_to_joint_origin_transform);
-                    mGroups[static_cast<std::size_t>(place.group)].links.push_back(childName);
-                    break;
-                case urdf::Joint::FLOATING:
-                    // Under --fixed-base a floating joint from 'world' holds the robot's root link:
-                    // it is bolted where the joint places it.
-                    place.group = newGroup(childName, parentIsWorld && mPlacement.fixedRoot, nullptr);
-                    break;
-                case urdf::Joint::REVOLUTE:
-                case urdf::Joint::CONTINUOUS:
-                case urdf::Joint::PRISMATIC:
-                    place.group = newGroup(childName, false, joint.get());
-                    place.world = place.world * startMotion(*joint);
-                    break;
-                case urdf::Joint::PLANAR:
-                    fail(mIndex.element("joint", joint->name),
-                         "joint '" + joint->name +
-                             "' has type planar, which is unsupported (supported: revolute, continuous, "
-                             "prismatic, fixed, floating)");
-                default:
-                    fail(mIndex.element("joint", joint->name),
-                         "joint '" + joint->name + "' has an unknown type");
-                }
-                checkPosition(origin, place.world.p,
-                              "joint '" + joint->name + "' places link '" + childName + "' where its frame");
-                mPlaces[childName] = place;
+                mPlaces[childName] = childPlace(parentPlace, *joint, root.name == "world");
                 stack.push_back(&child);
             }
         }
-        // Welded links in document order after their top (the walk above visits them depth first):
-        // sorted by their place in the file, O(n log n) over all groups.
+        sortWeldedLinks();
+    }
+
+    // The root link where the placement puts it, a group of its own ('world' fixed and bare).
+    void placeRoot(const urdf::Link& root)
+    {
+        const bool worldRoot = root.name == "world";
+        LinkPlace& rootPlace = mPlaces[root.name];
+        rootPlace.world = Pose{mPlacement.position, mPlacement.orientation.normalized()};
+        rootPlace.group = newGroup(root.name, worldRoot || mPlacement.fixedRoot, nullptr);
+        mGroups.back().isWorld = worldRoot;
+        if (worldRoot && (root.inertial || !root.collision_array.empty()))
+        {
+            fail(mIndex.element("link", root.name),
+                 "link 'world' is the fixed world frame; it cannot have <inertial> or <collision> (attach a "
+                 "link to it with a fixed joint)");
+        }
+    }
+
+    // The joint's child link: its world pose, and its group (a new one, or welded into the parent's).
+    LinkPlace childPlace(const LinkPlace& parentPlace, const urdf::Joint& joint, bool worldRoot)
+    {
+        const bool dropWorld = worldRoot && mPlacement.freeRoot;
+        const bool parentIsWorld = mGroups[static_cast<std::size_t>(parentPlace.group)].isWorld;
+        const std::string& childName = joint.child_link_name;
+        const TextPosition origin = mIndex.element("joint", joint.name, "origin");
+        checkPosition(origin, fromUrdf(joint.parent_to_joint_origin_transform).p,
+                      "the <origin xyz> of joint '" + joint.name + "'");
+        LinkPlace place;
+        place.world = parentPlace.world * fromUrdf(joint.parent_to_joint_origin_transform);
+        switch (joint.type)
+        {
+        case urdf::Joint::FIXED:
+            if (parentIsWorld)
+            {
+                place.group = newGroup(childName, !dropWorld, nullptr);
+                break;
+            }
+            place.group = parentPlace.group;
+            place.inTop =
+                parentPlace.inTop.value_or(Pose{}) * fromUrdf(joint.parent_to_joint_origin_transform);
+            mGroups[static_cast<std::size_t>(place.group)].links.push_back(childName);
+            break;
+        case urdf::Joint::FLOATING:
+            // Under --fixed-base a floating joint from 'world' holds the robot's root link:
+            // it is bolted where the joint places it.
+            place.group = newGroup(childName, parentIsWorld && mPlacement.fixedRoot, nullptr);
+            break;
+        case urdf::Joint::REVOLUTE:
+        case urdf::Joint::CONTINUOUS:
+        case urdf::Joint::PRISMATIC:
+            place.group = newGroup(childName, false, &joint);
+            place.world = place.world * startMotion(joint);
+            break;
+        case urdf::Joint::PLANAR:
+            fail(mIndex.element("joint", joint.name),
+                 "joint '" + joint.name +
+                     "' has type planar, which is unsupported (supported: revolute, continuous, "
+                     "prismatic, fixed, floating)");
+        default:
+            fail(mIndex.element("joint", joint.name), "joint '" + joint.name + "' has an unknown type");
+        }
+        checkPosition(origin, place.world.p,
+                      "joint '" + joint.name + "' places link '" + childName + "' where its frame");
+        return place;
+    }
+
+    // Welded links in document order after their top (the walk above visits them depth first):
+    // sorted by their place in the file, O(n log n) over all groups.
+    void sortWeldedLinks()
+    {
         std::map<std::string_view, std::size_t> documentOrder;
         for (std::size_t k = 0; k < mIndex.linkNames().size(); ++k)
         {
@@ -650,7 +667,6 @@ class UrdfConverter
             g.body = core::cWorld;
             return;
         }
-        const urdf::Link& top = link(g.top);
         const std::string reason = invalidNameReason(g.top);
         if (!reason.empty())
         {
@@ -661,28 +677,7 @@ class UrdfConverter
         body.isStatic = g.isStatic;
         if (!g.isStatic)
         {
-            const bool topHasMass = top.inertial && top.inertial->mass > 0.0;
-            const core::Quat axes = topHasMass ? fromUrdf(top.inertial->origin).q : core::Quat::Identity();
-            std::vector<MassPart> parts;
-            for (const std::string& name : g.links)
-            {
-                const bool ownFrame = topHasMass && name == g.top;
-                parts.push_back(
-                    massPart(link(name), ownFrame ? std::nullopt : std::optional<core::Quat>(axes)));
-            }
-            const CompositeMass mass = combineMassParts(parts);
-            if (!(mass.mass > 0.0))
-            {
-                failMassless(g);
-            }
-            body.mass = mass.mass;
-            body.inertia_B = mass.inertia;
-            g.bodyInTop = Pose{mass.centre, axes};
-            if (!isPositiveDefinite(body.inertia_B))
-            {
-                fail(mIndex.element("link", g.top), "the links welded into body '" + g.top +
-                                                        "' have an inertia that is not positive-definite");
-            }
+            setGroupMass(g, body);
         }
         const LinkPlace& topPlace = mPlaces[g.top];
         const Pose bodyPose = topPlace.world * g.bodyInTop;
@@ -692,30 +687,7 @@ class UrdfConverter
         for (const std::string& name : g.links)
         {
             core::throwIfInterrupted(); // a checkpoint between links (core/interrupt.h)
-            const urdf::Link& l = link(name);
-            const std::optional<Pose>& inTop = mPlaces[name].inTop;
-            const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
-            std::vector<core::Shape> collisionShapes = linkShapes(l, true, false);
-            bool visualUnreadable = false;
-            std::vector<core::Shape> visualShapes = linkShapes(l, false, false, &visualUnreadable);
-            if (visualUnreadable)
-            {
-                visualShapes = collisionShapes; // as readMesh's warning says
-            }
-            appendPosed(collisionShapes, linkInBody, body.shapes);
-            appendPosed(visualShapes, linkInBody, body.visuals);
-            for (const urdf::VisualSharedPtr& visual : l.visual_array)
-            {
-                if (visual && visual->material && !body.color)
-                {
-                    const urdf::Color& c = visual->material->color;
-                    body.color = core::Vec3(c.r, c.g, c.b);
-                }
-            }
-            if (name != g.top)
-            {
-                mOut.report.welded.emplace_back(name, body.name);
-            }
+            addLinkShapes(g, name, topInBody, body);
         }
         if (!mPlacement.selfCollision)
         {
@@ -724,6 +696,63 @@ class UrdfConverter
         setMaterial(g, body);
         g.body = static_cast<int>(mOut.model.bodies.size());
         mOut.model.bodies.push_back(std::move(body));
+    }
+
+    // The mass and inertia of the group's links together, and the body's frame in its top link
+    // (at their centre of mass, axes of the top link's <inertial> when it has mass).
+    void setGroupMass(LinkGroup& g, core::Body& body)
+    {
+        const urdf::Link& top = link(g.top);
+        const bool topHasMass = top.inertial && top.inertial->mass > 0.0;
+        const core::Quat axes = topHasMass ? fromUrdf(top.inertial->origin).q : core::Quat::Identity();
+        std::vector<MassPart> parts;
+        for (const std::string& name : g.links)
+        {
+            const bool ownFrame = topHasMass && name == g.top;
+            parts.push_back(massPart(link(name), ownFrame ? std::nullopt : std::optional<core::Quat>(axes)));
+        }
+        const CompositeMass mass = combineMassParts(parts);
+        if (!(mass.mass > 0.0))
+        {
+            failMassless(g);
+        }
+        body.mass = mass.mass;
+        body.inertia_B = mass.inertia;
+        g.bodyInTop = Pose{mass.centre, axes};
+        if (!isPositiveDefinite(body.inertia_B))
+        {
+            fail(mIndex.element("link", g.top),
+                 "the links welded into body '" + g.top + "' have an inertia that is not positive-definite");
+        }
+    }
+
+    // One link's collision and visual shapes posed in the body, its colour if the body has none yet.
+    void addLinkShapes(const LinkGroup& g, const std::string& name, const Pose& topInBody, core::Body& body)
+    {
+        const urdf::Link& l = link(name);
+        const std::optional<Pose>& inTop = mPlaces[name].inTop;
+        const Pose linkInBody = inTop ? topInBody * *inTop : topInBody;
+        std::vector<core::Shape> collisionShapes = linkShapes(l, true, false);
+        bool visualUnreadable = false;
+        std::vector<core::Shape> visualShapes = linkShapes(l, false, false, &visualUnreadable);
+        if (visualUnreadable)
+        {
+            visualShapes = collisionShapes; // as readMesh's warning says
+        }
+        appendPosed(collisionShapes, linkInBody, body.shapes);
+        appendPosed(visualShapes, linkInBody, body.visuals);
+        for (const urdf::VisualSharedPtr& visual : l.visual_array)
+        {
+            if (visual && visual->material && !body.color)
+            {
+                const urdf::Color& c = visual->material->color;
+                body.color = core::Vec3(c.r, c.g, c.b);
+            }
+        }
+        if (name != g.top)
+        {
+            mOut.report.welded.emplace_back(name, body.name);
+        }
     }
 
     // The body's friction and restitution from its links' <contact> (or Gazebo's mu1): the first

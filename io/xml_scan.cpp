@@ -94,37 +94,90 @@ std::string decodeEntities(std::string_view raw)
     }
     return out;
 }
+// The '>' that ends the tag starting at `start` (an end tag at its first '>', a start tag at its
+// first '>' outside quoted values); text.size() when the tag is unfinished.
+std::size_t tagEnd(const std::string& text, std::size_t start, bool endTag)
+{
+    char quote = 0;
+    std::size_t i = start + 1;
+    for (; i < text.size(); ++i)
+    {
+        if (endTag)
+        {
+            if (text[i] == '>')
+            {
+                break;
+            }
+            continue;
+        }
+        const char c = text[i];
+        if (quote != 0)
+        {
+            quote = c == quote ? 0 : quote;
+        }
+        else if (c == '"' || c == '\'')
+        {
+            quote = c;
+        }
+        else if (c == '>')
+        {
+            break;
+        }
+    }
+    return i;
+}
+
+// The tag from `start` to its '>' at `close`: its name and attributes.
+XmlTag tagAt(const std::string& text, std::size_t start, std::size_t close, bool endTag)
+{
+    XmlTag tag;
+    tag.offset = start;
+    tag.end = endTag;
+    tag.empty = !endTag && text[close - 1] == '/';
+    const std::size_t nameStart = start + (endTag ? 2 : 1);
+    std::size_t nameEnd = nameStart;
+    while (nameEnd < close && !isNameEnd(text[nameEnd]))
+    {
+        ++nameEnd;
+    }
+    tag.name = std::string_view(text).substr(nameStart, nameEnd - nameStart);
+    tag.attributes = std::string_view(text).substr(nameEnd, close - (tag.empty ? 1 : 0) - nameEnd);
+    return tag;
+}
+
+// Just past what starts at `from` with `open` and ends with `close` (a comment, ...).
+std::size_t pastClose(const std::string& file, const std::string& text, std::size_t from, const char* open,
+                      const char* close, const char* what)
+{
+    const std::size_t end = text.find(close, from + std::char_traits<char>::length(open));
+    if (end == std::string::npos)
+    {
+        failAtOffset(file, text, from,
+                     std::string("invalid XML: ") + what + " '" + open + "' is never closed; expected '" +
+                         close + "'");
+    }
+    return end + std::char_traits<char>::length(close);
+}
 } // namespace
 
 void scanXmlTags(const std::string& file, const std::string& text, const std::string& kind,
                  const std::string& expected, const std::function<void(const XmlTag&)>& visit)
 {
     std::size_t i = 0;
-    const auto closeOf = [&](std::size_t from, const char* open, const char* close, const char* what)
-    {
-        const std::size_t end = text.find(close, from + std::char_traits<char>::length(open));
-        if (end == std::string::npos)
-        {
-            failAtOffset(file, text, from,
-                         std::string("invalid XML: ") + what + " '" + open + "' is never closed; expected '" +
-                             close + "'");
-        }
-        return end + std::char_traits<char>::length(close);
-    };
     while ((i = text.find('<', i)) != std::string::npos)
     {
         const std::string_view rest(text.data() + i, text.size() - i);
         if (rest.starts_with("<!--"))
         {
-            i = closeOf(i, "<!--", "-->", "the comment");
+            i = pastClose(file, text, i, "<!--", "-->", "the comment");
         }
         else if (rest.starts_with("<![CDATA["))
         {
-            i = closeOf(i, "<![CDATA[", "]]>", "the CDATA section");
+            i = pastClose(file, text, i, "<![CDATA[", "]]>", "the CDATA section");
         }
         else if (rest.starts_with("<?"))
         {
-            i = closeOf(i, "<?", "?>", "the processing instruction");
+            i = pastClose(file, text, i, "<?", "?>", "the processing instruction");
         }
         else if (rest.starts_with("<!DOCTYPE") || rest.starts_with("<!ENTITY"))
         {
@@ -139,52 +192,14 @@ void scanXmlTags(const std::string& file, const std::string& text, const std::st
         }
         else
         {
-            // A tag: an end tag up to its '>', a start tag up to its '>' outside quoted values.
-            const std::size_t start = i;
-            const bool end = rest.starts_with("</");
-            char quote = 0;
-            for (++i; i < text.size(); ++i)
-            {
-                if (end)
-                {
-                    if (text[i] == '>')
-                    {
-                        break;
-                    }
-                    continue;
-                }
-                const char c = text[i];
-                if (quote != 0)
-                {
-                    quote = c == quote ? 0 : quote;
-                }
-                else if (c == '"' || c == '\'')
-                {
-                    quote = c;
-                }
-                else if (c == '>')
-                {
-                    break;
-                }
-            }
-            if (i >= text.size())
+            const bool endTag = rest.starts_with("</");
+            const std::size_t close = tagEnd(text, i, endTag);
+            if (close >= text.size())
             {
                 return; // an unfinished tag: the parser reports it
             }
-            XmlTag tag;
-            tag.offset = start;
-            tag.end = end;
-            tag.empty = !end && text[i - 1] == '/';
-            const std::size_t nameStart = start + (end ? 2 : 1);
-            std::size_t nameEnd = nameStart;
-            while (nameEnd < i && !isNameEnd(text[nameEnd]))
-            {
-                ++nameEnd;
-            }
-            tag.name = std::string_view(text).substr(nameStart, nameEnd - nameStart);
-            tag.attributes = std::string_view(text).substr(nameEnd, i - (tag.empty ? 1 : 0) - nameEnd);
-            visit(tag);
-            ++i;
+            visit(tagAt(text, i, close, endTag));
+            i = close + 1;
         }
     }
 }

@@ -319,6 +319,60 @@ core::Vec3 readColor(const MapNode& map)
     return {v[0], v[1], v[2]};
 }
 
+// A static body has none of the keys of motion and mass.
+void checkStaticKeys(const MapNode& map)
+{
+    for (const char* key : {"mass", "density", "inertia", "velocity", "angular_velocity"})
+    {
+        if (map.has(key))
+        {
+            map.failAtKey(key, "static " + map.context() + " cannot have '" + key +
+                                   "' (static bodies do not move)");
+        }
+    }
+}
+
+// Colour, collision group, friction and restitution.
+void readAppearanceAndContact(const MapNode& map, core::Body& body)
+{
+    if (map.has("color"))
+    {
+        body.color = readColor(map);
+    }
+    if (map.has("group"))
+    {
+        body.group = map.string("group");
+        if (body.group.empty())
+        {
+            map.failAtValue("group", "expected a non-empty name for " + map.what("group"));
+        }
+    }
+    body.friction = readFriction(map);
+    body.restitution = readRestitution(map);
+}
+
+// The shapes into the body, posed about its centre of mass (centre_D, in the frame given by
+// position/orientation); a plane keeps the world frame.
+void addShapes(std::vector<ShapeEntry>& shapes, const core::Quat& orientation, const core::Vec3& centre_D,
+               core::Body& body)
+{
+    for (ShapeEntry& entry : shapes)
+    {
+        core::Shape& shape = entry.shape;
+        if (shape.type == core::ShapeType::Plane)
+        {
+            // normal and offset are world quantities: give the plane the world frame as its frame.
+            shape.rotation_BS = orientation.conjugate();
+            shape.position_BS = -(orientation.conjugate() * body.position_W);
+        }
+        else
+        {
+            shape.position_BS -= centre_D;
+        }
+        body.shapes.push_back(std::move(shape));
+    }
+}
+
 } // namespace
 
 void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
@@ -339,33 +393,13 @@ void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
     body.isStatic = map.optBool("static").value_or(false);
     if (body.isStatic)
     {
-        for (const char* key : {"mass", "density", "inertia", "velocity", "angular_velocity"})
-        {
-            if (map.has(key))
-            {
-                map.failAtKey(key,
-                              "static " + context + " cannot have '" + key + "' (static bodies do not move)");
-            }
-        }
+        checkStaticKeys(map);
     }
     const core::Vec3 position = map.optPosition("position").value_or(core::Vec3::Zero());
     const core::Quat orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
     body.velocity_W = map.optVelocity("velocity").value_or(core::Vec3::Zero());
     body.angularVelocity_W = map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
-    if (map.has("color"))
-    {
-        body.color = readColor(map);
-    }
-    if (map.has("group"))
-    {
-        body.group = map.string("group");
-        if (body.group.empty())
-        {
-            map.failAtValue("group", "expected a non-empty name for " + map.what("group"));
-        }
-    }
-    body.friction = readFriction(map);
-    body.restitution = readRestitution(map);
+    readAppearanceAndContact(map, body);
     std::vector<ShapeEntry> shapes = readShapes(map);
     core::Vec3 centre_D = core::Vec3::Zero(); // centre of mass in the frame given by position/orientation
     if (!body.isStatic)
@@ -383,21 +417,7 @@ void readBody(SceneBuilder& builder, const YamlNode& node, std::size_t index)
     }
     body.position_W = position + orientation * centre_D;
     body.orientation_WB = orientation;
-    for (ShapeEntry& entry : shapes)
-    {
-        core::Shape& shape = entry.shape;
-        if (shape.type == core::ShapeType::Plane)
-        {
-            // normal and offset are world quantities: give the plane the world frame as its frame.
-            shape.rotation_BS = orientation.conjugate();
-            shape.position_BS = -(orientation.conjugate() * body.position_W);
-        }
-        else
-        {
-            shape.position_BS -= centre_D;
-        }
-        body.shapes.push_back(std::move(shape));
-    }
+    addShapes(shapes, orientation, centre_D, body);
     builder.bodyMarks[body.name] = nameNode.mark();
     builder.addBody(std::move(body));
 }

@@ -258,6 +258,166 @@ std::string placeModel(const MapNode& map, core::Model& fragment, UrdfPlacement&
            " m above z = 0 (no 'position'), root link frame at (" + formatVector(placement.position) + ") m";
 }
 
+// One entry of 'models': its map, its file and where the scene puts it.
+struct ModelEntry
+{
+    MapNode& map;
+    bool mjcf = false;
+    YamlNode fileNode{}; // the 'urdf' or 'mjcf' value
+    std::string path{};  // the file, resolved against the scene's folder
+    UrdfPlacement placement{};
+    YamlNode positions{}; // 'joint_positions', if given
+};
+
+// A model entry names one file, and only the keys for its kind; true for an MJCF file.
+bool checkModelKind(const MapNode& map)
+{
+    const bool mjcf = map.has("mjcf");
+    if (mjcf && map.has("urdf"))
+    {
+        map.failAtKey("mjcf", "a model entry names one file: 'urdf' or 'mjcf'");
+    }
+    for (const std::string& key : mjcf ? cUrdfOnlyModelKeys : std::vector<std::string>{"keyframe"})
+    {
+        if (map.has(key))
+        {
+            map.failAtKey(key, "'" + key + "' is for " + (mjcf ? "a 'urdf' model" : "an 'mjcf' model"));
+        }
+    }
+    return mjcf;
+}
+
+UrdfPlacement readPlacement(const SceneBuilder& builder, const MapNode& map)
+{
+    UrdfPlacement placement;
+    placement.position = map.optPosition("position").value_or(core::Vec3::Zero());
+    placement.orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
+    placement.prefix = map.optString("prefix").value_or("");
+    placement.selfCollision =
+        builder.urdf.selfCollision.value_or(map.optBool("self_collision").value_or(true));
+    placement.fixedRoot = map.optBool("fixed").value_or(false);
+    placement.freeRoot = map.optBool("free_base").value_or(false);
+    if (placement.fixedRoot && placement.freeRoot)
+    {
+        map.failAtKey("free_base", "'fixed' and 'free_base' of " + map.context() + " exclude each other");
+    }
+    if (map.has("prefix") && placement.prefix.find_first_of(",\"") != std::string::npos)
+    {
+        map.failAtValue("prefix", "a prefix cannot contain commas or double quotes");
+    }
+    return placement;
+}
+
+// 'joint_positions': a map of joint names to positions (rad or m), into the placement.
+void readJointPositions(const YamlSource& source, ModelEntry& entry)
+{
+    const YamlNode& positions = entry.positions;
+    if (!positions.isDefined() || positions.isNull())
+    {
+        return;
+    }
+    if (!positions.isMap())
+    {
+        failAt(source, positions,
+               "expected a map of URDF joint names to positions (rad or m) for 'joint_positions' in " +
+                   entry.map.context());
+    }
+    for (std::size_t k = 0; k < positions.size(); ++k)
+    {
+        const std::string name = toString(source, positions.key(k), "a joint name in 'joint_positions'");
+        entry.placement.jointPositions[name] =
+            toNumber(source, positions.value(k),
+                     "the position (rad or m) of joint '" + name + "' in 'joint_positions'");
+    }
+}
+
+// The entry's file as a fragment; its errors at the scene's line where the file is not to blame.
+ModelFragment loadModelFile(SceneBuilder& builder, const ModelEntry& entry)
+{
+    const YamlSource& source = builder.source;
+    const UrdfPlacement& placement = entry.placement;
+    if (!builder.packages)
+    {
+        builder.packages.emplace(builder.urdf.packagePaths);
+    }
+    try
+    {
+        return entry.mjcf ? loadMjcfFragment(entry.path,
+                                             {placement.position, placement.orientation, placement.prefix,
+                                              placement.selfCollision, entry.map.optString("keyframe")})
+                          : loadUrdfFragment(entry.path, placement, *builder.packages);
+    }
+    catch (const JointPositionError& e)
+    {
+        for (std::size_t k = 0; k < entry.positions.size(); ++k)
+        {
+            if (entry.positions.key(k).scalar() == e.joint())
+            {
+                failAt(source, entry.positions.value(k), e.what());
+            }
+        }
+        failAt(source, entry.positions, e.what());
+    }
+    catch (const InputError& e)
+    {
+        // A file that cannot be read at all is named at the scene's line.
+        if (e.file() == entry.path && e.line() == 0)
+        {
+            failAt(source, entry.fileNode,
+                   (e.message().starts_with("cannot open file") ? "cannot open " : "cannot read ") +
+                       (entry.mjcf ? std::string("MJCF") : std::string("URDF")) + " file '" + entry.path +
+                       "': " + e.message());
+        }
+        throw;
+    }
+}
+
+// A rigid motion of the whole model: v at the root link origin, w about it, added to the motion it
+// starts with (an MJCF keyframe's qvel).
+void addStartingMotion(const MapNode& map, core::Model& fragment, const core::Vec3& rootPosition)
+{
+    const core::Vec3 velocity = map.optVelocity("velocity").value_or(core::Vec3::Zero());
+    const core::Vec3 angularVelocity =
+        map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
+    for (core::Body& body : fragment.bodies)
+    {
+        if (!body.isStatic)
+        {
+            body.velocity_W += velocity + angularVelocity.cross(body.position_W - rootPosition);
+            body.angularVelocity_W += angularVelocity;
+        }
+    }
+}
+
+// The placed fragment into the scene: its welded links, its robot, held joints, and the report.
+void addModel(SceneBuilder& builder, const ModelEntry& entry, ModelFragment loaded,
+              const std::string& placedAt)
+{
+    core::Model& fragment = loaded.model;
+    const UrdfPlacement& placement = entry.placement;
+    const int firstBody = static_cast<int>(builder.model.bodies.size());
+    for (const auto& [linkName, bodyName] : loaded.report.welded)
+    {
+        builder.weldedLinks[placement.prefix + linkName] = firstBody + fragment.findBody(bodyName);
+    }
+    builder.model.robots.push_back({loaded.report.name, entry.path, firstBody,
+                                    static_cast<int>(fragment.bodies.size()), placement.selfCollision});
+    builder.robotMarks.push_back(entry.map.mark());
+    if (builder.urdf.hold || entry.map.optBool("hold").value_or(false))
+    {
+        const int firstJoint = static_cast<int>(builder.model.joints.size());
+        builder.heldJoints.push_back({firstJoint, firstJoint + static_cast<int>(fragment.joints.size())});
+    }
+    appendFragment(builder, entry.map, std::move(fragment), entry.path);
+    if (builder.report)
+    {
+        loaded.report.placement = placedAt;
+        builder.report->robots.push_back(std::move(loaded.report));
+        builder.report->warnings.insert(builder.report->warnings.end(), loaded.warnings.begin(),
+                                        loaded.warnings.end());
+    }
+}
+
 void readModels(SceneBuilder& builder, const YamlNode& node)
 {
     const YamlSource& source = builder.source;
@@ -266,129 +426,20 @@ void readModels(SceneBuilder& builder, const YamlNode& node)
     {
         MapNode map(source, node[i], "model #" + std::to_string(i + 1));
         map.checkKeys(cModelKeys);
-        const bool mjcf = map.has("mjcf");
-        if (mjcf && map.has("urdf"))
-        {
-            map.failAtKey("mjcf", "a model entry names one file: 'urdf' or 'mjcf'");
-        }
-        const std::string fileKey = mjcf ? "mjcf" : "urdf";
-        for (const std::string& key : mjcf ? cUrdfOnlyModelKeys : std::vector<std::string>{"keyframe"})
-        {
-            if (map.has(key))
-            {
-                map.failAtKey(key, "'" + key + "' is for " + (mjcf ? "a 'urdf' model" : "an 'mjcf' model"));
-            }
-        }
-        const YamlNode urdfNode = map.require(fileKey);
-        const std::string file = toString(source, urdfNode, map.what(fileKey));
+        ModelEntry entry{map};
+        entry.mjcf = checkModelKind(map);
+        const std::string fileKey = entry.mjcf ? "mjcf" : "urdf";
+        entry.fileNode = map.require(fileKey);
+        const std::string file = toString(source, entry.fileNode, map.what(fileKey));
         map.setContext("model '" + file + "'");
-        UrdfPlacement placement;
-        placement.position = map.optPosition("position").value_or(core::Vec3::Zero());
-        placement.orientation = map.optQuaternion("orientation").value_or(core::Quat::Identity());
-        placement.prefix = map.optString("prefix").value_or("");
-        placement.selfCollision =
-            builder.urdf.selfCollision.value_or(map.optBool("self_collision").value_or(true));
-        placement.fixedRoot = map.optBool("fixed").value_or(false);
-        placement.freeRoot = map.optBool("free_base").value_or(false);
-        if (placement.fixedRoot && placement.freeRoot)
-        {
-            map.failAtKey("free_base", "'fixed' and 'free_base' of " + map.context() + " exclude each other");
-        }
-        if (map.has("prefix") && placement.prefix.find_first_of(",\"") != std::string::npos)
-        {
-            map.failAtValue("prefix", "a prefix cannot contain commas or double quotes");
-        }
-        const YamlNode positions = map.get("joint_positions");
-        if (positions.isDefined() && !positions.isNull())
-        {
-            if (!positions.isMap())
-            {
-                failAt(
-                    source, positions,
-                    "expected a map of URDF joint names to positions (rad or m) for 'joint_positions' in " +
-                        map.context());
-            }
-            for (std::size_t k = 0; k < positions.size(); ++k)
-            {
-                const std::string name =
-                    toString(source, positions.key(k), "a joint name in 'joint_positions'");
-                placement.jointPositions[name] =
-                    toNumber(source, positions.value(k),
-                             "the position (rad or m) of joint '" + name + "' in 'joint_positions'");
-            }
-        }
-        const std::string path = resolvePath(source.baseDir, file);
-        if (!builder.packages)
-        {
-            builder.packages.emplace(builder.urdf.packagePaths);
-        }
-        ModelFragment loaded;
-        try
-        {
-            loaded =
-                mjcf ? loadMjcfFragment(path, {placement.position, placement.orientation, placement.prefix,
-                                               placement.selfCollision, map.optString("keyframe")})
-                     : loadUrdfFragment(path, placement, *builder.packages);
-        }
-        catch (const JointPositionError& e)
-        {
-            for (std::size_t k = 0; k < positions.size(); ++k)
-            {
-                if (positions.key(k).scalar() == e.joint())
-                {
-                    failAt(source, positions.value(k), e.what());
-                }
-            }
-            failAt(source, positions, e.what());
-        }
-        catch (const InputError& e)
-        {
-            // A file that cannot be read at all is named at the scene's line.
-            if (e.file() == path && e.line() == 0)
-            {
-                failAt(source, urdfNode,
-                       (e.message().starts_with("cannot open file") ? "cannot open " : "cannot read ") +
-                           (mjcf ? std::string("MJCF") : std::string("URDF")) + " file '" + path +
-                           "': " + e.message());
-            }
-            throw;
-        }
-        core::Model& fragment = loaded.model;
-        const std::string placedAt = placeModel(map, fragment, placement);
-        // A rigid motion of the whole model: v at the root link origin, w about it, added to the
-        // motion it starts with (an MJCF keyframe's qvel).
-        const core::Vec3 velocity = map.optVelocity("velocity").value_or(core::Vec3::Zero());
-        const core::Vec3 angularVelocity =
-            map.optAngularVelocity("angular_velocity").value_or(core::Vec3::Zero());
-        for (core::Body& body : fragment.bodies)
-        {
-            if (!body.isStatic)
-            {
-                body.velocity_W += velocity + angularVelocity.cross(body.position_W - placement.position);
-                body.angularVelocity_W += angularVelocity;
-            }
-        }
-        const int firstBody = static_cast<int>(builder.model.bodies.size());
-        for (const auto& [linkName, bodyName] : loaded.report.welded)
-        {
-            builder.weldedLinks[placement.prefix + linkName] = firstBody + fragment.findBody(bodyName);
-        }
-        builder.model.robots.push_back({loaded.report.name, path, firstBody,
-                                        static_cast<int>(fragment.bodies.size()), placement.selfCollision});
-        builder.robotMarks.push_back(map.mark());
-        if (builder.urdf.hold || map.optBool("hold").value_or(false))
-        {
-            const int firstJoint = static_cast<int>(builder.model.joints.size());
-            builder.heldJoints.push_back({firstJoint, firstJoint + static_cast<int>(fragment.joints.size())});
-        }
-        appendFragment(builder, map, std::move(fragment), path);
-        if (builder.report)
-        {
-            loaded.report.placement = placedAt;
-            builder.report->robots.push_back(std::move(loaded.report));
-            builder.report->warnings.insert(builder.report->warnings.end(), loaded.warnings.begin(),
-                                            loaded.warnings.end());
-        }
+        entry.placement = readPlacement(builder, map);
+        entry.positions = map.get("joint_positions");
+        readJointPositions(source, entry);
+        entry.path = resolvePath(source.baseDir, file);
+        ModelFragment loaded = loadModelFile(builder, entry);
+        const std::string placedAt = placeModel(map, loaded.model, entry.placement);
+        addStartingMotion(map, loaded.model, entry.placement.position);
+        addModel(builder, entry, std::move(loaded), placedAt);
     }
 }
 
@@ -647,6 +698,139 @@ class SceneLists final : public YamlListHandler
     Part mErrorPart = Part::Bodies;
 };
 
+// The text holds one scene document with content.
+void checkOneScene(const YamlSource& source, const std::string& text, const YamlDocuments& documents)
+{
+    if (documents.count > 1)
+    {
+        failAt(source, documents.second,
+               "the file holds " + std::to_string(documents.count) + " YAML documents; expected one scene");
+    }
+    if (documents.first.root().isNull())
+    {
+        throw InputError(source.file, 1, 1,
+                         std::string(text.find_first_not_of(" \t\n") == std::string::npos
+                                         ? "the file is empty"
+                                         : "the file holds no YAML content (only comments or an "
+                                           "empty document)") +
+                             "; expected a scene: a map with 'bodies' (and 'joints', ...)");
+    }
+}
+
+// The scene's name, simulation, contact and camera maps; gives back the contact's 'ignore' list,
+// read once the bodies and joints are in.
+YamlNode readSettings(SceneBuilder& builder, const MapNode& root)
+{
+    const YamlSource& source = builder.source;
+    core::Model& model = builder.model;
+    if (root.has("name"))
+    {
+        model.name = root.string("name");
+    }
+    if (root.has("simulation"))
+    {
+        readSimulation(source, root.get("simulation"), model.simulation);
+    }
+    YamlNode ignore;
+    if (root.has("contact"))
+    {
+        ignore = readContact(source, root.get("contact"), model.contact);
+    }
+    if (root.has("camera"))
+    {
+        readCamera(source, root.get("camera"), model.camera);
+    }
+    return ignore;
+}
+
+// Bodies, models and joints: those the parse handed to `lists` as it went, the others from the tree.
+void readLists(SceneBuilder& builder, SceneLists& lists, const MapNode& root, const std::string& text)
+{
+    lists.throwErrorOf(SceneLists::Part::Bodies);
+    if (root.has("bodies") && !lists.bodiesRead())
+    {
+        readBodies(builder, root.get("bodies"));
+    }
+    lists.throwErrorOf(SceneLists::Part::Models);
+    if (root.has("models") && !lists.modelsRead())
+    {
+        readModels(builder, root.get("models"));
+    }
+    if (builder.model.bodies.empty())
+    {
+        root.fail("the scene has no bodies; expected 'bodies' or 'models'");
+    }
+    lists.throwErrorOf(SceneLists::Part::Joints);
+    if (root.has("joints") && !lists.jointsRead())
+    {
+        if (lists.tookJoints())
+        {
+            // Its items were not kept: read them in a second parse, bodies and models now in.
+            SceneLists second(builder, true);
+            YamlDocuments again;
+            parseYaml(text, builder.source.file, again, &second);
+            second.throwErrorOf(SceneLists::Part::Joints);
+        }
+        else
+        {
+            readJoints(builder, root.get("joints")); // not a list: the error
+        }
+    }
+}
+
+// What needs the bodies and joints in: ignored pairs, actuators, held joints, the starting states'
+// check, loads, the reference and the stability criteria.
+void readAfterLists(SceneBuilder& builder, const MapNode& root, const YamlNode& ignore)
+{
+    core::Model& model = builder.model;
+    if (ignore.isDefined() && !ignore.isNull())
+    {
+        readIgnorePairs(builder, ignore, model.contact);
+    }
+    if (root.has("actuators"))
+    {
+        readActuators(builder, root.get("actuators"));
+    }
+    for (const auto& [first, end] : builder.heldJoints)
+    {
+        addHoldServos(model, first, end); // where the scene's actuators leave a joint free
+    }
+    checkStartingStates(builder);
+    if (root.has("loads"))
+    {
+        readLoads(builder, root.get("loads"));
+    }
+    if (root.has("reference"))
+    {
+        SceneReference reference = readReference(builder, root.get("reference"));
+        if (builder.report != nullptr)
+        {
+            builder.report->reference = std::move(reference);
+        }
+    }
+    if (root.has("stability"))
+    {
+        SceneStabilityCriteria criteria = readStabilityCriteria(builder, root.get("stability"));
+        if (builder.report != nullptr)
+        {
+            builder.report->stability = std::move(criteria);
+        }
+    }
+}
+
+void readScene(SceneBuilder& builder, const std::string& text)
+{
+    SceneLists lists(builder, false);
+    YamlDocuments documents;
+    parseYaml(text, builder.source.file, documents, &lists);
+    checkOneScene(builder.source, text, documents);
+    const MapNode root(builder.source, documents.first.root(), "the scene");
+    root.checkKeys(cSceneKeys);
+    const YamlNode ignore = readSettings(builder, root);
+    readLists(builder, lists, root, text);
+    readAfterLists(builder, root, ignore);
+}
+
 } // namespace
 
 core::Model loadYamlScene(const std::string& rawText, const std::string& sourceName, const UrdfOptions& urdf,
@@ -665,108 +849,10 @@ core::Model loadYamlScene(const std::string& rawText, const std::string& sourceN
     model.name = defaultName(sourceName);
     try
     {
-        SceneLists lists(builder, false);
-        YamlDocuments documents;
-        parseYaml(text, sourceName, documents, &lists);
-        if (documents.count > 1)
-        {
-            failAt(source, documents.second,
-                   "the file holds " + std::to_string(documents.count) +
-                       " YAML documents; expected one scene");
-        }
-        if (documents.first.root().isNull())
-        {
-            throw InputError(sourceName, 1, 1,
-                             std::string(text.find_first_not_of(" \t\n") == std::string::npos
-                                             ? "the file is empty"
-                                             : "the file holds no YAML content (only comments or an "
-                                               "empty document)") +
-                                 "; expected a scene: a map with 'bodies' (and 'joints', ...)");
-        }
-        const MapNode root(source, documents.first.root(), "the scene");
-        root.checkKeys(cSceneKeys);
-        if (root.has("name"))
-        {
-            model.name = root.string("name");
-        }
-        if (root.has("simulation"))
-        {
-            readSimulation(source, root.get("simulation"), model.simulation);
-        }
-        YamlNode ignore;
-        if (root.has("contact"))
-        {
-            ignore = readContact(source, root.get("contact"), model.contact);
-        }
-        if (root.has("camera"))
-        {
-            readCamera(source, root.get("camera"), model.camera);
-        }
-        lists.throwErrorOf(SceneLists::Part::Bodies);
-        if (root.has("bodies") && !lists.bodiesRead())
-        {
-            readBodies(builder, root.get("bodies"));
-        }
-        lists.throwErrorOf(SceneLists::Part::Models);
-        if (root.has("models") && !lists.modelsRead())
-        {
-            readModels(builder, root.get("models"));
-        }
-        if (model.bodies.empty())
-        {
-            root.fail("the scene has no bodies; expected 'bodies' or 'models'");
-        }
-        lists.throwErrorOf(SceneLists::Part::Joints);
-        if (root.has("joints") && !lists.jointsRead())
-        {
-            if (lists.tookJoints())
-            {
-                // Its items were not kept: read them in a second parse, bodies and models now in.
-                SceneLists second(builder, true);
-                YamlDocuments again;
-                parseYaml(text, sourceName, again, &second);
-                second.throwErrorOf(SceneLists::Part::Joints);
-            }
-            else
-            {
-                readJoints(builder, root.get("joints")); // not a list: the error
-            }
-        }
-        if (ignore.isDefined() && !ignore.isNull())
-        {
-            readIgnorePairs(builder, ignore, model.contact);
-        }
-        if (root.has("actuators"))
-        {
-            readActuators(builder, root.get("actuators"));
-        }
-        for (const auto& [first, end] : builder.heldJoints)
-        {
-            addHoldServos(model, first, end); // where the scene's actuators leave a joint free
-        }
-        checkStartingStates(builder);
-        if (root.has("loads"))
-        {
-            readLoads(builder, root.get("loads"));
-        }
-        if (root.has("reference"))
-        {
-            SceneReference reference = readReference(builder, root.get("reference"));
-            if (report != nullptr)
-            {
-                report->reference = std::move(reference);
-            }
-        }
-        if (root.has("stability"))
-        {
-            SceneStabilityCriteria criteria = readStabilityCriteria(builder, root.get("stability"));
-            if (report != nullptr)
-            {
-                report->stability = std::move(criteria);
-            }
-        }
+        readScene(builder, text);
     }
     catch (const YAML::ParserException& e)
+
     {
         failAt(source, e.mark, "invalid YAML: " + e.msg + tabHint(text, e.mark));
     }

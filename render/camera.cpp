@@ -77,8 +77,16 @@ Mat4 orthographic(double left, double right, double bottom, double top, double z
     return m;
 }
 
-View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
-                 double aspect, double fill, double minRadius, double topFill)
+namespace
+{
+// The automatic camera's axes as lookAt builds them: forward f (25 degrees down, from +x -y for
+// z-up), sideways s, upwards v; u the unit up.
+struct CameraAxes
+{
+    core::Vec3 u, f, s, v;
+};
+
+CameraAxes automaticAxes(const core::Vec3& up)
 {
     const core::Vec3 u = up.norm() > 0.0 ? up.normalized() : core::Vec3::UnitZ();
     // Horizontal basis (a, b) so that for z-up a = x, b = y.
@@ -94,6 +102,14 @@ View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, do
     const core::Vec3 f = -towardsEye;
     const core::Vec3 s = f.cross(robustUp(f, u)).normalized();
     const core::Vec3 v = s.cross(f);
+    return {u, f, s, v};
+}
+} // namespace
+
+View framePoints(const std::vector<core::Vec3>& points, const core::Vec3& up, double fovyDegrees,
+                 double aspect, double fill, double minRadius, double topFill)
+{
+    const auto [u, f, s, v] = automaticAxes(up);
 
     const double tanY = std::tan(0.5 * std::clamp(fovyDegrees, 1.0, 170.0) * std::numbers::pi / 180.0);
     const double tanX = tanY * aspect;

@@ -218,13 +218,10 @@ struct Renderer::Impl
         quad = uploadMesh(square);
     }
 
-    // Camera and floor placement over `states`: the tightest automatic camera that keeps every pose
-    // the moving bodies (all bodies when none move) take in them inside the image. With
-    // `dropToFloor` (one state whose future is unknown) each point's drop onto the floors below it
-    // is framed too, so that falling bodies stay in view.
-    void frame(const std::vector<core::State>& states, bool dropToFloor)
+    // The points to frame over `states`: the moving bodies' shape corners (all bodies' when none
+    // move), with `dropToFloor` each one's drop onto the floors below it too.
+    std::vector<core::Vec3> framedPoints(const std::vector<core::State>& states, bool dropToFloor) const
     {
-        const double aspect = static_cast<double>(options.width) / options.height;
         std::vector<core::Vec3> points;
         for (const core::State& state : states)
         {
@@ -257,13 +254,12 @@ struct Renderer::Impl
                 }
             }
         }
-        Bounds framedBox;
-        for (const core::Vec3& p : points)
-        {
-            framedBox.add(p);
-        }
-        const double radius = std::max(framedBox.radius(), 0.25);
+        return points;
+    }
 
+    // The scene's camera, or the automatic one that frames `points`.
+    View cameraView(const std::vector<core::Vec3>& points, double aspect) const
+    {
         View v;
         if (model.camera.automatic)
         {
@@ -280,6 +276,24 @@ struct Renderer::Impl
             v.up = up;
             v.fovyDegrees = model.camera.fovDegrees;
         }
+        return v;
+    }
+
+    // Camera and floor placement over `states`: the tightest automatic camera that keeps every pose
+    // the moving bodies (all bodies when none move) take in them inside the image. With
+    // `dropToFloor` (one state whose future is unknown) each point's drop onto the floors below it
+    // is framed too, so that falling bodies stay in view.
+    void frame(const std::vector<core::State>& states, bool dropToFloor)
+    {
+        const double aspect = static_cast<double>(options.width) / options.height;
+        const std::vector<core::Vec3> points = framedPoints(states, dropToFloor);
+        Bounds framedBox;
+        for (const core::Vec3& p : points)
+        {
+            framedBox.add(p);
+        }
+        const double radius = std::max(framedBox.radius(), 0.25);
+        const View v = cameraView(points, aspect);
         const double fovy = std::clamp(v.fovyDegrees, 1.0, 170.0);
         const double distance = std::max((v.eye - v.target).norm(), 1e-3);
         floorHalf = std::max(20.0, 15.0 * radius + distance);
@@ -349,6 +363,14 @@ struct Renderer::Impl
 
     void drawScenePass(const core::State& state, const Mat4& lightVp, double texelWorld)
     {
+        beginScenePass(lightVp, texelWorld);
+        drawItems(state);
+        drawFloors();
+    }
+
+    // The scene's framebuffer cleared, the lit program's view, light and shadow set.
+    void beginScenePass(const Mat4& lightVp, double texelWorld)
+    {
         glBindFramebuffer(GL_FRAMEBUFFER, scene.fbo);
         glViewport(0, 0, options.width, options.height);
         glClearColor(static_cast<float>(cBackground.x()), static_cast<float>(cBackground.y()),
@@ -367,7 +389,11 @@ struct Renderer::Impl
         glUniform1f(lit.normalOffset, static_cast<float>(1.5 * texelWorld));
         setVec3(lit.background, toLinear(cBackground));
         glUniform1i(lit.isFloor, 0);
+    }
 
+    // The bodies' shapes, lit and shadowed.
+    void drawItems(const core::State& state)
+    {
         for (const DrawItem& item : items)
         {
             if (item.closed)
@@ -384,7 +410,11 @@ struct Renderer::Impl
             glBindVertexArray(m.vao);
             glDrawArrays(GL_TRIANGLES, 0, m.count);
         }
+    }
 
+    // Each floor as a square of half-size floorHalf around the framed centre, tiled and fading out.
+    void drawFloors()
+    {
         glDisable(GL_CULL_FACE);
         glUniform1i(lit.isFloor, 1);
         glUniform1f(lit.tile, static_cast<float>(tile));

@@ -342,6 +342,41 @@ void judgeSurvivor(const StabilityLimits& limits, StabilityCell& cell)
                         : "came apart (gap " + format("%.2g", cell.maxJointGapRad) + " rad)";
     }
 }
+// Runs the cell's model, its figures into the cell; false when the method cannot run the model.
+bool simulateCell(const core::Model& model, const run::Recorder& record, StabilityCell& cell)
+{
+    run::RunSettings settings;
+    settings.steps = cell.steps;
+    try
+    {
+        const run::RunSummary summary = run::runSimulation(model, settings, record);
+        cell.wallSeconds = summary.wallSeconds;
+        cell.maxJointGapM = summary.maxJointErrorM;
+        cell.maxJointGapRad = summary.maxJointErrorRad;
+        cell.maxPenetrationM = summary.maxPenetrationM;
+        if (!summary.finite)
+        {
+            cell.outcome = StabilityOutcome::Failed;
+            cell.note =
+                failureNote(summary.failureDetails, static_cast<double>(summary.steps) * model.simulation.dt);
+            cell.failure = summary.failure;
+        }
+    }
+    catch (const core::UnsupportedModelError&)
+    {
+        cell.outcome = StabilityOutcome::Unavailable;
+        cell.note = "not available";
+        return false;
+    }
+    catch (const core::SingularJointError& e)
+    {
+        cell.outcome = StabilityOutcome::Failed;
+        cell.failure = e.what();
+        cell.note = "singular joint '" + e.jointName() + "' at t = " +
+                    format("%.3g", static_cast<double>(cell.stepsRun + 1) * model.simulation.dt) + " s";
+    }
+    return true;
+}
 } // namespace
 
 StabilityCell runStabilityCell(const core::Model& scene, const std::string& sceneName,
@@ -377,35 +412,9 @@ StabilityCell runStabilityCell(const core::Model& scene, const std::string& scen
         watch.observe(state, cell);
     };
 
-    run::RunSettings settings;
-    settings.steps = cell.steps;
-    try
+    if (!simulateCell(model, record, cell))
     {
-        const run::RunSummary summary = run::runSimulation(model, settings, record);
-        cell.wallSeconds = summary.wallSeconds;
-        cell.maxJointGapM = summary.maxJointErrorM;
-        cell.maxJointGapRad = summary.maxJointErrorRad;
-        cell.maxPenetrationM = summary.maxPenetrationM;
-        if (!summary.finite)
-        {
-            cell.outcome = StabilityOutcome::Failed;
-            cell.note =
-                failureNote(summary.failureDetails, static_cast<double>(summary.steps) * model.simulation.dt);
-            cell.failure = summary.failure;
-        }
-    }
-    catch (const core::UnsupportedModelError&)
-    {
-        cell.outcome = StabilityOutcome::Unavailable;
-        cell.note = "not available";
         return cell;
-    }
-    catch (const core::SingularJointError& e)
-    {
-        cell.outcome = StabilityOutcome::Failed;
-        cell.failure = e.what();
-        cell.note = "singular joint '" + e.jointName() + "' at t = " +
-                    format("%.3g", static_cast<double>(cell.stepsRun + 1) * model.simulation.dt) + " s";
     }
     if (free)
     {
@@ -540,25 +549,11 @@ void writeMethodTable(std::ostream& out, const std::vector<std::string>& sceneNa
     }
 }
 
-} // namespace
-
-std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
-                              const std::vector<std::string>& sceneNames,
-                              const std::vector<run::Method>& methods,
-                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
-                              const std::string& machine, const StabilityReportExtras& extras)
+// The scenes' table: moving bodies, joint rows, dt, duration, E_ref and own criteria.
+void writeSceneTable(std::ostream& out, const std::vector<core::Model>& scenes,
+                     const std::vector<std::string>& sceneNames, const StabilityLimits& limits,
+                     const StabilityReportExtras& extras)
 {
-    const auto byKey = cellsByKey(cells);
-    std::ostringstream out;
-    out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
-           "A run fails when it blows up, a joint comes apart (gap above "
-        << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
-        << " rad over the run, or above " << format("%g", core::cJointBlowUp)
-        << " m or rad after a step's drift correction), a joint block becomes singular, or a centre of mass "
-           "tunnels through a static box or plane. Wall times on "
-        << machine << ", one run at a time.\n\n";
-    writeMethodTable(out, sceneNames, methods, byKey, overviewText);
-
     out << "\nThe scenes: energy drift is relative to E_ref = initial kinetic energy + M |g| D (M the moving "
            "mass, D the diagonal of the box holding the initial centres of mass). A scene's own criteria "
            "(its `stability:` map) fail a run that survives but breaks one.\n\n"
@@ -580,20 +575,28 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
             << (s < extras.criteria.size() ? criteriaText(model, extras.criteria[s]) : std::string())
             << " |\n";
     }
+}
 
-    if (!extras.largest.empty())
+// A row of the details table.
+void writeDetailRow(std::ostream& out, const std::string& scene, const StabilityCell& c)
+{
+    out << "| " << scene << " | " << c.method << " | ";
+    if (c.outcome == StabilityOutcome::Unavailable || c.outcome == StabilityOutcome::Skipped)
     {
-        out << "\nWhere it ends: the largest time step at which each scene still holds (survives and meets "
-               "its "
-               "own criteria), halving from "
-            << stepText(extras.search.start) << ", each run for the scene's duration or "
-            << format("%g", extras.search.duration)
-            << " s if shorter (a failure that comes later is not seen), stopping at the first step that "
-               "holds "
-               "or after the first step below the scene's own that fails.\n\n";
-        writeMethodTable(out, sceneNames, methods, cellsByKey(extras.largest), largestText);
+        out << c.note << " | | | | | | | | | |\n";
+        return;
     }
+    out << (c.survived() ? std::string("ok") : "**FAILED**: " + c.note) << " | " << sci(c.maxJointGapM)
+        << " | " << sci(c.maxJointGapRad) << " | " << percent(c.energyRise()) << " | "
+        << percent(c.energyLoss()) << " | " << (c.momentumDrift ? sci(*c.momentumDrift) : "") << " | "
+        << sci(c.maxPenetrationM) << " | " << format("%.3g", c.maxSpeedMps) << " | " << watchedText(c)
+        << " | " << format("%.2f", c.wallSeconds) << " |\n";
+}
 
+void writeDetailTable(std::ostream& out, const std::vector<std::string>& sceneNames,
+                      const std::vector<run::Method>& methods,
+                      const std::map<std::pair<std::string, std::string>, const StabilityCell*>& byKey)
+{
     out << "\nDetails: the largest joint gap over the run (positional, angular), the energy's largest rise "
            "above and fall below its initial value (relative to E_ref), the total angular momentum's "
            "largest relative change (free systems only), the deepest contact overlap, the largest speed of a "
@@ -607,24 +610,44 @@ std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
         for (const run::Method& method : methods)
         {
             const auto it = byKey.find({scene, method.label()});
-            if (it == byKey.end())
+            if (it != byKey.end())
             {
-                continue;
+                writeDetailRow(out, scene, *it->second);
             }
-            const StabilityCell& c = *it->second;
-            out << "| " << scene << " | " << c.method << " | ";
-            if (c.outcome == StabilityOutcome::Unavailable || c.outcome == StabilityOutcome::Skipped)
-            {
-                out << c.note << " | | | | | | | | | |\n";
-                continue;
-            }
-            out << (c.survived() ? std::string("ok") : "**FAILED**: " + c.note) << " | "
-                << sci(c.maxJointGapM) << " | " << sci(c.maxJointGapRad) << " | " << percent(c.energyRise())
-                << " | " << percent(c.energyLoss()) << " | " << (c.momentumDrift ? sci(*c.momentumDrift) : "")
-                << " | " << sci(c.maxPenetrationM) << " | " << format("%.3g", c.maxSpeedMps) << " | "
-                << watchedText(c) << " | " << format("%.2f", c.wallSeconds) << " |\n";
         }
     }
+}
+
+} // namespace
+
+std::string stabilityMarkdown(const std::vector<core::Model>& scenes,
+                              const std::vector<std::string>& sceneNames,
+                              const std::vector<run::Method>& methods,
+                              const std::vector<StabilityCell>& cells, const StabilityLimits& limits,
+                              const std::string& machine, const StabilityReportExtras& extras)
+{
+    const auto byKey = cellsByKey(cells);
+    std::ostringstream out;
+    out << "Each scene (`scenes/stability/`) run for its duration with each method (`solver/integrator`). "
+           "A run fails when it blows up, a joint comes apart (gap above "
+        << format("%g", limits.maxJointGapM) << " m or " << format("%g", limits.maxJointGapRad)
+        << " rad over the run, or above " << format("%g", core::cJointBlowUp)
+        << " m or rad after a step's drift correction), a joint block becomes singular, or a centre of mass "
+           "tunnels through a static box or plane. Wall times on "
+        << machine << ", one run at a time.\n\n";
+    writeMethodTable(out, sceneNames, methods, byKey, overviewText);
+    writeSceneTable(out, scenes, sceneNames, limits, extras);
+    if (!extras.largest.empty())
+    {
+        out << "\nWhere it ends: the largest time step at which each scene still holds (survives and meets "
+               "its own criteria), halving from "
+            << stepText(extras.search.start) << ", each run for the scene's duration or "
+            << format("%g", extras.search.duration)
+            << " s if shorter (a failure that comes later is not seen), stopping at the first step that "
+               "holds or after the first step below the scene's own that fails.\n\n";
+        writeMethodTable(out, sceneNames, methods, cellsByKey(extras.largest), largestText);
+    }
+    writeDetailTable(out, sceneNames, methods, byKey);
     return out.str();
 }
 

@@ -563,52 +563,34 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
     return result;
 }
 
-ExternalReference readReferenceCsv(const std::string& path, const std::string& body)
+namespace
 {
-    std::istringstream in(io::detail::readTextFile(path, "reference CSV")); // regular files only, bounded
-    std::vector<double> times;
-    std::vector<core::Vec3> positions;
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line))
+
+// One row t,x,y,z (s, m); none when the line is not four numbers.
+std::optional<std::array<double, 4>> referenceRow(const std::string& line)
+{
+    std::array<double, 4> v{};
+    std::size_t at = 0;
+    bool ok = true;
+    for (std::size_t k = 0; k < 4 && ok; ++k)
     {
-        ++number;
-        if (line.empty() || line[0] == '#')
-        {
-            continue;
-        }
-        std::array<double, 4> v{};
-        std::size_t at = 0;
-        bool ok = true;
-        for (std::size_t k = 0; k < 4 && ok; ++k)
-        {
-            const std::size_t end = std::min(line.find(',', at), line.size());
-            const std::optional<double> value =
-                io::detail::parseFiniteNumber(trim(line.substr(at, end - at)));
-            ok = value.has_value() && (k == 3 ? end == line.size() : end < line.size());
-            v[k] = value.value_or(0.0);
-            at = end + 1;
-        }
-        if (!ok && times.empty() && number == 1)
-        {
-            continue; // a header
-        }
-        if (!ok || (!times.empty() && !(v[0] > times.back())))
-        {
-            throw SweepInputError("reference " + path + ":" + std::to_string(number) +
-                                  ": expected t,x,y,z (s, m) with t increasing");
-        }
-        times.push_back(v[0]);
-        positions.emplace_back(v[1], v[2], v[3]);
+        const std::size_t end = std::min(line.find(',', at), line.size());
+        const std::optional<double> value = io::detail::parseFiniteNumber(trim(line.substr(at, end - at)));
+        ok = value.has_value() && (k == 3 ? end == line.size() : end < line.size());
+        v[k] = value.value_or(0.0);
+        at = end + 1;
     }
-    if (times.size() < 4)
-    {
-        throw SweepInputError("reference " + path + ": fewer than 4 rows t,x,y,z");
-    }
-    ExternalReference reference;
-    reference.body = body;
-    reference.source = path;
-    reference.position_W = [path, times = std::move(times), positions = std::move(positions)](double t)
+    return ok ? std::optional(v) : std::nullopt;
+}
+
+// A reference CSV's rows, and the position between them at any time they cover.
+struct ReferenceTable
+{
+    std::string path;
+    std::vector<double> times;         // s, increasing
+    std::vector<core::Vec3> positions; // m
+
+    core::Vec3 at(double t) const
     {
         constexpr double cTimeTolerance = 1e-9; // s: a sample time this close to a row is the row's
         if (t < times.front() - cTimeTolerance || t > times.back() + cTimeTolerance)
@@ -640,7 +622,50 @@ ExternalReference readReferenceCsv(const std::string& path, const std::string& b
             p += weight * positions[i];
         }
         return p;
-    };
+    }
+};
+
+ReferenceTable readReferenceTable(const std::string& path)
+{
+    std::istringstream in(io::detail::readTextFile(path, "reference CSV")); // regular files only, bounded
+    ReferenceTable table{path, {}, {}};
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line))
+    {
+        ++number;
+        if (line.empty() || line[0] == '#')
+        {
+            continue;
+        }
+        const std::optional<std::array<double, 4>> v = referenceRow(line);
+        if (!v && table.times.empty() && number == 1)
+        {
+            continue; // a header
+        }
+        if (!v || (!table.times.empty() && !((*v)[0] > table.times.back())))
+        {
+            throw SweepInputError("reference " + path + ":" + std::to_string(number) +
+                                  ": expected t,x,y,z (s, m) with t increasing");
+        }
+        table.times.push_back((*v)[0]);
+        table.positions.emplace_back((*v)[1], (*v)[2], (*v)[3]);
+    }
+    if (table.times.size() < 4)
+    {
+        throw SweepInputError("reference " + path + ": fewer than 4 rows t,x,y,z");
+    }
+    return table;
+}
+
+} // namespace
+
+ExternalReference readReferenceCsv(const std::string& path, const std::string& body)
+{
+    ExternalReference reference;
+    reference.body = body;
+    reference.source = path;
+    reference.position_W = [table = readReferenceTable(path)](double t) { return table.at(t); };
     return reference;
 }
 

@@ -239,16 +239,10 @@ Buffers mujocoBuffers(const core::Model& model, int growth)
     return buffers;
 }
 
-// MJCF text of the model's joint trees.
-std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, MujocoIntegrator integrator,
-                 const Buffers& buffers)
+// The <option>, <compiler> and <size> of the model's MJCF.
+void writeOptions(std::ostream& out, const core::Model& model, MujocoIntegrator integrator,
+                  const Buffers& buffers)
 {
-    const bool contacts = hasContacts(model);
-    std::vector<std::vector<const TreeLink*>> children(model.bodies.size());
-    for (const TreeLink& link : tree)
-        if (!isRoot(link))
-            children[static_cast<std::size_t>(link.parent)].push_back(&link);
-    std::ostringstream out;
     const core::Vec3& g = model.simulation.gravity;
     out << "<mujoco model=\"peers\">\n<option timestep=\"" << numbers({model.simulation.dt})
         << "\" gravity=\"" << numbers({g.x(), g.y(), g.z()}) << "\""
@@ -256,9 +250,11 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
         << ">\n<flag filterparent=\"disable\"/>\n"
         << "</option>\n<compiler angle=\"radian\"/>\n<size nconmax=\"" << buffers.contacts << "\" njmax=\""
         << buffers.rows << "\"/>\n";
-    if (contacts)
-        writeMeshAssets(out, model);
-    out << "<worldbody>\n";
+}
+
+// Static bodies: children of the world, without joints.
+void writeStaticBodies(std::ostream& out, const core::Model& model, bool contacts)
+{
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
     {
         const core::Body& body = model.bodies[b];
@@ -269,57 +265,73 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
         writeGeoms(out, model, body, contacts);
         out << "</body>\n";
     }
-    // Iterative depth-first writing: long chains nest thousands of bodies deep.
+}
+
+// The joint(s) that hold a link to its parent: a free joint for a root, a ball, a hinge, or two
+// hinges for an angle joint.
+void writeJoint(std::ostream& out, const core::Model& model, const TreeLink& link)
+{
+    if (link.joint < 0)
+    {
+        out << "<freejoint name=\"free" << link.body << "\"/>\n";
+        return;
+    }
+    const core::Joint& joint = model.joints[static_cast<std::size_t>(link.joint)];
+    const std::string a = vector3(joint.anchorChild);
+    if (joint.type == core::JointType::Ball)
+        out << "<joint type=\"ball\" pos=\"" << a << "\"/>\n";
+    else if (joint.type == core::JointType::Revolute)
+    {
+        out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.axisChild) << "\"";
+        if (joint.limits)
+            out << " limited=\"true\" range=\"" << numbers({(*joint.limits)[0], (*joint.limits)[1]}) << "\"";
+        out << "/>\n";
+    }
+    else if (joint.type == core::JointType::Angle)
+    {
+        // a1 (fixed in the parent) in the child's frame at the initial pose, then b2: MuJoCo
+        // turns the body about its joints in order, so the second axis turns with the first.
+        const core::Vec3 a1 = relativeRotation(model, link.parent, link.body).conjugate() * joint.perpParent1;
+        out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(a1) << "\"/>\n"
+            << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.angleChildAxis)
+            << "\"/>\n";
+    }
+}
+
+// A link's opening <body>: its pose in its parent, inertia, geoms and joint (closed by the caller).
+void openBody(std::ostream& out, const core::Model& model, const TreeLink& link, bool contacts)
+{
+    const core::Body& body = model.bodies[static_cast<std::size_t>(link.body)];
+    const core::Vec3 x = relativePosition(model, link.parent, link.body);
+    const core::Quat q = relativeRotation(model, link.parent, link.body);
+    const core::Mat3& I = body.inertia_B;
+    out << "<body name=\"b" << link.body << "\" pos=\"" << numbers({x.x(), x.y(), x.z()}) << "\" quat=\""
+        << numbers({q.w(), q.x(), q.y(), q.z()}) << "\">\n<inertial pos=\"0 0 0\" mass=\""
+        << numbers({body.mass}) << "\" fullinertia=\""
+        << numbers({I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)}) << "\"/>\n";
+    writeGeoms(out, model, body, contacts);
+    writeJoint(out, model, link);
+}
+
+// The joint trees, each body nested in its parent's. Iterative depth-first writing: long chains
+// nest thousands of bodies deep.
+void writeTrees(std::ostream& out, const core::Model& model, const std::vector<TreeLink>& tree, bool contacts)
+{
+    std::vector<std::vector<const TreeLink*>> children(model.bodies.size());
+    for (const TreeLink& link : tree)
+        if (!isRoot(link))
+            children[static_cast<std::size_t>(link.parent)].push_back(&link);
     struct Frame
     {
         const TreeLink* link;
         std::size_t next; // next child to write
     };
     std::vector<Frame> stack;
-    auto open = [&](const TreeLink& link)
-    {
-        const core::Body& body = model.bodies[static_cast<std::size_t>(link.body)];
-        const core::Vec3 x = relativePosition(model, link.parent, link.body);
-        const core::Quat q = relativeRotation(model, link.parent, link.body);
-        const core::Mat3& I = body.inertia_B;
-        out << "<body name=\"b" << link.body << "\" pos=\"" << numbers({x.x(), x.y(), x.z()}) << "\" quat=\""
-            << numbers({q.w(), q.x(), q.y(), q.z()}) << "\">\n<inertial pos=\"0 0 0\" mass=\""
-            << numbers({body.mass}) << "\" fullinertia=\""
-            << numbers({I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)}) << "\"/>\n";
-        writeGeoms(out, model, body, contacts);
-        if (link.joint < 0)
-        {
-            out << "<freejoint name=\"free" << link.body << "\"/>\n";
-            return;
-        }
-        const core::Joint& joint = model.joints[static_cast<std::size_t>(link.joint)];
-        const std::string a = vector3(joint.anchorChild);
-        if (joint.type == core::JointType::Ball)
-            out << "<joint type=\"ball\" pos=\"" << a << "\"/>\n";
-        else if (joint.type == core::JointType::Revolute)
-        {
-            out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.axisChild) << "\"";
-            if (joint.limits)
-                out << " limited=\"true\" range=\"" << numbers({(*joint.limits)[0], (*joint.limits)[1]})
-                    << "\"";
-            out << "/>\n";
-        }
-        else if (joint.type == core::JointType::Angle)
-        {
-            // a1 (fixed in the parent) in the child's frame at the initial pose, then b2: MuJoCo
-            // turns the body about its joints in order, so the second axis turns with the first.
-            const core::Vec3 a1 =
-                relativeRotation(model, link.parent, link.body).conjugate() * joint.perpParent1;
-            out << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(a1) << "\"/>\n"
-                << "<joint type=\"hinge\" pos=\"" << a << "\" axis=\"" << vector3(joint.angleChildAxis)
-                << "\"/>\n";
-        }
-    };
     for (const TreeLink& root : tree)
     {
         if (!isRoot(root))
             continue;
-        open(root);
+        openBody(out, model, root, contacts);
         stack.push_back({&root, 0});
         while (!stack.empty())
         {
@@ -328,7 +340,7 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
             if (top.next < kids.size())
             {
                 const TreeLink* child = kids[top.next++];
-                open(*child);
+                openBody(out, model, *child, contacts);
                 stack.push_back({child, 0});
             }
             else
@@ -338,6 +350,20 @@ std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, Mu
             }
         }
     }
+}
+
+// MJCF text of the model's joint trees.
+std::string mjcf(const core::Model& model, const std::vector<TreeLink>& tree, MujocoIntegrator integrator,
+                 const Buffers& buffers)
+{
+    const bool contacts = hasContacts(model);
+    std::ostringstream out;
+    writeOptions(out, model, integrator, buffers);
+    if (contacts)
+        writeMeshAssets(out, model);
+    out << "<worldbody>\n";
+    writeStaticBodies(out, model, contacts);
+    writeTrees(out, model, tree, contacts);
     out << "</worldbody>\n";
     if (contacts)
     {

@@ -58,6 +58,62 @@ std::string when(const EngineWarning& w)
     return "step " + std::to_string(w.firstStep) + " first, " + steps(w.steps);
 }
 
+// The engine for the model; none, with the run's failure said, when it refuses the model or fails
+// to set up.
+std::unique_ptr<Engine> setUpEngine(const std::string& name, const core::Model& model,
+                                    const EngineOptions& options, EngineRun& run)
+{
+    try
+    {
+        return makeEngine(name, model, options);
+    }
+    catch (const Unsupported& e)
+    {
+        run.refused = true;
+        run.failure = oneLine(e.what());
+    }
+    catch (const EngineError& e)
+    {
+        run.failure = oneLine(e.what()) + " (at set-up)";
+    }
+    return nullptr;
+}
+
+// What is measured on the engine's poses after each step: the joint gap, the penetration and the
+// energy by central differences over the last three poses.
+struct StepMeasures
+{
+    const core::Model& model;
+    double h; // s
+    std::vector<Pose> before{}, middle{}, after{};
+    PenetrationMeter penetration{model};
+    double firstEnergy = cNan, lastEnergy = cNan, maxKinetic = 0.0; // J
+
+    // After step k (0-based); false when the run blew up.
+    bool measure(Engine& engine, long k, EngineRun& run)
+    {
+        std::swap(before, middle);
+        std::swap(middle, after);
+        engine.poses(after);
+        run.maxGapM = std::max(run.maxGapM, jointGap(model, after));
+        run.maxPenetrationM = std::max(run.maxPenetrationM, penetration.deepest(after));
+        if (!std::isfinite(run.maxGapM))
+        {
+            run.failure = "blew up at step " + std::to_string(k + 1);
+            return false;
+        }
+        if (k >= 1)
+        {
+            const Energy e = energyByDifferences(model, before, middle, after, h);
+            if (std::isnan(firstEnergy))
+                firstEnergy = e.total;
+            lastEnergy = e.total;
+            maxKinetic = std::max(maxKinetic, e.kinetic);
+        }
+        return true;
+    }
+};
+
 } // namespace
 
 double EngineRun::secondsPerStep() const
@@ -72,30 +128,15 @@ EngineRun runEngine(const std::string& name, const core::Model& model, const std
     run.engine = name;
     run.dt = model.simulation.dt;
     run.bufferGrowth = options.bufferGrowth;
-    std::unique_ptr<Engine> engine;
-    try
-    {
-        engine = makeEngine(name, model, options);
-    }
-    catch (const Unsupported& e)
-    {
-        run.refused = true;
-        run.failure = oneLine(e.what());
+    const std::unique_ptr<Engine> engine = setUpEngine(name, model, options, run);
+    if (!engine)
         return run;
-    }
-    catch (const EngineError& e)
-    {
-        run.failure = oneLine(e.what()) + " (at set-up)";
-        return run;
-    }
     run.buffers = engine->bufferSizes();
     const double h = model.simulation.dt;
     const long steps = std::lround(settings.duration / h);
-    std::vector<Pose> before, middle, after;
-    engine->poses(after);
-    checkStartPose(model, after, name);
-    PenetrationMeter penetration(model);
-    double firstEnergy = cNan, lastEnergy = cNan, maxKinetic = 0.0;
+    StepMeasures measures{model, h};
+    engine->poses(measures.after);
+    checkStartPose(model, measures.after, name);
     using Clock = std::chrono::steady_clock;
     for (long k = 0; k < steps && run.failure.empty(); ++k)
     {
@@ -112,24 +153,8 @@ EngineRun runEngine(const std::string& name, const core::Model& model, const std
         run.secondsStepping += std::chrono::duration<double>(Clock::now() - t0).count();
         ++run.steps;
         engine->checkStep();
-        std::swap(before, middle);
-        std::swap(middle, after);
-        engine->poses(after);
-        run.maxGapM = std::max(run.maxGapM, jointGap(model, after));
-        run.maxPenetrationM = std::max(run.maxPenetrationM, penetration.deepest(after));
-        if (!std::isfinite(run.maxGapM))
-        {
-            run.failure = "blew up at step " + std::to_string(k + 1);
+        if (!measures.measure(*engine, k, run))
             break;
-        }
-        if (k >= 1)
-        {
-            const Energy e = energyByDifferences(model, before, middle, after, h);
-            if (std::isnan(firstEnergy))
-                firstEnergy = e.total;
-            lastEnergy = e.total;
-            maxKinetic = std::max(maxKinetic, e.kinetic);
-        }
         if (run.secondsStepping > settings.maxSeconds)
         {
             run.timedOut = true;
@@ -139,10 +164,11 @@ EngineRun runEngine(const std::string& name, const core::Model& model, const std
     run.warnings = engine->warnings();
     if (!run.failure.empty())
         return run;
-    run.energyChangeJ = lastEnergy - firstEnergy;
-    run.energyChangePercent = maxKinetic > 0.0 ? 100.0 * run.energyChangeJ / maxKinetic : cNan;
+    run.energyChangeJ = measures.lastEnergy - measures.firstEnergy;
+    run.energyChangePercent =
+        measures.maxKinetic > 0.0 ? 100.0 * run.energyChangeJ / measures.maxKinetic : cNan;
     if (!reference.empty())
-        run.errorM = positionError(after, reference);
+        run.errorM = positionError(measures.after, reference);
     return run;
 }
 

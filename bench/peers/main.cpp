@@ -69,6 +69,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace
@@ -254,96 +255,99 @@ std::string range(
     return std::isnan(v.min) ? "" : format(v.min) + "-" + format(v.max);
 }
 
-} // namespace
-
-int runHarness(int argc, char** argv)
+// The command line: what to run, how often, and where to write it.
+struct Options
 {
-    CLI::App app{"frontier_peers: one scene in Frontier, Bullet, ODE and MuJoCo at the same dt"};
     std::string scene;
     int chain = 0;
     double tipRatio = 1.0;
+    std::string mjcfFile;
+    bool noContacts = false;
+    double motionDt = 1e-4; // s
     std::vector<double> dts;
-    double referenceDt = 0.0;
+    double referenceDt = 0.0; // s
     std::string chartDir;
     app::Accuracy chartAccuracy = app::Accuracy::TrajectoryError;
     std::string engines;
     std::string csvPath, markdownPath;
     Settings s;
-    app.add_option("--scene", scene, "a scene file (YAML or URDF)");
-    std::string mjcfFile;
-    bool noContacts = false;
-    app.add_option("--mjcf", mjcfFile,
+};
+
+void addSceneOptions(CLI::App& app, Options& o)
+{
+    app.add_option("--scene", o.scene, "a scene file (YAML or URDF)");
+    app.add_option("--mjcf", o.mjcfFile,
                    "an MJCF file in MuJoCo (from the file) beside Frontier (from its import): masses and "
                    "inertias, --duration s of passive motion, time per step (mjcf_peers.h)");
-    double motionDt = 1e-4;
-    app.add_option("--motion-dt", motionDt, "--mjcf: the time step of both engines' passive runs (s)")
+    app.add_option("--motion-dt", o.motionDt, "--mjcf: the time step of both engines' passive runs (s)")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
-    app.add_flag("--no-contacts", noContacts,
+    app.add_flag("--no-contacts", o.noContacts,
                  "--mjcf: compare the motion with contacts off even where geoms may collide");
-    app.add_option("--chain", chain, "a generated chain of N boxes on ball joints instead")
+    app.add_option("--chain", o.chain, "a generated chain of N boxes on ball joints instead")
         ->check(CLI::Range(1, 10000000));
-    app.add_option("--tip-mass-ratio", tipRatio, "the chain's last link's mass over the others'")
+    app.add_option("--tip-mass-ratio", o.tipRatio, "the chain's last link's mass over the others'")
         ->check(CLI::PositiveNumber);
-    app.add_option("--dt", dts,
+}
+
+void addRunOptions(CLI::App& app, Options& o)
+{
+    app.add_option("--dt", o.dts,
                    "time steps (s), comma-separated, each run by every engine; default: the scene's")
         ->delimiter(',')
         ->check(CLI::PositiveNumber);
-    app.add_option("--duration", s.run.duration, "simulated time (s)")->check(CLI::PositiveNumber);
-    app.add_option("--engines", engines,
+    app.add_option("--duration", o.s.run.duration, "simulated time (s)")->check(CLI::PositiveNumber);
+    app.add_option("--engines", o.engines,
                    "comma-separated engines, each a name with any settings as :KEY=VALUE "
                    "(frontier-euler:tolerance=1e-3:relative=0.01, bullet-si:iterations=20; engine.h); "
                    "default: every engine at its defaults");
-    app.add_option("--reference-divisions", s.referenceDivisions, "the reference's dt is dt / this")
+    app.add_option("--reference-divisions", o.s.referenceDivisions, "the reference's dt is dt / this")
         ->check(CLI::Range(1, 1000));
-    app.add_option("--reference-dt", referenceDt,
+    app.add_option("--reference-dt", o.referenceDt,
                    "the reference's dt (s), one reference for every dt (instead of --reference-divisions)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--chart", chartDir,
+    app.add_option("--chart", o.chartDir,
                    "draw error against cost, one line per engine (DIR/sweep.png by gnuplot, DIR/sweep.gp, "
                    "DIR/sweep.dat)");
     app.add_option_function<std::string>(
            "--chart-accuracy",
-           [&chartAccuracy](const std::string& name) { chartAccuracy = app::accuracyNames().at(name); },
+           [&o](const std::string& name) { o.chartAccuracy = app::accuracyNames().at(name); },
            "the chart's y axis: error (against the reference, the default), joint-gap or penetration "
            "(largest over the run)")
         ->check(CLI::IsMember(app::accuracyNames()));
-    app.add_option("--max-seconds", s.run.maxSeconds, "stop an engine after this much stepping time (s)")
+    app.add_option("--max-seconds", o.s.run.maxSeconds, "stop an engine after this much stepping time (s)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--rounds", s.rounds,
+}
+
+void addRepeatAndOutputOptions(CLI::App& app, Options& o)
+{
+    app.add_option("--rounds", o.s.rounds,
                    "runs of every engine, alternating engines within a round; the time is the median "
                    "and range over them")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    app.add_option("--baseline", s.baseline,
+    app.add_option("--baseline", o.s.baseline,
                    "an engine of --engines (with its settings): every engine's time over its time, round by "
                    "round (median and range)");
-    app.add_option("--variants", s.variants,
+    app.add_option("--variants", o.s.variants,
                    "more runs of every engine from jittered starts (free trees moved by up to 2 cm, "
                    "5 mm up, 0.05 rad of yaw): median and largest penetration over them")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
-    app.add_option("--seed", s.seed, "the jitter's seed (--variants)")->capture_default_str();
-    app.add_option("--csv", csvPath, "write the rows as CSV");
-    app.add_option("--markdown", markdownPath, "write the rows as a markdown table");
-    CLI11_PARSE(app, argc, argv);
-    if (int(!scene.empty()) + int(chain != 0) + int(!mjcfFile.empty()) != 1)
-    {
-        std::cerr << "frontier_peers: give --scene FILE, --chain N or --mjcf FILE (one of them)\n";
-        return 2;
-    }
-    if (!mjcfFile.empty())
-    {
-        MjcfMotionSettings motion;
-        motion.duration = s.run.duration;
-        motion.mujocoDt = motion.frontierDt = motionDt;
-        return runMjcfComparison(mjcfFile, motion, noContacts, s.rounds, std::cout);
-    }
+    app.add_option("--seed", o.s.seed, "the jitter's seed (--variants)")->capture_default_str();
+    app.add_option("--csv", o.csvPath, "write the rows as CSV");
+    app.add_option("--markdown", o.markdownPath, "write the rows as a markdown table");
+}
+
+// The engines to run (every engine by default), each checked by parseEngine; none (after a
+// message) when one is unknown or the baseline is not among them.
+std::optional<std::vector<std::string>> engineList(const Options& o)
+{
     std::vector<std::string> names = engineNames();
-    if (!engines.empty())
+    if (!o.engines.empty())
     {
         names.clear();
-        std::stringstream list(engines);
+        std::stringstream list(o.engines);
         for (std::string name; std::getline(list, name, ',');)
         {
             try
@@ -353,113 +357,120 @@ int runHarness(int argc, char** argv)
             catch (const std::invalid_argument& e)
             {
                 std::cerr << "frontier_peers: --engines: " << e.what() << "\n";
-                return 2;
+                return std::nullopt;
             }
             names.push_back(name);
         }
     }
-    if (!s.baseline.empty() && std::find(names.begin(), names.end(), s.baseline) == names.end())
+    if (!o.s.baseline.empty() && std::find(names.begin(), names.end(), o.s.baseline) == names.end())
     {
-        std::cerr << "frontier_peers: --baseline " << s.baseline << " is not among the engines run\n";
-        return 2;
+        std::cerr << "frontier_peers: --baseline " << o.s.baseline << " is not among the engines run\n";
+        return std::nullopt;
     }
-    core::Model model;
+    return names;
+}
+
+// The generated chain or the scene file, as `frontier run` loads it; none after a message.
+std::optional<core::Model> loadModel(const Options& o)
+{
     try
     {
-        if (chain > 0)
-            model = chainOfBoxes(chain, tipRatio);
-        else
-        {
-            // As `frontier run` loads it: a robot's links that overlap at the start never collide.
-            run::LoadedScene loaded = run::loadScene(scene, {});
-            run::printLoadWarnings(loaded.report);
-            model = std::move(loaded.model);
-        }
+        if (o.chain > 0)
+            return chainOfBoxes(o.chain, o.tipRatio);
+        // As `frontier run` loads it: a robot's links that overlap at the start never collide.
+        run::LoadedScene loaded = run::loadScene(o.scene, {});
+        run::printLoadWarnings(loaded.report);
+        return std::move(loaded.model);
     }
     catch (const std::exception& e)
     {
         std::cerr << "frontier_peers: " << e.what() << "\n";
-        return 2;
+        return std::nullopt;
     }
-    if (dts.empty())
-        dts.push_back(model.simulation.dt);
-    if (!chartDir.empty() && chartAccuracy == app::Accuracy::TrajectoryError && dts.size() > 1 &&
-        referenceDt <= 0.0)
+}
+
+// Every engine's runs at one time step: the rounds, then the jittered variants.
+struct TimeStepRuns
+{
+    const core::Model& model;
+    const std::vector<Pose>& reference;
+    const Settings& s;
+    std::vector<Row>::iterator begin, end; // the rows of this time step
+
+    // A refused engine, or one stopped by --max-seconds, runs once.
+    static bool again(const Row& row) { return !row.rounds.front().refused && !row.rounds.front().timedOut; }
+    static EngineOptions grown(const Row& row)
     {
-        std::cerr
-            << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
-        return 2;
+        EngineOptions options;
+        options.bufferGrowth = row.rounds.front().bufferGrowth;
+        return options;
+    }
+    static void progress(const Row& row, const EngineRun& run, const std::string& what)
+    {
+        std::cerr << row.engine << " dt " << row.dt << " s " << what << ": "
+                  << (run.steps ? number(1e6 * run.secondsPerStep()) + " us/step" : run.failure) << "\n";
     }
 
-    std::vector<core::Model> variants;
-    if (s.variants > 0 && freeTrees(model).empty())
-        std::cerr
-            << "frontier_peers: --variants: the scene has no free tree to move; every variant is the scene\n";
-    try
+    void rounds() const
     {
-        variants = jitteredVariants(model, s.variants, s.seed);
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "frontier_peers: --variants: " << e.what() << "\n";
-        return 1;
-    }
-
-    std::vector<Row> rows;
-    std::vector<Pose> reference;
-    if (referenceDt > 0.0)
-        reference = referenceEnd(model, referenceDt, s);
-    for (const double dt : dts)
-    {
-        model.simulation.dt = dt;
-        if (referenceDt <= 0.0)
-            reference = referenceEnd(model, dt / s.referenceDivisions, s);
-        const std::size_t first = rows.size();
-        for (const std::string& name : names)
-            rows.push_back({name, dt, {}, {}});
-        // A refused engine, or one stopped by --max-seconds, runs once.
-        const auto again = [](const Row& row)
-        { return !row.rounds.front().refused && !row.rounds.front().timedOut; };
-        const auto grown = [](const Row& row)
-        {
-            EngineOptions options;
-            options.bufferGrowth = row.rounds.front().bufferGrowth;
-            return options;
-        };
-        const auto progress = [](const Row& row, const EngineRun& run, const std::string& what)
-        {
-            std::cerr << row.engine << " dt " << row.dt << " s " << what << ": "
-                      << (run.steps ? number(1e6 * run.secondsPerStep()) + " us/step" : run.failure) << "\n";
-        };
         for (int round = 0; round < s.rounds; ++round)
-            for (std::size_t i = first; i < rows.size(); ++i)
+            for (auto row = begin; row != end; ++row)
             {
-                Row& row = rows[i];
-                if (round > 0 && !again(row))
+                if (round > 0 && !again(*row))
                     continue;
                 // The first round finds the buffers the scene needs; the others use them.
-                EngineRun run = round == 0 ? runGrowingBuffers(row.engine, model, reference, s.run)
-                                           : runEngine(row.engine, model, reference, s.run, grown(row));
+                EngineRun run = round == 0 ? runGrowingBuffers(row->engine, model, reference, s.run)
+                                           : runEngine(row->engine, model, reference, s.run, grown(*row));
                 if (round > 0)
-                    run.grownAfter = row.rounds.front().grownAfter;
-                progress(row, run, "round " + std::to_string(round + 1));
-                row.rounds.push_back(std::move(run));
+                    run.grownAfter = row->rounds.front().grownAfter;
+                progress(*row, run, "round " + std::to_string(round + 1));
+                row->rounds.push_back(std::move(run));
             }
+    }
+
+    void variants(std::vector<core::Model>& variants, double dt) const
+    {
         for (std::size_t v = 0; v < variants.size(); ++v)
         {
             variants[v].simulation.dt = dt;
-            for (std::size_t i = first; i < rows.size(); ++i)
+            for (auto row = begin; row != end; ++row)
             {
-                Row& row = rows[i];
-                if (!again(row))
+                if (!again(*row))
                     continue;
-                EngineRun run = runGrowingBuffers(row.engine, variants[v], {}, s.run, grown(row));
-                progress(row, run, "variant " + std::to_string(v + 1));
-                row.variants.push_back(std::move(run));
+                EngineRun run = runGrowingBuffers(row->engine, variants[v], {}, s.run, grown(*row));
+                progress(*row, run, "variant " + std::to_string(v + 1));
+                row->variants.push_back(std::move(run));
             }
         }
     }
+};
 
+// Every engine at every time step, against the reference's end (one for all with --reference-dt).
+std::vector<Row> runAll(core::Model& model, std::vector<core::Model>& variants,
+                        const std::vector<std::string>& names, const Options& o)
+{
+    std::vector<Row> rows;
+    std::vector<Pose> reference;
+    if (o.referenceDt > 0.0)
+        reference = referenceEnd(model, o.referenceDt, o.s);
+    for (const double dt : o.dts)
+    {
+        model.simulation.dt = dt;
+        if (o.referenceDt <= 0.0)
+            reference = referenceEnd(model, dt / o.s.referenceDivisions, o.s);
+        const std::size_t first = rows.size();
+        for (const std::string& name : names)
+            rows.push_back({name, dt, {}, {}});
+        const TimeStepRuns runs{model, reference, o.s, rows.begin() + static_cast<std::ptrdiff_t>(first),
+                                rows.end()};
+        runs.rounds();
+        runs.variants(variants, dt);
+    }
+    return rows;
+}
+
+std::vector<Summary> summarizeAll(const std::vector<Row>& rows, const Settings& s)
+{
     std::vector<Summary> summaries;
     for (const Row& row : rows)
     {
@@ -467,38 +478,48 @@ int runHarness(int argc, char** argv)
             rows.begin(), rows.end(), [&](const Row& r) { return r.engine == s.baseline && r.dt == row.dt; });
         summaries.push_back(summarize(row, baseline == rows.end() ? nullptr : &*baseline, s));
     }
+    return summaries;
+}
 
-    const int n = static_cast<int>(model.bodies.size());
-    const bool ratios = !s.baseline.empty();
-    const bool jittered = s.variants > 0;
-    std::ostringstream csv, md;
-    csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,max_penetration_m,"
-           "energy_change_j,energy_change_percent_of_max_kinetic,error_m,rounds,us_per_step_min,us_per_step_"
-           "max,"
-           "baseline,ratio_to_baseline,ratio_min,ratio_max,variants,variant_penetration_median_m,"
-           "variant_penetration_max_m,note\n";
-    for (std::size_t i = 0; i < rows.size(); ++i)
+// The CSV and the markdown table of every row, a markdown section per time step.
+struct Tables
+{
+    const core::Model& model;
+    const Settings& s;
+    int n = static_cast<int>(model.bodies.size());
+    bool ratios = !s.baseline.empty();
+    bool jittered = s.variants > 0;
+    std::ostringstream csv{}, md{};
+
+    void csvHeader()
     {
-        const Row& r = rows[i];
-        const Summary& m = summaries[i];
+        csv << "scene,bodies,engine,dt_s,steps,us_per_step,us_per_body_step,max_joint_gap_m,"
+               "max_penetration_m,energy_change_j,energy_change_percent_of_max_kinetic,error_m,rounds,"
+               "us_per_step_min,us_per_step_max,baseline,ratio_to_baseline,ratio_min,ratio_max,variants,"
+               "variant_penetration_median_m,variant_penetration_max_m,note\n";
+    }
+
+    void markdownHeading(double dt, bool firstSection)
+    {
+        md << (firstSection ? "" : "\n") << "# " << model.name << " (" << n << " bodies), dt = " << dt
+           << " s";
+        if (s.rounds > 1)
+            md << ", time: the median and range of " << s.rounds << " rounds";
+        md << "\n\n| engine | us/step | range";
+        if (ratios)
+            md << " | over " << s.baseline << " | range";
+        md << " | us/body-step | joint gap (m) | penetration (m)";
+        if (jittered)
+            md << " | penetration over " << s.variants << (s.variants == 1 ? " variant" : " variants")
+               << ": median (max) (m)";
+        md << " | energy change (% of max kinetic) | error at " << number(s.run.duration, "%g")
+           << " s (m) | note |\n|---|---|---";
+        md << (ratios ? "|---|---" : "") << "|---|---|---" << (jittered ? "|---" : "") << "|---|---|---|\n";
+    }
+
+    void row(const Row& r, const Summary& m)
+    {
         const Accuracy& a = m.accuracy;
-        if (i == 0 || r.dt != rows[i - 1].dt)
-        {
-            md << (i > 0 ? "\n" : "") << "# " << model.name << " (" << n << " bodies), dt = " << r.dt << " s";
-            if (s.rounds > 1)
-                md << ", time: the median and range of " << s.rounds << " rounds";
-            md << "\n\n| engine | us/step | range";
-            if (ratios)
-                md << " | over " << s.baseline << " | range";
-            md << " | us/body-step | joint gap (m) | penetration (m)";
-            if (jittered)
-                md << " | penetration over " << s.variants << (s.variants == 1 ? " variant" : " variants")
-                   << ": median (max) (m)";
-            md << " | energy change (% of max kinetic) | error at " << number(s.run.duration, "%g")
-               << " s (m) | note |\n|---|---|---";
-            md << (ratios ? "|---|---" : "") << "|---|---|---" << (jittered ? "|---" : "")
-               << "|---|---|---|\n";
-        }
         const double perStep = m.microsecondsPerStep.median;
         const double gap = m.steps ? a.maxGapM : cNan;
         const double depth = m.steps ? a.maxPenetrationM : cNan;
@@ -521,14 +542,105 @@ int runHarness(int argc, char** argv)
         md << " | " << number(a.energyChangePercent) << " | " << number(a.errorM) << " | " << m.note
            << " |\n";
     }
-    std::cout << md.str();
-    if (!csvPath.empty())
-        std::ofstream(csvPath) << csv.str();
-    if (!markdownPath.empty())
-        std::ofstream(markdownPath) << md.str();
-    if (!chartDir.empty())
-        drawChart(chartDir, model, rows, summaries,
-                  referenceDt > 0.0 ? referenceDt : dts.back() / s.referenceDivisions, s, chartAccuracy);
+
+    void write(const std::vector<Row>& rows, const std::vector<Summary>& summaries)
+    {
+        csvHeader();
+        for (std::size_t i = 0; i < rows.size(); ++i)
+        {
+            if (i == 0 || rows[i].dt != rows[i - 1].dt)
+                markdownHeading(rows[i].dt, i == 0);
+            row(rows[i], summaries[i]);
+        }
+    }
+};
+
+// Ends the run early (with its exit code) on a command line that does not hold together.
+std::optional<int> refuseOptions(const Options& o)
+{
+    if (int(!o.scene.empty()) + int(o.chain != 0) + int(!o.mjcfFile.empty()) != 1)
+    {
+        std::cerr << "frontier_peers: give --scene FILE, --chain N or --mjcf FILE (one of them)\n";
+        return 2;
+    }
+    return std::nullopt;
+}
+
+int runMjcf(const Options& o)
+{
+    MjcfMotionSettings motion;
+    motion.duration = o.s.run.duration;
+    motion.mujocoDt = motion.frontierDt = o.motionDt;
+    return runMjcfComparison(o.mjcfFile, motion, o.noContacts, o.s.rounds, std::cout);
+}
+
+// The scene's jittered variants (--variants); none after a message when they cannot be drawn.
+std::optional<std::vector<core::Model>> variantsOf(const core::Model& model, const Settings& s)
+{
+    if (s.variants > 0 && freeTrees(model).empty())
+        std::cerr
+            << "frontier_peers: --variants: the scene has no free tree to move; every variant is the scene\n";
+    try
+    {
+        return jitteredVariants(model, s.variants, s.seed);
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "frontier_peers: --variants: " << e.what() << "\n";
+        return std::nullopt;
+    }
+}
+
+void writeOutputs(const Options& o, const core::Model& model, const std::vector<Row>& rows)
+{
+    const std::vector<Summary> summaries = summarizeAll(rows, o.s);
+    Tables tables{model, o.s};
+    tables.write(rows, summaries);
+    std::cout << tables.md.str();
+    if (!o.csvPath.empty())
+        std::ofstream(o.csvPath) << tables.csv.str();
+    if (!o.markdownPath.empty())
+        std::ofstream(o.markdownPath) << tables.md.str();
+    if (!o.chartDir.empty())
+        drawChart(o.chartDir, model, rows, summaries,
+                  o.referenceDt > 0.0 ? o.referenceDt : o.dts.back() / o.s.referenceDivisions, o.s,
+                  o.chartAccuracy);
+}
+
+} // namespace
+
+int runHarness(int argc, char** argv)
+{
+    CLI::App app{"frontier_peers: one scene in Frontier, Bullet, ODE and MuJoCo at the same dt"};
+    Options o;
+    addSceneOptions(app, o);
+    addRunOptions(app, o);
+    addRepeatAndOutputOptions(app, o);
+    CLI11_PARSE(app, argc, argv);
+    if (const auto code = refuseOptions(o))
+        return *code;
+    if (!o.mjcfFile.empty())
+        return runMjcf(o);
+    const auto names = engineList(o);
+    if (!names)
+        return 2;
+    auto model = loadModel(o);
+    if (!model)
+        return 2;
+    if (o.dts.empty())
+        o.dts.push_back(model->simulation.dt);
+    if (!o.chartDir.empty() && o.chartAccuracy == app::Accuracy::TrajectoryError && o.dts.size() > 1 &&
+        o.referenceDt <= 0.0)
+    {
+        std::cerr
+            << "frontier_peers: --chart with several --dt needs --reference-dt (one reference for all)\n";
+        return 2;
+    }
+    auto variants = variantsOf(*model, o.s);
+    if (!variants)
+        return 1;
+    const std::vector<Row> rows = runAll(*model, *variants, *names, o);
+    writeOutputs(o, *model, rows);
     return 0;
 }
 

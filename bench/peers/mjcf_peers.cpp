@@ -226,59 +226,34 @@ MujocoModel loadMujocoModel(const std::string& path)
     return model;
 }
 
-MjcfInertia compareInertia(const std::string& path)
+namespace
 {
-    const MujocoAtStart mujoco = mujocoAtStart(path);
-    const mjModel* m = mujoco.model.get();
-    const mjData* d = mujoco.data.get();
-    const core::Model model = frontierModel(path);
-    const std::map<std::string, int> bodies = bodiesByName(model);
 
-    MjcfInertia out;
-    std::map<int, std::size_t> row; // weld group -> out.bodies
-    for (int b = 1; b < m->nbody; ++b)
+// Frontier's mass, centre and inertia of MuJoCo's weld group b: its body and the frame bodies
+// before it that carry its other joints.
+Inertial frontierGroup(const core::Model& model, const std::map<std::string, int>& bodies, const mjModel* m,
+                       int b)
+{
+    const int index = frontierBodyOf(bodies, m, b);
+    Inertial frontier;
+    const int frames = std::max(m->body_jntnum[b] - 1, 0);
+    for (int i = index - frames; i <= index; ++i)
     {
-        if (m->body_weldid[b] == 0)
-        {
-            out.staticMass += m->body_mass[b];
-            continue;
-        }
-        if (m->body_weldid[b] != b)
-            continue;
-        const int index = frontierBodyOf(bodies, m, b);
-        Inertial frontier;
-        const int frames = std::max(m->body_jntnum[b] - 1, 0);
-        for (int i = index - frames; i <= index; ++i)
-        {
-            const core::Body& body = model.bodies[static_cast<std::size_t>(i)];
-            if (i < index && body.name.rfind(model.bodies[index].name + ":", 0) != 0)
-                throw std::runtime_error("Frontier body '" + body.name + "' is not a frame of '" +
-                                         model.bodies[index].name + "'");
-            const core::Mat3 r = rotation(body.orientation_WB);
-            frontier.add(body.mass, body.position_W, r * body.inertia_B * r.transpose());
-        }
-        frontier.finish();
-        const Inertial group = mujocoGroup(m, d, b);
-        MjcfBodyInertia entry;
-        entry.name = bodyName(m, b);
-        entry.mujocoMass = group.mass;
-        entry.mujocoCentre_W = group.centre;
-        entry.mujocoInertia_W = group.inertia;
-        entry.frontierMass = frontier.mass;
-        entry.frontierCentre_W = frontier.centre;
-        entry.frontierInertia_W = frontier.inertia;
-        row[b] = out.bodies.size();
-        out.bodies.push_back(entry);
+        const core::Body& body = model.bodies[static_cast<std::size_t>(i)];
+        if (i < index && body.name.rfind(model.bodies[index].name + ":", 0) != 0)
+            throw std::runtime_error("Frontier body '" + body.name + "' is not a frame of '" +
+                                     model.bodies[index].name + "'");
+        const core::Mat3 r = rotation(body.orientation_WB);
+        frontier.add(body.mass, body.position_W, r * body.inertia_B * r.transpose());
     }
-    // What Frontier stores, before its armature terms (mjcf_peers.h) are taken off: the scale of its
-    // round-off.
-    std::vector<double> storedMass, storedInertia;
-    for (const MjcfBodyInertia& entry : out.bodies)
-    {
-        storedMass.push_back(entry.frontierMass);
-        storedInertia.push_back(largestEigenvalue(entry.frontierInertia_W));
-    }
-    // Frontier's armature terms (mjcf_peers.h), taken off its figures.
+    frontier.finish();
+    return frontier;
+}
+
+// Frontier's armature terms (mjcf_peers.h), taken off its figures. row: weld group -> out.bodies.
+void removeArmature(const mjModel* m, const mjData* d, const std::map<int, std::size_t>& row,
+                    MjcfInertia& out)
+{
     for (int j = 0; j < m->njnt; ++j)
     {
         const double armature = m->dof_armature[m->jnt_dofadr[j]];
@@ -294,6 +269,13 @@ MjcfInertia compareInertia(const std::string& path)
         else if (j - m->body_jntadr[b] < m->body_jntnum[b] - 1) // a slide that moves a frame
             entry.frontierMass -= armature;
     }
+}
+
+// Every body's differences and the totals; the largest difference and where it is. storedMass,
+// storedInertia: Frontier's figures before the armature came off, the scale of its round-off.
+void compareBodies(const std::vector<double>& storedMass, const std::vector<double>& storedInertia,
+                   MjcfInertia& out)
+{
     const auto note = [&](double difference, const std::string& where)
     {
         if (difference > out.largestDifference || out.largestAt.empty())
@@ -317,6 +299,52 @@ MjcfInertia compareInertia(const std::string& path)
     }
     if (out.mujocoMass > 0.0)
         note(std::abs(out.frontierMass - out.mujocoMass) / out.mujocoMass, "total mass");
+}
+
+} // namespace
+
+MjcfInertia compareInertia(const std::string& path)
+{
+    const MujocoAtStart mujoco = mujocoAtStart(path);
+    const mjModel* m = mujoco.model.get();
+    const mjData* d = mujoco.data.get();
+    const core::Model model = frontierModel(path);
+    const std::map<std::string, int> bodies = bodiesByName(model);
+
+    MjcfInertia out;
+    std::map<int, std::size_t> row; // weld group -> out.bodies
+    for (int b = 1; b < m->nbody; ++b)
+    {
+        if (m->body_weldid[b] == 0)
+        {
+            out.staticMass += m->body_mass[b];
+            continue;
+        }
+        if (m->body_weldid[b] != b)
+            continue;
+        const Inertial frontier = frontierGroup(model, bodies, m, b);
+        const Inertial group = mujocoGroup(m, d, b);
+        MjcfBodyInertia entry;
+        entry.name = bodyName(m, b);
+        entry.mujocoMass = group.mass;
+        entry.mujocoCentre_W = group.centre;
+        entry.mujocoInertia_W = group.inertia;
+        entry.frontierMass = frontier.mass;
+        entry.frontierCentre_W = frontier.centre;
+        entry.frontierInertia_W = frontier.inertia;
+        row[b] = out.bodies.size();
+        out.bodies.push_back(entry);
+    }
+    // What Frontier stores, before its armature terms (mjcf_peers.h) are taken off: the scale of its
+    // round-off.
+    std::vector<double> storedMass, storedInertia;
+    for (const MjcfBodyInertia& entry : out.bodies)
+    {
+        storedMass.push_back(entry.frontierMass);
+        storedInertia.push_back(largestEigenvalue(entry.frontierInertia_W));
+    }
+    removeArmature(m, d, row, out);
+    compareBodies(storedMass, storedInertia, out);
     return out;
 }
 
@@ -433,19 +461,11 @@ MjcfTiming timeSteps(const std::string& path, double duration, int rounds)
     return out;
 }
 
-int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion, bool noContacts, int rounds,
-                      std::ostream& out)
+namespace
 {
-    MjcfInertia inertia;
-    try
-    {
-        inertia = compareInertia(path);
-    }
-    catch (const std::exception& e)
-    {
-        std::fprintf(stderr, "frontier_peers: %s\n", e.what());
-        return 2;
-    }
+
+void writeInertia(std::ostream& out, const std::string& path, const MjcfInertia& inertia)
+{
     out << "# " << path << ": Frontier beside MuJoCo " << mj_versionString() << "\n\n";
     out << "Masses and inertias at the start (world frame; Frontier's frames summed into their body, its "
            "armature terms taken off). Total moving mass: MuJoCo "
@@ -465,16 +485,19 @@ int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion,
             << number(diagonal.y(), "%.4g") << " " << number(diagonal.z(), "%.4g") << " | "
             << number(b.inertiaDifference) << " |\n";
     }
+}
+
+// The passive motion's paragraph; its failure is said there, not thrown.
+void writeMotion(std::ostream& out, const std::string& path, const MjcfMotionSettings& motion,
+                 bool noContacts)
+{
     try
     {
         const MjcfMotion moved = compareMotion(path, motion);
         out << "\nPassive motion, " << number(motion.duration, "%g") << " s from the start, no control, "
             << "contacts off in both: MuJoCo RK4 at dt " << number(motion.mujocoDt, "%g") << " s, Frontier "
-            << (motion.integrator == core::IntegratorKind::Rattle4  ? "rattle4"
-                : motion.integrator == core::IntegratorKind::Rattle ? "rattle"
-                                                                    : "euler")
-            << " at dt " << number(motion.frontierDt, "%g") << " s, compared every "
-            << number(motion.sampleEvery, "%g") << " s: ";
+            << core::integratorName(motion.integrator) << " at dt " << number(motion.frontierDt, "%g")
+            << " s, compared every " << number(motion.sampleEvery, "%g") << " s: ";
         if (moved.worstBody.empty())
             out << "no moving bodies.\n";
         else if (moved.contactsPossible && !noContacts)
@@ -491,6 +514,38 @@ int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion,
     {
         out << "\nPassive motion: stopped: " << e.what() << "\n";
     }
+}
+
+void writeTiming(std::ostream& out, const MjcfTiming& timing, int rounds)
+{
+    out << "\nTime per step, 2 s, the file as loaded (median of " << rounds
+        << " alternating rounds): Frontier euler at dt " << number(timing.frontierDt, "%g")
+        << " s, contacts on: " << number(timing.frontierMicroseconds) << " us"
+        << (timing.frontierFailure.empty() ? "" : " (" + timing.frontierFailure + ")") << "; MuJoCo "
+        << timing.mujocoIntegrator << " at dt " << number(timing.mujocoDt, "%g")
+        << " s: " << number(timing.mujocoMicroseconds) << " us"
+        << (timing.mujocoWarnings.empty() ? "" : " (warnings: " + timing.mujocoWarnings + ")")
+        << "; ratio Frontier/MuJoCo " << number(timing.frontierMicroseconds / timing.mujocoMicroseconds)
+        << ".\n";
+}
+
+} // namespace
+
+int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion, bool noContacts, int rounds,
+                      std::ostream& out)
+{
+    MjcfInertia inertia;
+    try
+    {
+        inertia = compareInertia(path);
+    }
+    catch (const std::exception& e)
+    {
+        std::fprintf(stderr, "frontier_peers: %s\n", e.what());
+        return 2;
+    }
+    writeInertia(out, path, inertia);
+    writeMotion(out, path, motion, noContacts);
     MjcfTiming timing;
     try
     {
@@ -501,15 +556,7 @@ int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion,
         out << "\nTime per step: stopped: " << e.what() << "\n";
         return 1;
     }
-    out << "\nTime per step, 2 s, the file as loaded (median of " << rounds
-        << " alternating rounds): Frontier euler at dt " << number(timing.frontierDt, "%g")
-        << " s, contacts on: " << number(timing.frontierMicroseconds) << " us"
-        << (timing.frontierFailure.empty() ? "" : " (" + timing.frontierFailure + ")") << "; MuJoCo "
-        << timing.mujocoIntegrator << " at dt " << number(timing.mujocoDt, "%g")
-        << " s: " << number(timing.mujocoMicroseconds) << " us"
-        << (timing.mujocoWarnings.empty() ? "" : " (warnings: " + timing.mujocoWarnings + ")")
-        << "; ratio Frontier/MuJoCo " << number(timing.frontierMicroseconds / timing.mujocoMicroseconds)
-        << ".\n";
+    writeTiming(out, timing, rounds);
     return 0;
 }
 
