@@ -6,9 +6,9 @@
 #include "core/contact.h"
 #include "core/extra_rows.h"
 #include "core/failure_hint.h"
+#include "core/simulation_error.h"
 #include "core/step/drift_correction.h"
-#include "core/step/simulation_error.h"
-#include "core/step/step_options.h"
+#include "core/step_options.h"
 
 #include <string>
 #include <vector>
