@@ -17,7 +17,7 @@ struct StepMemory::Parts
     Actuation::Memory actuation;
     ContactProblem::Memory contacts;
     BlowUpCheck::Memory blowUp;
-    bool penetrationCapped = false;
+    PenetrationProjection::Memory penetration;
     double driveStep = 0.0; // s: rattle4 keeps its last stage's from step to step
 };
 
@@ -57,7 +57,7 @@ StepMemory StepStages::memory() const
     StepMemory memory;
     memory.mParts = std::make_unique<StepMemory::Parts>(StepMemory::Parts{
         mModel.bodies.size(), mModel.joints.size(), mModel.actuators.size(), mActuation.memory(),
-        mProblem.memory(), mBlowUp.memory(), mPenetration.capped(), mStep.driveStep});
+        mProblem.memory(), mBlowUp.memory(), mPenetration.memory(), mStep.driveStep});
     return memory;
 }
 
@@ -80,7 +80,7 @@ void StepStages::restoreMemory(const StepMemory& memory)
     mActuation.restore(parts.actuation);
     mProblem.restore(parts.contacts);
     mBlowUp.restore(parts.blowUp);
-    mPenetration.setCapped(parts.penetrationCapped);
+    mPenetration.restore(parts.penetration);
     mStep.driveStep = parts.driveStep;
     // Valid at the pose the last step ended in: built again at the next step's start.
     mEndRowsValid = false;

@@ -30,8 +30,8 @@ PenetrationProjection::PenetrationProjection(const StepContext& step)
 
 void PenetrationProjection::apply(StepContext& step, State& state, ContactProblem& problem)
 {
-    const bool wasCapped = mCapped;
-    mCapped = false; // set again below when this step's displacement is capped
+    const bool wasCapped = mMemory.capped;
+    mMemory.capped = false; // set again below when this step's displacement is capped
     if (problem.rows() == 0 || !overlapsAfterStep(step, problem) || !gatherRows(step, problem))
     {
         return;
@@ -39,7 +39,7 @@ void PenetrationProjection::apply(StepContext& step, State& state, ContactProble
     const double scale = solveDisplacement(step, problem);
     // A recovery (its capped steps, and the one that finishes it) keeps the joints by displacement.
     const bool recovering = scale < 1.0 || wasCapped;
-    mCapped = scale < 1.0;
+    mMemory.capped = scale < 1.0;
     if (recovering || largestRotation(mModel, mDisplacement) > cRestoreRotation)
     {
         restoreJoints(state, step.start, step.driveStep, step.actuation);

@@ -34,10 +34,14 @@ class PenetrationProjection
     // start-of-step rows.
     void apply(StepContext& step, State& state, ContactProblem& problem);
 
-    // The last step's displacement was capped (a recovery under way); a step taken again from its
-    // start puts back what it was.
-    bool capped() const { return mCapped; }
-    void setCapped(bool capped) { mCapped = capped; }
+    // What carries over from one step to the next (core/step_memory.h), and what a step taken
+    // again from its start puts back: the last step's displacement was capped (a recovery under way).
+    struct Memory
+    {
+        bool capped = false;
+    };
+    const Memory& memory() const { return mMemory; }
+    void restore(const Memory& memory) { mMemory = memory; }
 
   private:
     // The steps of apply().
@@ -58,7 +62,7 @@ class PenetrationProjection
     const StepOptions& mOptions;
     const FrontierLayout& mLayout;
     ImpulseSolver& mSolver;
-    bool mCapped = false; // the last step's displacement was capped
+    Memory mMemory;
     // Scratch: the rows' velocities J_x u; the projection's blocks, their rows in the step's G,
     // their G, free velocity and impulses, and the rows each block can move.
     Eigen::VectorXd mRowVelocity;

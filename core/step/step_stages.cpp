@@ -85,13 +85,13 @@ void StepStages::finishActuation()
 void StepStages::saveRestart(const State& state)
 {
     mRestart.state = state;
-    mRestart.penetrationCapped = mPenetration.capped();
+    mRestart.penetration = mPenetration.memory();
 }
 
 void StepStages::restart(State& state)
 {
     state = mRestart.state;
-    mPenetration.setCapped(mRestart.penetrationCapped);
+    mPenetration.restore(mRestart.penetration);
     mRattle.forgetFactoredPose();
 }
 

@@ -72,7 +72,7 @@ class StepStages
     struct Restart
     {
         State state;
-        bool penetrationCapped = false;
+        PenetrationProjection::Memory penetration;
     };
     void saveRestart(const State& state);
     void restart(State& state);
