@@ -30,11 +30,6 @@ void BlockVector::setZero()
     }
 }
 
-SingularJointError::SingularJointError(std::string jointName, const std::string& message)
-    : std::runtime_error(message), mJointName(std::move(jointName))
-{
-}
-
 namespace
 {
 // R_WB of every body, once per assembly: the inertias and both ends of every joint read it.

@@ -17,6 +17,7 @@
 #include "core/joints/drive.h"
 #include "core/joints/joint_rows.h"
 #include "core/large_vector.h"
+#include "core/simulation_error.h"
 #include "core/state.h"
 
 #include <memory>
@@ -82,16 +83,7 @@ struct BlockVector
     void setZero();
 };
 
-// A joint block that cannot be eliminated: dependent rows or a degenerate configuration.
-class SingularJointError : public std::runtime_error
-{
-  public:
-    SingularJointError(std::string jointName, const std::string& message);
-    const std::string& jointName() const { return mJointName; }
-
-  private:
-    std::string mJointName;
-};
+// SingularJointError (a joint block that cannot be eliminated): core/simulation_error.h.
 
 class ImpulseSolver
 {

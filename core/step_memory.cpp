@@ -1,7 +1,7 @@
 // core/step_memory.cpp: the memory a Simulator carries from step to step, taken and put back.
 #include "core/step_memory.h"
 
-#include "core/simulator.h"
+#include "core/step/step_stages.h"
 
 #include <stdexcept>
 #include <string>
@@ -17,7 +17,7 @@ struct StepMemory::Parts
     Actuation::Memory actuation;
     ContactProblem::Memory contacts;
     BlowUpCheck::Memory blowUp;
-    bool penetrationCapped = false;
+    PenetrationProjection::Memory penetration;
     double driveStep = 0.0; // s: rattle4 keeps its last stage's from step to step
 };
 
@@ -52,16 +52,16 @@ StepMemory& StepMemory::operator=(const StepMemory& other)
     return *this;
 }
 
-StepMemory Simulator::memory() const
+StepMemory StepStages::memory() const
 {
     StepMemory memory;
     memory.mParts = std::make_unique<StepMemory::Parts>(StepMemory::Parts{
         mModel.bodies.size(), mModel.joints.size(), mModel.actuators.size(), mActuation.memory(),
-        mProblem.memory(), mBlowUp.memory(), mPenetration.capped(), mDriveStep});
+        mProblem.memory(), mBlowUp.memory(), mPenetration.memory(), mStep.driveStep});
     return memory;
 }
 
-void Simulator::restoreMemory(const StepMemory& memory)
+void StepStages::restoreMemory(const StepMemory& memory)
 {
     if (memory.empty())
     {
@@ -80,8 +80,8 @@ void Simulator::restoreMemory(const StepMemory& memory)
     mActuation.restore(parts.actuation);
     mProblem.restore(parts.contacts);
     mBlowUp.restore(parts.blowUp);
-    mPenetration.setCapped(parts.penetrationCapped);
-    mDriveStep = parts.driveStep;
+    mPenetration.restore(parts.penetration);
+    mStep.driveStep = parts.driveStep;
     // Valid at the pose the last step ended in: built again at the next step's start.
     mEndRowsValid = false;
     mRattle.forgetFactoredPose();

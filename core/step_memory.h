@@ -31,8 +31,8 @@ class StepMemory
     bool empty() const { return mParts == nullptr; }
 
   private:
-    friend class Simulator;
-    struct Parts; // core/step_memory.cpp
+    friend class StepStages; // core/step/step_stages.h
+    struct Parts;            // core/step_memory.cpp
     std::unique_ptr<Parts> mParts;
 };
 

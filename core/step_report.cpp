@@ -1,8 +1,8 @@
 // core/step_report.cpp: what the last step passed through its joints and contacts, read when asked
 // (the `--joints` and `--contacts` outputs). Nothing here runs inside step() but for rattle4, whose
 // first two stages' impulses are added up at their end (addRowImpulses): a step keeps its
-// impulses anyway (the joints' in mSolution, the extra rows' in the contact problem, the rattle
-// projection's in RattleProjection::impulses, the loops' drift correction in
+// impulses anyway (the joints' in the step context's solution, the extra rows' in the contact problem, the
+// rattle projection's in RattleProjection::impulses, the loops' drift correction in
 // DriftCorrection::loopCorrection).
 //
 // A joint's impulse on its child is J_b^T lambda summed over the rows of the joint: its block in
@@ -14,7 +14,7 @@
 // or drive rows), to round-off.
 #include "core/frontier_order.h"
 #include "core/joints/coordinates.h"
-#include "core/simulator.h"
+#include "core/step/step_stages.h"
 
 #include <cmath>
 
@@ -44,7 +44,7 @@ Vec6 coordinateRowLike(const Joint& joint, const detail::JointGeometry& g, const
 }
 } // namespace
 
-void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) const
+void StepStages::jointChildImpulses(const State& state, std::vector<Vec6>& out) const
 {
     out.assign(mModel.joints.size(), Vec6::Zero());
     addRowImpulses(state, out);
@@ -60,7 +60,7 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
         const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
         const detail::JointGeometry g = detail::jointGeometry(joint, jointPose(state, joint));
         out[static_cast<std::size_t>(actuator.joint)] +=
-            coordinateRow(joint, g, actuator.coordinate).J_b * (efforts[a].effort * mDt);
+            coordinateRow(joint, g, actuator.coordinate).J_b * (efforts[a].effort * mStep.dt);
     }
     // About the anchor: the torque about the child's centre of mass less r_b x F.
     for (std::size_t k = 0; k < mModel.joints.size(); ++k)
@@ -73,13 +73,13 @@ void Simulator::jointChildImpulses(const State& state, std::vector<Vec6>& out) c
 
 // The impulses of the rows of the last step's solves (rattle4: of its three stages) on each joint's
 // child, linear and angular about its centre of mass, added into out.
-void Simulator::addRowImpulses(const State& state, std::vector<Vec6>& out) const
+void StepStages::addRowImpulses(const State& state, std::vector<Vec6>& out) const
 {
     JointRows rows;
     // A whole joint block (a tree joint's, a loop's): lambda row by row as in JointRows.
     auto addBlock = [&](int k, const auto& lambda)
     {
-        evaluateJointBlock(mModel, mLayout, state, k, driveStep(), mActuation.gains(), rows);
+        evaluateJointBlock(mModel, mLayout, state, k, mStep.driveStep, mActuation.gains(), rows);
         out[static_cast<std::size_t>(k)] +=
             rows.J_b.topRows(rows.count).transpose() * lambda.head(rows.count);
     };
@@ -109,13 +109,13 @@ void Simulator::addRowImpulses(const State& state, std::vector<Vec6>& out) const
     {
         if (mLayout.jointBlock[k] >= 0)
         {
-            addBlock(static_cast<int>(k),
-                     mComposedStep ? Vec6(mSolution.joint[k] + mStageJoint[k]) : Vec6(mSolution.joint[k]));
+            addBlock(static_cast<int>(k), mComposedStep ? Vec6(mStep.solution.joint[k] + mStageJoint[k])
+                                                        : Vec6(mStep.solution.joint[k]));
         }
     }
     addExtra(mProblem.blocks(), mProblem.impulses());
-    addExtra(mLoopBlocks, mDrift.loopCorrection());
-    if (mRattleStep)
+    addExtra(mStep.loopBlocks, mDrift.loopCorrection());
+    if (mStep.rattle())
     {
         addExtra(mRattle.blocks(), mRattle.impulses()); // the velocity projection at the end of a rattle step
     }
@@ -128,7 +128,7 @@ void Simulator::addRowImpulses(const State& state, std::vector<Vec6>& out) const
     }
 }
 
-void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
+void StepStages::contactImpulses(std::vector<ContactImpulse>& out) const
 {
     out.clear();
     for (const Contact& contact : mProblem.contacts())
@@ -150,13 +150,13 @@ void Simulator::contactImpulses(std::vector<ContactImpulse>& out) const
         }
     };
     add(mProblem.blocks(), mProblem.impulses());
-    if (mRattleStep)
+    if (mStep.rattle())
     {
         add(mRattle.blocks(), mRattle.impulses());
     }
 }
 
-int Simulator::pushingLimitRows() const
+int StepStages::pushingLimitRows() const
 {
     int count = 0;
     for (const ExtraBlock& block : mProblem.blocks())

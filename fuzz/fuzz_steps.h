@@ -6,7 +6,7 @@
 
 #include "core/impulse_solver.h"
 #include "core/model.h"
-#include "core/step/simulation_error.h"
+#include "core/simulation_error.h"
 #include "run/simulation.h"
 
 namespace frontier::fuzz

@@ -23,10 +23,10 @@ BlowUpCheck::BlowUpCheck(const Model& model, const StepOptions& options, double 
 void BlowUpCheck::recordStartDefects(const std::vector<Contact>& contacts,
                                      const std::vector<ExtraBlock>& blocks, const State& state)
 {
-    if (!mStartRecorded)
+    if (!mMemory.startRecorded)
     {
-        mStartDefects = findStartDefects(contacts, blocks, mModel, state);
-        mStartRecorded = true;
+        mMemory.startDefects = findStartDefects(contacts, blocks, mModel, state);
+        mMemory.startRecorded = true;
     }
 }
 
@@ -38,15 +38,15 @@ std::string BlowUpCheck::likelyCause(const State& state, const StepView& step) c
 {
     constexpr double cSpareSteps = 10.0;
     const double recoverySteps =
-        cSpareSteps + mStartDefects.overlapM / (mOptions.penetrationMaxSpeed * mDt) +
-        mStartDefects.limitExcess /
+        cSpareSteps + mMemory.startDefects.overlapM / (mOptions.penetrationMaxSpeed * mDt) +
+        mMemory.startDefects.limitExcess /
             (std::min(mOptions.penetrationMaxSpeed, mOptions.penetrationMaxAngularSpeed) * mDt);
     bool stillThere = step.maxPenetrationM > cDeepOverlap;
     for (const ExtraBlock& block : step.blocks)
     {
         stillThere =
             stillThere || (block.kind == ExtraBlock::Kind::Limit &&
-                           block.source == mStartDefects.limitJoint && block.error(0) > cDeepOverlap);
+                           block.source == mMemory.startDefects.limitJoint && block.error(0) > cDeepOverlap);
     }
     double rotation = 0.0;
     int fastest = -1;
@@ -60,7 +60,7 @@ std::string BlowUpCheck::likelyCause(const State& state, const StepView& step) c
         }
     }
     const bool recovering = stillThere || static_cast<double>(state.step) <= recoverySteps;
-    return failureHint(mModel, mStartDefects, recovering, rotation, fastest);
+    return failureHint(mModel, mMemory.startDefects, recovering, rotation, fastest);
 }
 
 void BlowUpCheck::checkState(const State& state, const char* where, const StepView& step) const

@@ -6,9 +6,9 @@
 #include "core/contact.h"
 #include "core/extra_rows.h"
 #include "core/failure_hint.h"
+#include "core/simulation_error.h"
 #include "core/step/drift_correction.h"
-#include "core/step/simulation_error.h"
-#include "core/step/step_options.h"
+#include "core/step_options.h"
 
 #include <string>
 #include <vector>
@@ -51,12 +51,8 @@ class BlowUpCheck
         StartDefects startDefects;
         bool startRecorded = false;
     };
-    Memory memory() const { return {mStartDefects, mStartRecorded}; }
-    void restore(const Memory& memory)
-    {
-        mStartDefects = memory.startDefects;
-        mStartRecorded = memory.startRecorded;
-    }
+    const Memory& memory() const { return mMemory; }
+    void restore(const Memory& memory) { mMemory = memory; }
 
   private:
     // "; ..." for a failure message, or empty.
@@ -65,8 +61,7 @@ class BlowUpCheck
     const Model& mModel;
     const StepOptions& mOptions;
     double mDt;
-    StartDefects mStartDefects; // what the first step found wrong with the start
-    bool mStartRecorded = false;
+    Memory mMemory; // what the first step found wrong with the start
 };
 
 } // namespace frontier::core

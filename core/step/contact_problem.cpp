@@ -35,10 +35,10 @@ void buildLoopBlocks(const Model& model, const FrontierLayout& layout, const Row
     layoutExtraRows(out);
 }
 
-ContactProblem::ContactProblem(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                               ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mSolver(solver), mDelassus(layout, solver)
+ContactProblem::ContactProblem(const StepContext& step)
+    : mModel(step.model), mOptions(step.options), mSolver(step.solver), mDelassus(step.layout, step.solver)
 {
+    const Model& model = step.model;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
@@ -53,10 +53,13 @@ ContactProblem::ContactProblem(const Model& model, const StepOptions& options, c
     }
 }
 
-int ContactProblem::build(const State& state, const std::vector<BodyState>& start,
-                          const std::vector<ExtraBlock>& loops, double dt, double driveStep,
-                          const Actuation& actuation)
+int ContactProblem::build(const StepContext& step, const State& state)
 {
+    const std::vector<BodyState>& start = step.start;
+    const std::vector<ExtraBlock>& loops = step.loopBlocks;
+    const double dt = step.stepLength();
+    const double driveStep = step.driveStep;
+    const Actuation& actuation = step.actuation;
     mExtra.clear();
     for (std::size_t c = 0; c < mContacts.size(); ++c)
     {

@@ -11,8 +11,9 @@
 #include "core/step/delassus_cache.h"
 #include "core/step/impulse_memory.h"
 #include "core/step/row_key.h"
-#include "core/step/step_options.h"
-#include "core/step/step_stats.h"
+#include "core/step/step_context.h"
+#include "core/step_options.h"
+#include "core/step_stats.h"
 
 #include <Eigen/Dense>
 #include <cstdint>
@@ -30,20 +31,18 @@ void buildLoopBlocks(const Model& model, const FrontierLayout& layout, const Row
 class ContactProblem
 {
   public:
-    ContactProblem(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                   ImpulseSolver& solver);
+    explicit ContactProblem(const StepContext& step);
 
     // The contacts of the step (detection fills them, at the start-of-step pose).
     std::vector<Contact>& contacts() { return mContacts; }
     const std::vector<Contact>& contacts() const { return mContacts; }
 
     // Contact rows with their targets (restitution, or the gap that may close this step), the
-    // given rows of loop-closing joints, limit rows near a limit, joint friction and actuators at
-    // their limits. Evaluated at the start-of-step pose; `start` holds its velocities (before the
-    // free-velocity kick), dt the step (s), driveStep the duration of this impulse solve (s).
-    // Returns the number of rows.
-    int build(const State& state, const std::vector<BodyState>& start, const std::vector<ExtraBlock>& loops,
-              double dt, double driveStep, const Actuation& actuation);
+    // step's rows of loop-closing joints (loopBlocks), limit rows near a limit, joint friction and
+    // actuators at their limits. Evaluated at the start-of-step pose; the step's `start` holds its
+    // velocities (before the free-velocity kick), its |h| the step (s), driveStep the duration of
+    // this impulse solve (s). Returns the number of rows.
+    int build(const StepContext& step, const State& state);
 
     // The last step's impulses on this step's rows (warm start), and their momentum J_x^T lambda in
     // the right-hand side of the step's first solve: that solve then gives u(lambda_carried) =

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace frontier::core
 {
@@ -37,10 +38,11 @@ JointErrors measureJointErrors(const RowSystem& rows, int worstBefore)
     return errors;
 }
 
-DriftCorrection::DriftCorrection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                                 ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+DriftCorrection::DriftCorrection(const StepContext& step)
+    : mModel(step.model), mOptions(step.options), mLayout(step.layout), mSolver(step.solver)
 {
+    const Model& model = step.model;
+    const ImpulseSolver& solver = step.solver;
     // The correction's right-hand side has no momenta, -C / h on the joint rows alone: the linear
     // solver takes an empty body part for that (core/tree_solver.cpp), the others get the zeros.
     const bool momentaImplied = dynamic_cast<const TreeSolver*>(&solver) != nullptr;
@@ -189,116 +191,147 @@ const JointErrors& DriftCorrection::measure(const RowSystem& rows)
     return mErrors;
 }
 
-DriftCorrection::Outcome DriftCorrection::run(State& state, const std::vector<BodyState>& start,
-                                              const std::vector<PrincipalAxes>& principal,
-                                              const RowSystem& rows, RowSystem& rowsAfter,
-                                              std::vector<ExtraBlock>& loopBlocks, BlockVector& solution,
-                                              const std::vector<std::uint8_t>& freeRotation, double dt,
-                                              double driveStep, bool rattle, const Actuation& actuation)
+// The iteration of run(): measure C at the current pose, stop (converged, stalled, or at the cap),
+// re-factor when the quasi-Newton iteration is slow, correct.
+DriftCorrection::Outcome DriftCorrection::run(StepContext& step, State& state)
 {
-    constexpr double cSlowContraction = 0.1;
-    double previous = std::numeric_limits<double>::infinity();
-    bool loopsFactored = false;
-    bool refactored = false;
-    constexpr double cRattleStall = 0.5;
-    constexpr int cRattleIterations = 12;
+    std::vector<ExtraBlock>& loopBlocks = step.loopBlocks;
     mLoopCorrection.setZero(loopBlocks.empty() ? 0 : loopBlocks.back().offset + loopBlocks.back().count);
-    // A measurement that a correction follows needs the joints' conditions only; the rows the step
-    // ends with are assembled in full once, at its end pose. The last step's iteration count is the
-    // guess of how many corrections this one takes (only the cost depends on it).
-    bool complete = false;
-    const auto completeRows = [&]
-    {
-        if (!complete)
-        {
-            assembleRows(mModel, mLayout, state, driveStep, rowsAfter, actuation.gains());
-            complete = true;
-        }
-    };
+    mPrevious = std::numeric_limits<double>::infinity();
+    mRefactored = false;
+    mLoopsFactored = false;
+    // The last step's iteration count is the guess of how many corrections this one takes (only
+    // the cost depends on it).
     const int expectedCorrections = mIterations;
     mIterations = 0;
     for (int iteration = 0;; ++iteration)
     {
-        complete = false;
-        if (iteration < expectedCorrections)
-        {
-            assembleJointConditions(mModel, state, rowsAfter);
-        }
-        else
-        {
-            completeRows();
-        }
-        measure(rowsAfter);
+        measureAfter(step, state, iteration < expectedCorrections);
         if (iteration == 0)
         {
-            updatePredictedDrift(rowsAfter, state, dt);
+            updatePredictedDrift(step.rowsAfter, state, step.h);
         }
         const double error = std::max(mErrors.maxM, mErrors.maxRad);
-        if (error <= mOptions.stabilizationTolerance)
+        if (const std::optional<Outcome> outcome = stopsAt(step, error, iteration))
         {
-            break;
+            completeRows(step, state);
+            return *outcome;
         }
-        if (rattle && (error > cRattleStall * previous || iteration >= cRattleIterations))
+        if (!mRefactored && error > cSlowContraction * mPrevious)
         {
-            completeRows();
-            return Outcome::Stalled;
+            refactor(step, state);
         }
-        if (iteration >= mOptions.stabilizationIterations)
-        {
-            // A joint still apart by more than cJointBlowUp after the last iteration is a blow-up:
-            // the run stops naming the step, the joint and the gap, instead of going on with garbage.
-            completeRows();
-            return error > cJointBlowUp ? Outcome::CameApart : Outcome::Converged;
-        }
-        if (!refactored && error > cSlowContraction * previous)
-        {
-            completeRows();
-            refactored = true;
-            mRowsRefactored = rowsAfter;
-            mRowsRefactored.geometricInertia = rows.geometricInertia; // the step's metric (§7a)
-            mSolver.factor(mRowsRefactored);
-            buildLoopBlocks(mModel, mLayout, mRowsRefactored, loopBlocks);
-            loopsFactored = false;
-        }
-        if (!loopBlocks.empty() && !loopsFactored)
-        {
-            // Loop rows join the projection exactly: their Delassus block, once per factorization.
-            mSolver.delassus(loopBlocks, layoutExtraRows(loopBlocks), mLoopG);
-            addLoopCompliance(loopBlocks);
-            mLoopLdlt.compute(mLoopG);
-            loopsFactored = true;
-        }
-        mLoopError.resize(mLoopG.rows());
-        for (const ExtraBlock& loop : loopBlocks)
-        {
-            mLoopError.segment(loop.offset, loop.count) =
-                rowsAfter.joints[static_cast<std::size_t>(loop.source)].error.head(loop.count);
-        }
-        previous = error;
+        factorLoops(loopBlocks);
+        mPrevious = error;
         mIterations = iteration + 1;
-        // mRhs.body stays zero: the correction's right-hand side is -C / h on the joint rows alone.
-        for (std::size_t k = 0; k < mModel.joints.size(); ++k)
-        {
-            const JointRowsTable::Rows r = rowsAfter.joints.rows(k);
-            Vec6 condition = Vec6::Zero(); // C as the 6 rows of a JointRows hold it
-            withRows(r.count,
-                     [&](auto n)
-                     {
-                         constexpr int R = decltype(n)::value;
-                         condition.head<R>() = Eigen::Map<const Eigen::Matrix<double, R, 1>>(r.error);
-                     });
-            mRhs.joint[k] = -condition / dt;
-        }
-        mSolver.solve(mRhs, mCorrection);
-        if (!loopBlocks.empty())
-        {
-            correctLoops(loopBlocks, dt);
-        }
-        addCorrection(state, solution);
-        integratePositions(mModel, start, principal, rows, freeRotation, dt, state);
+        correct(step, state);
     }
-    completeRows();
-    return Outcome::Converged;
+}
+
+// A measurement that a correction follows needs the joints' conditions only (`conditionsOnly`);
+// the rows the step ends with are assembled in full once, at its end pose (completeRows).
+void DriftCorrection::measureAfter(StepContext& step, const State& state, bool conditionsOnly)
+{
+    mRowsComplete = false;
+    if (conditionsOnly)
+    {
+        assembleJointConditions(mModel, state, step.rowsAfter);
+    }
+    else
+    {
+        completeRows(step, state);
+    }
+    measure(step.rowsAfter);
+}
+
+void DriftCorrection::completeRows(StepContext& step, const State& state)
+{
+    if (!mRowsComplete)
+    {
+        assembleRows(mModel, mLayout, state, step.driveStep, step.rowsAfter, step.actuation.gains());
+        mRowsComplete = true;
+    }
+}
+
+// Where the iteration stops at an error (m or rad) after `iteration` corrections: converged; a
+// rattle step that stalls (taken by euler); the iteration cap, where a joint still apart by more
+// than cJointBlowUp is a blow-up (the run stops naming the step, the joint and the gap, instead
+// of going on with garbage). None: correct again.
+std::optional<DriftCorrection::Outcome> DriftCorrection::stopsAt(const StepContext& step, double error,
+                                                                 int iteration) const
+{
+    constexpr double cRattleStall = 0.5;
+    constexpr int cRattleIterations = 12;
+    if (error <= mOptions.stabilizationTolerance)
+    {
+        return Outcome::Converged;
+    }
+    if (step.rattle() && (error > cRattleStall * mPrevious || iteration >= cRattleIterations))
+    {
+        return Outcome::Stalled;
+    }
+    if (iteration >= mOptions.stabilizationIterations)
+    {
+        return error > cJointBlowUp ? Outcome::CameApart : Outcome::Converged;
+    }
+    return std::nullopt;
+}
+
+// The system re-factored at the current configuration (once per step), the loop blocks rebuilt there.
+void DriftCorrection::refactor(StepContext& step, const State& state)
+{
+    completeRows(step, state);
+    mRefactored = true;
+    mRowsRefactored = step.rowsAfter;
+    mRowsRefactored.geometricInertia = step.rows.geometricInertia; // the step's metric (§7a)
+    mSolver.factor(mRowsRefactored);
+    buildLoopBlocks(mModel, mLayout, mRowsRefactored, step.loopBlocks);
+    mLoopsFactored = false;
+}
+
+// Loop rows join the projection exactly: their Delassus block, once per factorization.
+void DriftCorrection::factorLoops(std::vector<ExtraBlock>& loopBlocks)
+{
+    if (!loopBlocks.empty() && !mLoopsFactored)
+    {
+        mSolver.delassus(loopBlocks, layoutExtraRows(loopBlocks), mLoopG);
+        addLoopCompliance(loopBlocks);
+        mLoopLdlt.compute(mLoopG);
+        mLoopsFactored = true;
+    }
+}
+
+// One correction: [M J^T; J 0][du; -dlambda] = [0; -C/h], velocities moved by du and positions by
+// h du from the start-of-step pose.
+void DriftCorrection::correct(StepContext& step, State& state)
+{
+    const double dt = step.h; // s, signed: a backward stage of a composed step moves back
+    mLoopError.resize(mLoopG.rows());
+    for (const ExtraBlock& loop : step.loopBlocks)
+    {
+        mLoopError.segment(loop.offset, loop.count) =
+            step.rowsAfter.joints[static_cast<std::size_t>(loop.source)].error.head(loop.count);
+    }
+    // mRhs.body stays zero: the correction's right-hand side is -C / h on the joint rows alone.
+    for (std::size_t k = 0; k < mModel.joints.size(); ++k)
+    {
+        const JointRowsTable::Rows r = step.rowsAfter.joints.rows(k);
+        Vec6 condition = Vec6::Zero(); // C as the 6 rows of a JointRows hold it
+        withRows(r.count,
+                 [&](auto n)
+                 {
+                     constexpr int R = decltype(n)::value;
+                     condition.head<R>() = Eigen::Map<const Eigen::Matrix<double, R, 1>>(r.error);
+                 });
+        mRhs.joint[k] = -condition / dt;
+    }
+    mSolver.solve(mRhs, mCorrection);
+    if (!step.loopBlocks.empty())
+    {
+        correctLoops(step.loopBlocks, dt);
+    }
+    addCorrection(state, step.solution);
+    integratePositions(mModel, step.start, step.principal, step.rows, step.freeRotation, dt, state);
 }
 
 // Loop rows in the projection: the tree correction du_0 leaves J_loop du_0 + C_loop / h; the loop

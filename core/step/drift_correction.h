@@ -5,10 +5,12 @@
 #include "core/actuation.h"
 #include "core/free_rotation.h"
 #include "core/impulse_solver.h"
-#include "core/step/step_options.h"
+#include "core/step/step_context.h"
+#include "core/step_options.h"
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace frontier::core
@@ -32,8 +34,7 @@ constexpr double cJointBlowUp = 1e-3;
 class DriftCorrection
 {
   public:
-    DriftCorrection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                    ImpulseSolver& solver);
+    explicit DriftCorrection(const StepContext& step);
 
     enum class Outcome
     {
@@ -53,12 +54,10 @@ class DriftCorrection
     // through their Delassus block. rattle: the impulse direction stays J(q_n)^T (so the step is
     // the symplectic map), never re-factored; Stalled when it contracts by less than cRattleStall
     // or has not converged after cRattleIterations. Leaves `rowsAfter` at the final pose, adds
-    // the joint impulses to `solution`.
-    Outcome run(State& state, const std::vector<BodyState>& start,
-                const std::vector<PrincipalAxes>& principal, const RowSystem& rows, RowSystem& rowsAfter,
-                std::vector<ExtraBlock>& loopBlocks, BlockVector& solution,
-                const std::vector<std::uint8_t>& freeRotation, double dt, double driveStep, bool rattle,
-                const Actuation& actuation);
+    // the joint impulses to `solution`. The step's context gives the start-of-step pose `start`,
+    // `rows`, `rowsAfter`, `loopBlocks`, `solution`, `freeRotation`, its h (dt here) and driveStep,
+    // and whether it is a RATTLE step or stage.
+    Outcome run(StepContext& step, State& state);
 
     // The predicted drift (docs/method.md §7, eq. (11a)): the step's first velocity solve asks
     // J u = -D / h of each joint's condition rows, D = State::jointDrift the violation the last
@@ -79,6 +78,14 @@ class DriftCorrection
     const JointErrors& measure(const RowSystem& rows);
 
   private:
+    // The steps of run().
+    static constexpr double cSlowContraction = 0.1; // an iteration contracting less re-factors
+    void measureAfter(StepContext& step, const State& state, bool conditionsOnly);
+    void completeRows(StepContext& step, const State& state);
+    std::optional<Outcome> stopsAt(const StepContext& step, double error, int iteration) const;
+    void refactor(StepContext& step, const State& state);
+    void factorLoops(std::vector<ExtraBlock>& loopBlocks); // lays their rows out
+    void correct(StepContext& step, State& state);
     void addCorrection(State& state, BlockVector& solution) const; // mCorrection
     void correctLoops(const std::vector<ExtraBlock>& loopBlocks, double dt);
     void updatePredictedDrift(const RowSystem& rowsAfter, State& state, double dt);
@@ -93,9 +100,15 @@ class DriftCorrection
     JointErrors mErrors;
     int mIterations = 0;
     bool mPredictionApplied = false; // addPredictedDrift was called for this step
-    LargeVector<double> mTension;    // per body: 1 where h^2 k / I > cTenseRatio (§7a)
-    RowSystem mRowsRefactored;       // rows of a re-factorization when the quasi-Newton iteration is slow
-    BlockVector mRhs, mCorrection;   // mRhs: no body part for the linear solver (zero momenta)
+    // run()'s iteration: the last error (m or rad), re-factored this step, the loops' G factored
+    // for the current factorization, rowsAfter assembled in full at the current pose.
+    double mPrevious = 0.0;
+    bool mRefactored = false;
+    bool mLoopsFactored = false;
+    bool mRowsComplete = false;
+    LargeVector<double> mTension;  // per body: 1 where h^2 k / I > cTenseRatio (§7a)
+    RowSystem mRowsRefactored;     // rows of a re-factorization when the quasi-Newton iteration is slow
+    BlockVector mRhs, mCorrection; // mRhs: no body part for the linear solver (zero momenta)
     Eigen::MatrixXd mLoopG;
     Eigen::LDLT<Eigen::MatrixXd> mLoopLdlt;
     Eigen::VectorXd mLoopError;      // C of the loop rows (m, rad)

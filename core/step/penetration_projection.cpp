@@ -19,50 +19,68 @@ bool pushesApart(const ExtraBlock& block)
 }
 } // namespace
 
-PenetrationProjection::PenetrationProjection(const Model& model, const StepOptions& options,
-                                             const FrontierLayout& layout, ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+PenetrationProjection::PenetrationProjection(const StepContext& step)
+    : mModel(step.model), mOptions(step.options), mLayout(step.layout), mSolver(step.solver)
 {
+    const Model& model = step.model;
     mDisplacement.resize(model.bodies.size(), model.joints.size());
     mRhs.resize(model.bodies.size(), model.joints.size());
     mRhs.setZero();
 }
 
-void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, ContactProblem& problem,
-                                  const BlockVector& solution, const RowSystem& rows,
-                                  const std::vector<PrincipalAxes>& principal, double dt, double driveStep,
-                                  const Actuation& actuation)
+void PenetrationProjection::apply(StepContext& step, State& state, ContactProblem& problem)
 {
-    const bool wasCapped = mCapped;
-    mCapped = false; // set again below when this step's displacement is capped
-    if (problem.rows() == 0)
+    const bool wasCapped = mMemory.capped;
+    mMemory.capped = false; // set again below when this step's displacement is capped
+    if (problem.rows() == 0 || !overlapsAfterStep(step, problem) || !gatherRows(step, problem))
     {
         return;
     }
-    // Overlap predicted after this step (m or rad): now minus h times the separating speed; the
-    // part beyond the slop (contacts) or the limit is removed. Most steps have none.
-    const std::vector<ExtraBlock>& extra = problem.blocks();
-    extraRowVelocities(extra, solution, mRowVelocity);
-    auto excessOf = [&](const ExtraBlock& block)
+    const double scale = solveDisplacement(step, problem);
+    // A recovery (its capped steps, and the one that finishes it) keeps the joints by displacement.
+    const bool recovering = scale < 1.0 || wasCapped;
+    mMemory.capped = scale < 1.0;
+    if (recovering || largestRotation(mModel, mDisplacement) > cRestoreRotation)
     {
-        const double predicted = block.error(0) - dt * mRowVelocity(block.offset);
-        return predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
-    };
+        restoreJoints(state, step.start, step.driveStep, step.actuation);
+        return;
+    }
+    displacePositions(mModel, mDisplacement, state, step.start);
+}
+
+// Overlap predicted after this step (m or rad): now minus h times the separating speed (the rows'
+// velocities mRowVelocity); the part beyond the slop (contacts) or the limit is to be removed.
+double PenetrationProjection::excess(const ExtraBlock& block, double dt) const
+{
+    const double predicted = block.error(0) - dt * mRowVelocity(block.offset);
+    return predicted - (block.kind == ExtraBlock::Kind::Contact ? mOptions.penetrationSlop : 0.0);
+}
+
+// Some row that pushes apart is predicted beyond its slop or limit (most steps have none).
+bool PenetrationProjection::overlapsAfterStep(const StepContext& step, const ContactProblem& problem)
+{
+    const double dt = step.stepLength();
+    extraRowVelocities(problem.blocks(), step.solution, mRowVelocity);
     bool any = false;
-    for (const ExtraBlock& block : extra)
+    for (const ExtraBlock& block : problem.blocks())
     {
-        any = any || (pushesApart(block) && excessOf(block) > 0.0);
+        any = any || (pushesApart(block) && excess(block, dt) > 0.0);
     }
-    if (!any)
-    {
-        return;
-    }
+    return any;
+}
+
+// The projection's rows (mBlocks, their rows in the step's G in mRows): the normal and limit rows
+// the joints do not hold, with their excess as target, and the loop rows with target 0. False:
+// none has an excess.
+bool PenetrationProjection::gatherRows(const StepContext& step, ContactProblem& problem)
+{
+    const double dt = step.stepLength();
     problem.prepareDelassus();
     const DelassusMatrix& G = problem.delassus();
     mBlocks.clear();
     mRows.clear();
-    any = false;
-    for (const ExtraBlock& block : extra)
+    bool any = false;
+    for (const ExtraBlock& block : problem.blocks())
     {
         if (block.kind == ExtraBlock::Kind::Drive)
         {
@@ -73,13 +91,13 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
         if (block.kind != ExtraBlock::Kind::Loop)
         {
             // A row the joints hold: no displacement they allow moves it (its G_ii is round-off).
-            if (heldByJoints(block, G.entry(block.offset, block.offset), rows, principal,
+            if (heldByJoints(block, G.entry(block.offset, block.offset), step.rows, step.principal,
                              mOptions.penetrationHeldRatio))
             {
                 continue;
             }
             p.count = 1;
-            p.target(0) = std::max(0.0, excessOf(block));
+            p.target(0) = std::max(0.0, excess(block, dt));
             any = any || p.target(0) > 0.0;
         }
         for (int k = 0; k < p.count; ++k)
@@ -88,12 +106,16 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
         }
         mBlocks.push_back(p);
     }
-    if (!any)
-    {
-        return;
-    }
+    return any;
+}
+
+// The displacement H^-1 J^T mu into mDisplacement, mu >= 0 from the rows' Gauss-Seidel, scaled
+// down to the bounds of a step; returns the scale (1: within them).
+double PenetrationProjection::solveDisplacement(const StepContext& step, ContactProblem& problem)
+{
+    const double dt = step.stepLength();
     const int n = layoutExtraRows(mBlocks);
-    mG.gather(mBlocks, mLayout.treeOfBody, G, mRows); // the normal, limit and loop rows of the step's G
+    mG.gather(mBlocks, mLayout.treeOfBody, problem.delassus(), mRows); // the normal, limit and loop rows
     mFree.setZero(n);
     mImpulse.setZero(n);
     ExtraSolveSettings settings = mOptions.contactSolve;
@@ -110,15 +132,7 @@ void PenetrationProjection::apply(State& state, std::vector<BodyState>& start, C
             d *= scale;
         }
     }
-    // A recovery (its capped steps, and the one that finishes it) keeps the joints by displacement.
-    const bool recovering = scale < 1.0 || wasCapped;
-    mCapped = scale < 1.0;
-    if (recovering || largestRotation(mModel, mDisplacement) > cRestoreRotation)
-    {
-        restoreJoints(state, start, driveStep, actuation);
-        return;
-    }
-    displacePositions(mModel, mDisplacement, state, start);
+    return scale;
 }
 
 // Applies the penetration displacement (mDisplacement) and puts the joints back as they were. The

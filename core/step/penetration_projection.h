@@ -7,7 +7,8 @@
 #include "core/free_rotation.h"
 #include "core/impulse_solver.h"
 #include "core/step/contact_problem.h"
-#include "core/step/step_options.h"
+#include "core/step/step_context.h"
+#include "core/step_options.h"
 
 #include <Eigen/Dense>
 #include <utility>
@@ -19,8 +20,7 @@ namespace frontier::core
 class PenetrationProjection
 {
   public:
-    PenetrationProjection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                          ImpulseSolver& solver);
+    explicit PenetrationProjection(const StepContext& step);
 
     // Penetration beyond the slop (contacts) or past a limit, predicted at the end of the step
     // from the velocities `solution` of the step's extra rows, is removed by a displacement
@@ -30,18 +30,25 @@ class PenetrationProjection
     // left alone, and a step moves no body faster than penetrationMaxSpeed nor turns it faster
     // than penetrationMaxAngularSpeed (deep overlaps come out over several steps); a displacement
     // that turns bodies puts their joints back by displacement too (restoreJoints). Moves `state`
-    // and the start-of-step pose `start` alike; `rows` are the factored start-of-step rows.
-    void apply(State& state, std::vector<BodyState>& start, ContactProblem& problem,
-               const BlockVector& solution, const RowSystem& rows,
-               const std::vector<PrincipalAxes>& principal, double dt, double driveStep,
-               const Actuation& actuation);
+    // and the step's start-of-step pose `start` alike; the step's `rows` are the factored
+    // start-of-step rows.
+    void apply(StepContext& step, State& state, ContactProblem& problem);
 
-    // The last step's displacement was capped (a recovery under way); a step taken again from its
-    // start puts back what it was.
-    bool capped() const { return mCapped; }
-    void setCapped(bool capped) { mCapped = capped; }
+    // What carries over from one step to the next (core/step_memory.h), and what a step taken
+    // again from its start puts back: the last step's displacement was capped (a recovery under way).
+    struct Memory
+    {
+        bool capped = false;
+    };
+    const Memory& memory() const { return mMemory; }
+    void restore(const Memory& memory) { mMemory = memory; }
 
   private:
+    // The steps of apply().
+    double excess(const ExtraBlock& block, double dt) const;
+    bool overlapsAfterStep(const StepContext& step, const ContactProblem& problem);
+    bool gatherRows(const StepContext& step, ContactProblem& problem);
+    double solveDisplacement(const StepContext& step, ContactProblem& problem);
     void restoreJoints(State& state, std::vector<BodyState>& start, double driveStep,
                        const Actuation& actuation);
 
@@ -55,7 +62,7 @@ class PenetrationProjection
     const StepOptions& mOptions;
     const FrontierLayout& mLayout;
     ImpulseSolver& mSolver;
-    bool mCapped = false; // the last step's displacement was capped
+    Memory mMemory;
     // Scratch: the rows' velocities J_x u; the projection's blocks, their rows in the step's G,
     // their G, free velocity and impulses, and the rows each block can move.
     Eigen::VectorXd mRowVelocity;

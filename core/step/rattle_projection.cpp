@@ -6,15 +6,16 @@
 namespace frontier::core
 {
 
-RattleProjection::RattleProjection(const Model& model, const StepOptions& options,
-                                   const FrontierLayout& layout, ImpulseSolver& solver)
-    : mModel(model), mOptions(options), mLayout(layout), mSolver(solver)
+RattleProjection::RattleProjection(const StepContext& step)
+    : mModel(step.model), mOptions(step.options), mLayout(step.layout), mSolver(step.solver)
 {
 }
 
-void RattleProjection::factorAtStart(const State& state, RowSystem& rows, double driveStep,
-                                     const Actuation& actuation)
+void RattleProjection::factorAtStart(StepContext& step, const State& state)
 {
+    RowSystem& rows = step.rows;
+    const double driveStep = step.driveStep;
+    const Actuation& actuation = step.actuation;
     if (!(mFactoredPoseValid && samePose(mModel, state, mFactoredPose)))
     {
         assembleRows(mModel, mLayout, state, driveStep, rows, actuation.gains());
@@ -23,10 +24,16 @@ void RattleProjection::factorAtStart(const State& state, RowSystem& rows, double
     mFactoredPoseValid = false;
 }
 
-void RattleProjection::project(State& state, RowSystem& rows, RowSystem& rowsAfter,
-                               std::vector<ExtraBlock>& loopBlocks, ContactProblem& problem, BlockVector& rhs,
-                               BlockVector& solution, double dt, double driveStep, Actuation& actuation)
+void RattleProjection::project(StepContext& step, State& state, ContactProblem& problem)
 {
+    RowSystem& rows = step.rows;
+    RowSystem& rowsAfter = step.rowsAfter;
+    std::vector<ExtraBlock>& loopBlocks = step.loopBlocks;
+    BlockVector& rhs = step.rhs;
+    BlockVector& solution = step.solution;
+    const double dt = step.h; // s, signed
+    const double driveStep = step.driveStep;
+    Actuation& actuation = step.actuation;
     std::swap(rows, rowsAfter);
     mCorrection.resize(mModel.bodies.size(), mModel.joints.size()); // sized at first use: euler never uses it
     for (;;)

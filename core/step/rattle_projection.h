@@ -6,7 +6,8 @@
 #include "core/actuation.h"
 #include "core/impulse_solver.h"
 #include "core/step/contact_problem.h"
-#include "core/step/step_options.h"
+#include "core/step/step_context.h"
+#include "core/step_options.h"
 
 #include <Eigen/Dense>
 #include <utility>
@@ -18,23 +19,20 @@ namespace frontier::core
 class RattleProjection
 {
   public:
-    RattleProjection(const Model& model, const StepOptions& options, const FrontierLayout& layout,
-                     ImpulseSolver& solver);
+    explicit RattleProjection(const StepContext& step);
 
-    // Rows and factorization at the start-of-step pose into `rows`; the last projection left them
-    // factored at exactly this pose unless the state was changed between steps.
-    void factorAtStart(const State& state, RowSystem& rows, double driveStep, const Actuation& actuation);
+    // Rows and factorization at the start-of-step pose into the step's `rows`; the last projection
+    // left them factored at exactly this pose unless the state was changed between steps.
+    void factorAtStart(StepContext& step, const State& state);
 
     // The second half of RATTLE's velocity update: u_{n+1} = u - M^-1 J^T mu with
     // J(q_{n+1}) u_{n+1} = 0, M and J at q_{n+1} (`rowsAfter`, the rows the last Newton iteration
     // assembled, which become `rows`). Loop joints join as bilateral rows (rebuilt into
     // `loopBlocks`); contacts and limits that pushed in this step's impulse stage (`problem`) as
     // one-sided normal rows with target 0 (they may separate, never pull); joint friction and
-    // actuators at their limits act in this half too. `rhs` is scratch; the joint impulses are
-    // added to `solution`.
-    void project(State& state, RowSystem& rows, RowSystem& rowsAfter, std::vector<ExtraBlock>& loopBlocks,
-                 ContactProblem& problem, BlockVector& rhs, BlockVector& solution, double dt,
-                 double driveStep, Actuation& actuation);
+    // actuators at their limits act in this half too. The step's `rhs` is scratch; the joint
+    // impulses are added to its `solution`.
+    void project(StepContext& step, State& state, ContactProblem& problem);
 
     // The rows factored by the last projection no longer stand for the next step's start.
     void forgetFactoredPose() { mFactoredPoseValid = false; }

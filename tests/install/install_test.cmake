@@ -1,8 +1,9 @@
 # tests/install/install_test.cmake (cmake -P; tests/install/CMakeLists.txt passes the variables).
 # In a directory of its own under WORK_DIR, removed at the end whatever happens:
 #   1. cmake --install FRONTIER_BINARY_DIR --prefix <dir>/prefix;
-#   2. the package config names neither tree, and every `#include "..."` of an installed header
-#      names an installed header;
+#   2. the package config names neither tree, every `#include "..."` of an installed header
+#      names an installed header, and none is a step's internals (core/step/, core/steppers/:
+#      core/simulator.h holds them behind a pointer);
 #   3. configures examples/step_a_scene with CMAKE_PREFIX_PATH=<dir>/prefix (the same generator,
 #      compiler and build type, warnings as errors), builds it and runs it: its exit status is the
 #      verdict on the physics it prints;
@@ -37,6 +38,13 @@ if(header_count EQUAL 0 OR NOT EXISTS "${prefix}/bin/frontier" OR
   file(REMOVE_RECURSE "${dir}")
   message(FATAL_ERROR "the install lacks headers, bin/frontier or the package config")
 endif()
+# The step's units and steppers stay inside the library.
+foreach(header IN LISTS headers)
+  if(header MATCHES "^core/(step|steppers)/")
+    file(REMOVE_RECURSE "${dir}")
+    message(FATAL_ERROR "${header} was installed: a public header includes a step's internals")
+  endif()
+endforeach()
 # The package is relocatable: nothing in it points back into the source or build tree.
 file(GLOB package_files "${prefix}/lib/cmake/Frontier/*.cmake")
 foreach(file IN LISTS package_files)

@@ -1,8 +1,11 @@
 // tests/sim/rattle_test.cpp: the second-order integrator (`rattle`) against the first-order one:
 // convergence orders measured by halving the time step, energy over 1000 s of a conservative
 // chain, joint gaps, and momentum of a free articulated body; the fourth-order composition
-// (`rattle4`, docs/method.md §11): its order, and energy and momentum of a free chain.
+// (`rattle4`, docs/method.md §11): its order, energy and momentum of a free chain, and a composition
+// of one stage that is rattle itself.
 #include "collision/contacts.h"
+#include "core/step/step_stages.h"
+#include "core/steppers/rattle4_stepper.h"
 #include "sim_test_util.h"
 #include "tests/soak.h"
 
@@ -332,6 +335,27 @@ TEST(Rattle4, StepWithContactIsOneRattleStep)
     EXPECT_GT(composed, 0);
     EXPECT_GT(single, 0);
     EXPECT_NEAR(state.time, 2.0, 1e-12);
+}
+
+// A step composed of one RATTLE stage of coefficient 1 (core/steppers/rattle4_stepper.h) is the
+// rattle step, bit for bit: the composition adds nothing of its own but the stages.
+TEST(Rattle4, CompositionOfOneStageIsRattle)
+{
+    const core::Model model = withStep(io::loadSceneFromString(chainScene(5, 0.7), "chain5.yaml"),
+                                       core::IntegratorKind::Rattle, 0.002);
+    core::State byRattle = core::initialState(model);
+    core::State composed = byRattle;
+    core::Simulator simulator(model);
+    core::StepStages stages(model, {}, nullptr);
+    core::ComposedRattleStepper stepper(stages, {1.0});
+    for (int k = 0; k < 300; ++k)
+    {
+        simulator.step(byRattle);
+        stepper.step(composed);
+        stages.finishActuation();
+        ASSERT_TRUE(bitIdentical(byRattle, composed)) << "step " << k;
+    }
+    EXPECT_EQ(stages.stats().stabilizationIterations, simulator.lastStep().stabilizationIterations);
 }
 
 } // namespace

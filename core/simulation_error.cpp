@@ -1,5 +1,5 @@
-// core/step/simulation_error.cpp: the English message of a SimulationError, from its fields.
-#include "core/step/simulation_error.h"
+// core/simulation_error.cpp: the English message of a SimulationError, from its fields.
+#include "core/simulation_error.h"
 
 #include <sstream>
 #include <utility>
@@ -32,6 +32,11 @@ std::string message(const SimulationFailure& f)
 
 SimulationError::SimulationError(SimulationFailure failure)
     : std::runtime_error(message(failure)), mFailure(std::move(failure))
+{
+}
+
+SingularJointError::SingularJointError(std::string jointName, const std::string& message)
+    : std::runtime_error(message), mJointName(std::move(jointName))
 {
 }
 

@@ -1,4 +1,4 @@
-// core/step/step_options.h: the settings of a step (tolerances, restitution, penetration bounds).
+// core/step_options.h: the settings of a step (tolerances, restitution, penetration bounds).
 #pragma once
 
 #include "core/extra_rows.h"

@@ -1,4 +1,4 @@
-// core/step/simulation_error.h: the errors a step throws, with what they name as fields.
+// core/simulation_error.h: the errors a step throws, with what they name as fields.
 #pragma once
 
 #include <optional>
@@ -40,6 +40,18 @@ class SimulationError : public std::runtime_error
 
   private:
     SimulationFailure mFailure;
+};
+
+// A joint block that cannot be eliminated: dependent rows or a degenerate configuration
+// (core/impulse_solver.h).
+class SingularJointError : public std::runtime_error
+{
+  public:
+    SingularJointError(std::string jointName, const std::string& message);
+    const std::string& jointName() const { return mJointName; }
+
+  private:
+    std::string mJointName;
 };
 
 // A model the solver cannot take (e.g. a loop it does not support): bad input, not a failed run.

@@ -1,4 +1,4 @@
-// core/step/step_stats.h: what a step reports about itself (stage timings, joint errors, contacts,
+// core/step_stats.h: what a step reports about itself (stage timings, joint errors, contacts,
 // the contact problem's route), and the clock that times the stages.
 #pragma once
 
