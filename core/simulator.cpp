@@ -142,9 +142,9 @@ void Simulator::takeStep(State& state)
 bool Simulator::stepRattle4(State& state)
 {
     const double start = state.time;
-    const double cbrt2 = std::cbrt(2.0);
-    const double c1 = 1.0 / (2.0 - cbrt2);
-    const double c2 = -cbrt2 / (2.0 - cbrt2);
+    const TripleJump jump = tripleJumpCoefficients();
+    const double c1 = jump.c1;
+    const double c2 = jump.c2;
     const double total = c1 + c1 - c2; // the sum of |c|
     const std::array<double, 3> weights = {c1, c2, c1};
     bool first = true;

@@ -470,11 +470,8 @@ int runMjcfComparison(const std::string& path, const MjcfMotionSettings& motion,
         const MjcfMotion moved = compareMotion(path, motion);
         out << "\nPassive motion, " << number(motion.duration, "%g") << " s from the start, no control, "
             << "contacts off in both: MuJoCo RK4 at dt " << number(motion.mujocoDt, "%g") << " s, Frontier "
-            << (motion.integrator == core::IntegratorKind::Rattle4  ? "rattle4"
-                : motion.integrator == core::IntegratorKind::Rattle ? "rattle"
-                                                                    : "euler")
-            << " at dt " << number(motion.frontierDt, "%g") << " s, compared every "
-            << number(motion.sampleEvery, "%g") << " s: ";
+            << core::integratorName(motion.integrator) << " at dt " << number(motion.frontierDt, "%g")
+            << " s, compared every " << number(motion.sampleEvery, "%g") << " s: ";
         if (moved.worstBody.empty())
             out << "no moving bodies.\n";
         else if (moved.contactsPossible && !noContacts)

@@ -1,7 +1,9 @@
-// core/joints/joint_rows.cpp: dispatch by joint type and the row pieces the types share.
+// core/joints/joint_rows.cpp: a joint's rows by its type's writer (core/joints/joint_types.h) and the
+// row pieces the types share.
 #include "core/joints/joint_rows.h"
 
 #include "core/fixed_rows.h"
+#include "core/joints/joint_types.h"
 
 #include <algorithm>
 #include <limits>
@@ -196,29 +198,7 @@ template <class Rows>
 void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
                    bool parentMoves, Rows& out)
 {
-    using namespace detail;
-    switch (joint.type)
-    {
-    case JointType::Ball:
-    case JointType::Nail:
-        writeBallJoint(joint, pose, g, out);
-        break;
-    case JointType::Revolute:
-        writeRevoluteJoint(joint, pose, g, out);
-        break;
-    case JointType::Angle:
-        writeAngleJoint(joint, pose, g, out);
-        break;
-    case JointType::Cylindrical:
-        writeCylindricalJoint(joint, pose, g, out);
-        break;
-    case JointType::Prismatic:
-        writePrismaticJoint(joint, pose, g, out);
-        break;
-    case JointType::Fixed:
-        writeFixedJoint(joint, pose, g, out);
-        break;
-    }
+    jointRowWriter<Rows>(jointTypeInfo(joint.type))(joint, pose, g, out);
     out.constraintRows = out.count;
     if (!parentMoves && !g.conditionsOnly)
     {
