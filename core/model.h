@@ -81,6 +81,7 @@ enum class JointType
     Cylindrical,
     Prismatic,
     Fixed,
+    Planar,
 };
 
 // Which body is the "world": a joint's parent index when it is attached to the world.

@@ -34,6 +34,8 @@ constexpr JointTypeInfo cJointTypeTable[] = {
      detail::writePrismaticJoint<JointRows>, detail::writePrismaticJoint<JointRowsSlot>},
     {JointType::Fixed, "fixed", 6, cNone, cNoLimits, false, true, detail::writeFixedJoint<JointRows>,
      detail::writeFixedJoint<JointRowsSlot>},
+    {JointType::Planar, "planar", 3, cNone, cNoLimits, true, true, detail::writePlanarJoint<JointRows>,
+     detail::writePlanarJoint<JointRowsSlot>},
 };
 
 namespace
