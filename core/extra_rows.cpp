@@ -5,6 +5,7 @@
 #include "core/contact_rows.h"
 #include "core/frontier_order.h"
 #include "core/joints/coordinates.h"
+#include "core/joints/joint_types.h"
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -33,13 +34,13 @@ void appendLimitBlocks(const Model& model, const State& state, int jointIndex, d
                        std::vector<ExtraBlock>& out)
 {
     const Joint& joint = model.joints[static_cast<std::size_t>(jointIndex)];
-    if (!joint.limits || (joint.type != JointType::Revolute && joint.type != JointType::Prismatic))
+    const std::optional<JointCoordinate> limited = jointTypeInfo(joint.type).limitCoordinate;
+    if (!joint.limits || !limited)
     {
         return;
     }
     // The angle continued from the last step (core/joints/coordinates.h): a limit beyond +-pi holds.
-    const JointCoordinate coordinate =
-        joint.type == JointType::Revolute ? JointCoordinate::Rotation : JointCoordinate::Slide;
+    const JointCoordinate coordinate = *limited;
     const double q = jointCoordinate(model, state, jointIndex, coordinate);
     const CoordinateRow row =
         coordinateRow(joint, detail::jointGeometry(joint, jointPose(state, joint)), coordinate);

@@ -2,6 +2,7 @@
 #include "core/failure_hint.h"
 
 #include "core/joints/coordinates.h"
+#include "core/joints/joint_types.h"
 
 #include <iomanip>
 #include <sstream>
@@ -17,9 +18,10 @@ std::string bodyName(const Model& model, int body)
                     : "'" + model.bodies[static_cast<std::size_t>(body)].name + "'";
 }
 
+// The unit of the coordinate the joint's limits bound.
 const char* jointUnit(const Joint& joint)
 {
-    return joint.type == JointType::Prismatic ? "m" : "rad";
+    return jointTypeInfo(joint.type).limitCoordinate == JointCoordinate::Slide ? "m" : "rad";
 }
 } // namespace
 

@@ -1,4 +1,5 @@
-// core/model.cpp: names of the model's enums, joint frames, and mass properties of shapes.
+// core/model.cpp: names of the model's enums (joint types: core/joints/joint_types.cpp), joint frames,
+// and mass properties of shapes.
 #include "core/model.h"
 
 #include <algorithm>
@@ -55,110 +56,106 @@ bool isMovingBody(const Model& model, int body)
     return body >= 0 && !model.bodies[static_cast<std::size_t>(body)].isStatic;
 }
 
-int jointRowCount(JointType type)
-{
-    switch (type)
-    {
-    case JointType::Ball:
-    case JointType::Nail:
-        return 3;
-    case JointType::Revolute:
-    case JointType::Prismatic:
-        return 5;
-    case JointType::Angle:
-    case JointType::Cylindrical:
-        return 4;
-    case JointType::Fixed:
-        return 6;
-    }
-    return 0;
-}
-
-bool holdsRotation(JointType type)
-{
-    return type != JointType::Ball && type != JointType::Nail;
-}
-
 namespace
 {
-struct JointName
-{
-    JointType type;
-    const char* name;
+constexpr SolverInfo cSolvers[] = {
+    {SolverKind::Linear, "linear", "O(n), exact (default)"},
+    {SolverKind::Dense, "dense", "O(n^3), exact: the oracle linear is checked against"},
+    {SolverKind::Pgs, "pgs",
+     "projected Gauss-Seidel, a fixed number of sweeps (--pgs-iterations); not exact"},
 };
-constexpr JointName cJointNames[] = {
-    {JointType::Ball, "ball"},
-    {JointType::Nail, "nail"},
-    {JointType::Revolute, "revolute"},
-    {JointType::Angle, "angle"},
-    {JointType::Cylindrical, "cylindrical"},
-    {JointType::Prismatic, "prismatic"},
-    {JointType::Fixed, "fixed"},
+constexpr IntegratorInfo cIntegrators[] = {
+    {IntegratorKind::Euler, "euler", "symplectic Euler, first order (default; docs/method.md §4)"},
+    {IntegratorKind::Rattle, "rattle", "RATTLE, second order, symplectic (docs/method.md §9)"},
+    {IntegratorKind::Rattle4, "rattle4",
+     "fourth order (docs/method.md §11), 3 rattle stages a step; a step with contacts or joint limits is one "
+     "rattle step, first order across an impact; order 4 for conservative joints only: damping, friction, "
+     "servos are first order"},
 };
-} // namespace
 
-const char* jointTypeName(JointType type)
+template <class Info> std::vector<std::string> namesOf(std::span<const Info> table)
 {
-    for (const auto& entry : cJointNames)
+    std::vector<std::string> names;
+    for (const Info& info : table)
     {
-        if (entry.type == type)
+        names.emplace_back(info.name);
+    }
+    return names;
+}
+
+template <class Info> auto kindFromName(std::span<const Info> table, const std::string& name)
+{
+    for (const Info& info : table)
+    {
+        if (name == info.name)
         {
-            return entry.name;
+            return std::optional(info.kind);
+        }
+    }
+    return std::optional<decltype(table.front().kind)>();
+}
+
+template <class Info, class Kind> const char* nameOf(std::span<const Info> table, Kind kind)
+{
+    for (const Info& info : table)
+    {
+        if (info.kind == kind)
+        {
+            return info.name;
         }
     }
     return "?";
 }
+} // namespace
 
-std::optional<JointType> jointTypeFromName(const std::string& name)
+std::span<const SolverInfo> solvers()
 {
-    for (const auto& entry : cJointNames)
+    return cSolvers;
+}
+
+std::span<const IntegratorInfo> integrators()
+{
+    return cIntegrators;
+}
+
+std::vector<std::string> solverNames()
+{
+    return namesOf(solvers());
+}
+
+std::vector<std::string> integratorNames()
+{
+    return namesOf(integrators());
+}
+
+std::string nameList(const std::vector<std::string>& names, const std::string& conjunction)
+{
+    std::string out;
+    for (std::size_t k = 0; k < names.size(); ++k)
     {
-        if (name == entry.name)
-        {
-            return entry.type;
-        }
+        out += (k == 0 ? "" : k + 1 == names.size() ? " " + conjunction + " " : ", ") + names[k];
     }
-    return std::nullopt;
+    return out;
 }
 
 const char* solverName(SolverKind kind)
 {
-    switch (kind)
-    {
-    case SolverKind::Linear:
-        return "linear";
-    case SolverKind::Dense:
-        return "dense";
-    case SolverKind::Pgs:
-        return "pgs";
-    }
-    return "?";
+    return nameOf(solvers(), kind);
 }
 
 std::optional<SolverKind> solverFromName(const std::string& name)
 {
-    for (SolverKind kind : {SolverKind::Linear, SolverKind::Dense, SolverKind::Pgs})
-    {
-        if (name == solverName(kind))
-        {
-            return kind;
-        }
-    }
-    return std::nullopt;
+    return kindFromName(solvers(), name);
 }
 
 const char* integratorName(IntegratorKind kind)
 {
-    switch (kind)
-    {
-    case IntegratorKind::Euler:
-        return "euler";
-    case IntegratorKind::Rattle:
-        return "rattle";
-    case IntegratorKind::Rattle4:
-        return "rattle4";
-    }
-    return "euler";
+    return nameOf(integrators(), kind);
+}
+
+std::optional<IntegratorKind> integratorFromName(const std::string& name)
+{
+    return kindFromName(integrators(), name);
 }
 
 const char* actuatorTypeName(ActuatorKind kind)
@@ -180,31 +177,19 @@ const char* coordinateName(JointCoordinate coordinate)
     return coordinate == JointCoordinate::Rotation ? "rotation" : "slide";
 }
 
+TripleJump tripleJumpCoefficients()
+{
+    const double cbrt2 = std::cbrt(2.0);
+    return {1.0 / (2.0 - cbrt2), -cbrt2 / (2.0 - cbrt2)};
+}
+
 double longestStage(const SimulationSettings& settings)
 {
     if (settings.integrator != IntegratorKind::Rattle4)
     {
         return settings.dt;
     }
-    const double cbrt2 = std::cbrt(2.0);
-    return cbrt2 / (2.0 - cbrt2) * settings.dt;
-}
-
-std::optional<IntegratorKind> integratorFromName(const std::string& name)
-{
-    if (name == "euler")
-    {
-        return IntegratorKind::Euler;
-    }
-    if (name == "rattle")
-    {
-        return IntegratorKind::Rattle;
-    }
-    if (name == "rattle4")
-    {
-        return IntegratorKind::Rattle4;
-    }
-    return std::nullopt;
+    return -tripleJumpCoefficients().c2 * settings.dt;
 }
 
 namespace

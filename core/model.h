@@ -13,6 +13,7 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,7 +70,8 @@ struct Body
     Vec3 angularVelocity_W = Vec3::Zero();  // rad/s
 };
 
-// docs/method.md §2. Rows: Ball 3, Nail 3, Revolute 5, Angle 4, Cylindrical 4, Prismatic 5, Fixed 6.
+// docs/method.md §2; what each type is (name, rows, coordinates, limits, axis, row writer): the table
+// of core/joints/joint_types.h, one row per value in this order.
 enum class JointType
 {
     Ball,
@@ -79,6 +81,7 @@ enum class JointType
     Cylindrical,
     Prismatic,
     Fixed,
+    Planar,
 };
 
 // Which body is the "world": a joint's parent index when it is attached to the world.
@@ -338,24 +341,55 @@ double contactRestitution(const Model& model, int a, int b);
 // True for the index of a moving body (not cWorld, not a static body).
 bool isMovingBody(const Model& model, int body);
 
+// What model.h answers about a joint type, from the table of joint types (core/joints/joint_types.h,
+// which has the rest: coordinates, limits, axis, row writer).
 int jointRowCount(JointType type);
-
 // Whether the joint holds (some of) the relative rotation of its bodies: every type but ball and
 // nail, whose rows hold a point only.
 bool holdsRotation(JointType type);
-
 const char* jointTypeName(JointType type);
 std::optional<JointType> jointTypeFromName(const std::string& name);
+
+// The solvers and integrators a run can choose (docs/method.md §11), as scenes and flags name them,
+// each with a line on what it is; solvers() and integrators() list them all, in enum order.
+struct SolverInfo
+{
+    SolverKind kind;
+    const char* name;
+    const char* description;
+};
+struct IntegratorInfo
+{
+    IntegratorKind kind;
+    const char* name;
+    const char* description;
+};
+std::span<const SolverInfo> solvers();
+std::span<const IntegratorInfo> integrators();
+std::vector<std::string> solverNames();     // linear, dense, pgs
+std::vector<std::string> integratorNames(); // euler, rattle, rattle4
 const char* solverName(SolverKind kind);
 std::optional<SolverKind> solverFromName(const std::string& name);
 const char* integratorName(IntegratorKind kind);
+std::optional<IntegratorKind> integratorFromName(const std::string& name);
+// Names as a message lists them: "a, b <conjunction> c" (conjunction "or", "and").
+std::string nameList(const std::vector<std::string>& names, const std::string& conjunction);
+
 // An actuator's type and coordinate as scenes name them: position | velocity | effort, rotation | slide.
 const char* actuatorTypeName(ActuatorKind kind);
 const char* coordinateName(JointCoordinate coordinate);
-// The longest time one stage of a step covers (s): dt, or |c2| dt = 1.70 dt for rattle4, whose
-// middle stage runs backward (docs/method.md §11). Contact margins cover it.
+
+// rattle4's triple jump (docs/method.md §11): stages of c1 h, c2 h, c1 h with
+// c1 = 1 / (2 - 2^(1/3)), c2 = -2^(1/3) / (2 - 2^(1/3)) < 0 (its middle stage runs backward).
+struct TripleJump
+{
+    double c1;
+    double c2;
+};
+TripleJump tripleJumpCoefficients();
+// The longest time one stage of a step covers (s): dt, or |c2| dt = 1.70 dt for rattle4.
+// Contact margins cover it.
 double longestStage(const SimulationSettings& settings);
-std::optional<IntegratorKind> integratorFromName(const std::string& name);
 
 // Fills a joint's frames from world-space data at the model's initial pose: anchor (m) and unit
 // axis in world coordinates. Used by io/ for YAML and URDF alike.

@@ -13,11 +13,14 @@
 //   mass, with a warning.
 // * Moving joints are anchored at the child link's frame origin with the axis rotated into the
 //   world, in the initial pose; <dynamics damping friction> become the joint's damping and friction.
+//   A planar joint (the child moves in the plane normal to its axis) takes no <limit> and no
+//   <dynamics> (ignored, with a warning).
 // * Mesh URIs resolve through PackagePaths. A collision mesh that cannot be read is an error, a
 //   visual one a warning (that link is then drawn from its collision shapes).
 #include "io/urdf_model.h"
 
 #include "core/interrupt.h"
+#include "core/joints/joint_types.h"
 #include "io/file_util.h"
 #include "io/mass_properties.h"
 #include "io/mesh_file.h"
@@ -390,11 +393,9 @@ class UrdfConverter
             place.group = newGroup(childName, false, &joint);
             place.world = place.world * startMotion(joint);
             break;
-        case urdf::Joint::PLANAR:
-            fail(mIndex.element("joint", joint.name),
-                 "joint '" + joint.name +
-                     "' has type planar, which is unsupported (supported: revolute, continuous, "
-                     "prismatic, fixed, floating)");
+        case urdf::Joint::PLANAR: // no coordinate to start away from
+            place.group = newGroup(childName, false, &joint);
+            break;
         default:
             fail(mIndex.element("joint", joint.name), "joint '" + joint.name + "' has an unknown type");
         }
@@ -841,8 +842,9 @@ class UrdfConverter
         }
         core::Joint j;
         j.name = mPlacement.prefix + joint.name;
-        j.type =
-            joint.type == urdf::Joint::PRISMATIC ? core::JointType::Prismatic : core::JointType::Revolute;
+        j.type = joint.type == urdf::Joint::PRISMATIC ? core::JointType::Prismatic
+                 : joint.type == urdf::Joint::PLANAR  ? core::JointType::Planar
+                                                      : core::JointType::Revolute;
         j.parent = groupOf(joint.parent_link_name).body;
         j.child = groupOf(joint.child_link_name).body;
         const Pose childPose = mPlaces[joint.child_link_name].world;
@@ -853,7 +855,7 @@ class UrdfConverter
                  "joint '" + joint.name + "' has a zero <axis>; expected a non-zero direction");
         }
         const core::Vec3 axis_W = childPose.q * axis.normalized();
-        if (joint.type != urdf::Joint::CONTINUOUS)
+        if (joint.type != urdf::Joint::CONTINUOUS && core::hasLimits(j.type))
         {
             readLimits(joint, j);
         }
@@ -896,10 +898,17 @@ class UrdfConverter
         j.limits = std::array<double, 2>{lower - j.initialPosition, upper - j.initialPosition};
     }
 
-    void readDynamics(const urdf::Joint& joint, core::Joint& j) const
+    void readDynamics(const urdf::Joint& joint, core::Joint& j)
     {
         if (!joint.dynamics)
         {
+            return;
+        }
+        if (!core::hasLimits(j.type))
+        {
+            warn(mIndex.element("joint", joint.name, "dynamics"),
+                 "joint '" + joint.name + "': <dynamics> of a " + core::jointTypeName(j.type) +
+                     " joint is not supported and is ignored");
             return;
         }
         const TextPosition at = mIndex.element("joint", joint.name, "dynamics");

@@ -2,6 +2,7 @@
 //
 // Anchors and axes are world quantities at the initial pose; core::setJointFrames turns them into
 // the per-body frames. A static parent acts as the world but keeps its index.
+#include "core/joints/joint_types.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 #include "io/yaml_scene.h"
@@ -14,31 +15,34 @@ namespace
 
 const std::vector<std::string> cJointKeys = {"name", "type",   "parent",  "child",    "anchor",
                                              "axis", "limits", "damping", "friction", "collide"};
-const std::vector<std::string> cJointTypes = {"ball",        "nail",      "revolute", "angle",
-                                              "cylindrical", "prismatic", "fixed"};
-
-bool needsAxis(core::JointType type)
+bool needsAxis(const core::JointTypeInfo& info)
 {
-    return type == core::JointType::Revolute || type == core::JointType::Angle ||
-           type == core::JointType::Cylindrical || type == core::JointType::Prismatic;
+    return info.needsAxis;
 }
 
 // Limits, damping and friction act on the one coordinate of these types (core/joints/coordinates.h).
-bool hasLimits(core::JointType type)
+bool hasLimits(const core::JointTypeInfo& info)
 {
-    return type == core::JointType::Revolute || type == core::JointType::Prismatic;
+    return info.limitCoordinate.has_value();
+}
+
+// "takes no 'axis' (only revolute, angle, ... and prismatic joints do)", from the table of types.
+std::string onlyTypesDo(bool (*has)(const core::JointTypeInfo&))
+{
+    return " (only " + core::nameList(core::jointTypeNames(has), "and") + " joints do)";
 }
 
 // `damping:` (N m s/rad or N s/m) and `friction:` (N m or N) of a joint's coordinate, >= 0.
 void readJointForces(const MapNode& map, const std::string& typeName, core::Joint& joint)
 {
-    const bool turns = joint.type == core::JointType::Revolute;
+    const core::JointTypeInfo& info = core::jointTypeInfo(joint.type);
+    const bool turns = info.limitCoordinate == core::JointCoordinate::Rotation;
     for (const std::string key : {"damping", "friction"})
     {
-        if (map.has(key) && !hasLimits(joint.type))
+        if (map.has(key) && !hasLimits(info))
         {
-            map.failAtKey(key, map.context() + " of type " + typeName + " takes no '" + key +
-                                   "' (only revolute and prismatic joints do)");
+            map.failAtKey(key, map.context() + " of type " + typeName + " takes no '" + key + "'" +
+                                   onlyTypesDo(hasLimits));
         }
     }
     joint.damping = map.optNonNegative("damping", turns ? "(N m s/rad)" : "(N s/m)").value_or(0.0);
@@ -68,11 +72,12 @@ void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
     const std::optional<core::JointType> type = core::jointTypeFromName(typeName);
     if (!type)
     {
-        const std::string match = closestMatch(typeName, cJointTypes);
+        const std::vector<std::string> known = core::jointTypeNames();
+        const std::string match = closestMatch(typeName, known);
         failAt(source, typeNode,
                "unknown joint type '" + typeName + "' in " + context +
-                   (match.empty() ? "" : "; did you mean '" + match + "'?") +
-                   " (known: " + joinNames(cJointTypes) + ")");
+                   (match.empty() ? "" : "; did you mean '" + match + "'?") + " (known: " + joinNames(known) +
+                   ")");
     }
     joint.type = *type;
 
@@ -107,22 +112,21 @@ void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         anchor = toPosition(source, map.require("anchor"), map.what("anchor"));
     }
     core::Vec3 axis = core::Vec3::UnitZ();
-    if (needsAxis(joint.type))
+    const core::JointTypeInfo& info = core::jointTypeInfo(joint.type);
+    if (info.needsAxis)
     {
         axis = toDirection(source, map.require("axis"), map.what("axis"));
     }
     else if (map.has("axis"))
     {
-        map.failAtKey("axis",
-                      context + " of type " + typeName +
-                          " takes no 'axis' (only revolute, angle, cylindrical and prismatic joints do)");
+        map.failAtKey("axis", context + " of type " + typeName + " takes no 'axis'" + onlyTypesDo(needsAxis));
     }
     if (map.has("limits"))
     {
-        if (!hasLimits(joint.type))
+        if (!hasLimits(info))
         {
-            map.failAtKey("limits", context + " of type " + typeName +
-                                        " takes no 'limits' (only revolute and prismatic joints do)");
+            map.failAtKey("limits",
+                          context + " of type " + typeName + " takes no 'limits'" + onlyTypesDo(hasLimits));
         }
         const YamlNode limitsNode = map.get("limits");
         const std::vector<double> limits =

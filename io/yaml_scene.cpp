@@ -75,7 +75,7 @@ void readSimulation(const YamlSource& source, const YamlNode& node, core::Simula
         if (!kind)
         {
             map.failAtValue("solver", "unknown solver '" + name + "' for " + map.what("solver") +
-                                          "; expected linear, dense or pgs");
+                                          "; expected " + core::nameList(core::solverNames(), "or"));
         }
         sim.solver = *kind;
     }
@@ -96,7 +96,7 @@ void readSimulation(const YamlSource& source, const YamlNode& node, core::Simula
         if (!kind)
         {
             map.failAtValue("integrator", "unknown integrator '" + name + "' for " + map.what("integrator") +
-                                              "; expected euler, rattle or rattle4");
+                                              "; expected " + core::nameList(core::integratorNames(), "or"));
         }
         sim.integrator = *kind;
     }

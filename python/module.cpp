@@ -257,8 +257,20 @@ std::unique_ptr<Simulator> load(const std::string& path, bool fixedBase, bool fr
     return std::make_unique<Simulator>(path, options);
 }
 
-constexpr const char* cLoadDoc =
-    R"(load(path, *, fixed_base=False, free_base=False, drop_height=None, hold=False,
+// load()'s docstring; the integrator and solver names come from core's tables.
+std::string quotedNames(const std::vector<std::string>& names)
+{
+    std::string out;
+    for (const std::string& name : names)
+    {
+        out += (out.empty() ? "\"" : ", \"") + name + "\"";
+    }
+    return out;
+}
+
+std::string loadDoc()
+{
+    return R"(load(path, *, fixed_base=False, free_base=False, drop_height=None, hold=False,
      package_path=(), joint_positions=None, self_collision=None, dt=None, integrator=None,
      solver=None, pgs_iterations=None, keyframe=None) -> Simulator
 
@@ -267,12 +279,15 @@ fixed_base (weld a bare URDF's root where it is), free_base, drop_height (m: low
 point above the floor), hold (a position servo on every joint coordinate without an actuator,
 holding its starting position), package_path (folders searched for package:// URIs before
 ROS_PACKAGE_PATH), joint_positions ({joint name: rad or m}), self_collision (bool), dt (s),
-integrator ("euler", "rattle", "rattle4"), solver ("linear", "dense", "pgs"), pgs_iterations,
+integrator ()" +
+           quotedNames(frontier::core::integratorNames()) + "), solver (" +
+           quotedNames(frontier::core::solverNames()) + R"(), pgs_iterations,
 keyframe (the name of a bare MJCF file's <key> to start from).
 Warnings of the load go to stderr as the command line prints them.
 
 Raises frontier.LoadError (file, line, column, message) for a file that cannot be loaded or a
 keyword out of range.)";
+}
 
 constexpr const char* cSimulatorDoc = R"(A loaded scene and its state, stepped at a fixed time step.
 
@@ -515,8 +530,10 @@ PYBIND11_MODULE(_frontier, m)
         [](const py::object& path)
         { return imageArray(asOSError([&] { return frontier::render::readPng(pathOf(path)); })); },
         "path"_a, "Reads a PNG file (a frame of `frontier render`) as an (h, w, 3) uint8 array.");
-    m.def("load", &load, cLoadDoc, "path"_a, py::kw_only(), "fixed_base"_a = false, "free_base"_a = false,
-          "drop_height"_a = py::none(), "hold"_a = false, "package_path"_a = std::vector<std::string>{},
+    static const std::string cLoadDoc = loadDoc(); // pybind11 keeps the pointer
+    m.def("load", &load, cLoadDoc.c_str(), "path"_a, py::kw_only(), "fixed_base"_a = false,
+          "free_base"_a = false, "drop_height"_a = py::none(), "hold"_a = false,
+          "package_path"_a = std::vector<std::string>{},
           "joint_positions"_a = std::map<std::string, double>{}, "self_collision"_a = py::none(),
           "dt"_a = py::none(), "integrator"_a = py::none(), "solver"_a = py::none(),
           "pgs_iterations"_a = py::none(), "keyframe"_a = py::none());

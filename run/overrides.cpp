@@ -31,7 +31,8 @@ void applySettingOverrides(const SettingOverrides& overrides, core::Model& model
         const std::optional<core::SolverKind> solver = core::solverFromName(*overrides.solver);
         if (!solver)
         {
-            refuse("unknown solver '" + *overrides.solver + "' (expected linear, dense or pgs)");
+            refuse("unknown solver '" + *overrides.solver + "' (expected " +
+                   core::nameList(core::solverNames(), "or") + ")");
         }
         method.solver = *solver;
     }
@@ -50,7 +51,8 @@ void applySettingOverrides(const SettingOverrides& overrides, core::Model& model
             core::integratorFromName(*overrides.integrator);
         if (!integrator)
         {
-            refuse("unknown integrator '" + *overrides.integrator + "' (expected euler, rattle or rattle4)");
+            refuse("unknown integrator '" + *overrides.integrator + "' (expected " +
+                   core::nameList(core::integratorNames(), "or") + ")");
         }
         method.integrator = *integrator;
     }

@@ -188,8 +188,10 @@ std::vector<run::Method> parseSolvers(const std::vector<std::string>& entries, i
         }
         if (!parsed || hasIntegrator)
         {
-            throw SweepInputError("--solver: unknown solver '" + raw +
-                                  "' (expected linear, dense, pgs or pgs:K with K sweeps)");
+            std::vector<std::string> known = core::solverNames();
+            known.emplace_back("pgs:K with K sweeps");
+            throw SweepInputError("--solver: unknown solver '" + raw + "' (expected " +
+                                  core::nameList(known, "or") + ")");
         }
         const bool seen = std::any_of(solvers.begin(), solvers.end(),
                                       [&](const run::Method& s) { return s.sameSolver(*parsed); });
@@ -213,8 +215,8 @@ std::vector<core::IntegratorKind> parseIntegrators(const std::vector<std::string
         const auto kind = core::integratorFromName(trim(raw));
         if (!kind)
         {
-            throw SweepInputError("--integrator: unknown integrator '" + raw +
-                                  "' (expected euler, rattle or rattle4)");
+            throw SweepInputError("--integrator: unknown integrator '" + raw + "' (expected " +
+                                  core::nameList(core::integratorNames(), "or") + ")");
         }
         if (std::find(integrators.begin(), integrators.end(), *kind) == integrators.end())
         {
@@ -289,10 +291,12 @@ SweepGrid makeSweepGrid(const core::Model& model, const std::vector<std::string>
 {
     SweepGrid grid;
     grid.dts = dts.empty() ? defaultTimeSteps(model.simulation.dt) : parseTimeSteps(dts);
-    grid.solvers = solvers.empty() ? parseSolvers({"linear"}, model.simulation.pgsIterations)
+    grid.solvers = solvers.empty() ? parseSolvers({core::solverName(core::SolverKind::Linear)},
+                                                  model.simulation.pgsIterations)
                                    : parseSolvers(solvers, model.simulation.pgsIterations);
-    grid.integrators =
-        integrators.empty() ? parseIntegrators({"euler", "rattle"}) : parseIntegrators(integrators);
+    grid.integrators = integrators.empty()
+                           ? std::vector{core::IntegratorKind::Euler, core::IntegratorKind::Rattle}
+                           : parseIntegrators(integrators);
     return grid;
 }
 

@@ -1,6 +1,8 @@
 // core/joints/coordinates.cpp: joint angles and slides, their velocity rows, and the continuous angle.
 #include "core/joints/coordinates.h"
 
+#include "core/joints/joint_types.h"
+
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -10,25 +12,7 @@ namespace frontier::core
 
 std::span<const JointCoordinate> jointCoordinates(JointType type)
 {
-    static constexpr std::array<JointCoordinate, 1> cRotation = {JointCoordinate::Rotation};
-    static constexpr std::array<JointCoordinate, 1> cSlide = {JointCoordinate::Slide};
-    static constexpr std::array<JointCoordinate, 2> cBoth = {JointCoordinate::Slide,
-                                                             JointCoordinate::Rotation};
-    switch (type)
-    {
-    case JointType::Revolute:
-        return cRotation;
-    case JointType::Prismatic:
-        return cSlide;
-    case JointType::Cylindrical:
-        return cBoth;
-    case JointType::Ball:
-    case JointType::Nail:
-    case JointType::Angle:
-    case JointType::Fixed:
-        break;
-    }
-    return {};
+    return jointTypeInfo(type).coordinates;
 }
 
 int coordinateIndex(JointType type, JointCoordinate coordinate)
@@ -46,7 +30,7 @@ int coordinateIndex(JointType type, JointCoordinate coordinate)
 
 bool hasJointAngle(JointType type)
 {
-    return type == JointType::Revolute || type == JointType::Cylindrical;
+    return coordinateIndex(type, JointCoordinate::Rotation) >= 0;
 }
 
 JointPose jointPose(const State& state, const Joint& joint)
@@ -130,7 +114,7 @@ double jointCoordinate(const Model& model, const State& state, int jointIndex)
 {
     const JointType type = model.joints[static_cast<std::size_t>(jointIndex)].type;
     return jointCoordinate(model, state, jointIndex,
-                           type == JointType::Revolute ? JointCoordinate::Rotation : JointCoordinate::Slide);
+                           jointTypeInfo(type).limitCoordinate.value_or(JointCoordinate::Slide));
 }
 
 double fileCoordinate(const Model& model, const State& state, int jointIndex, JointCoordinate coordinate)

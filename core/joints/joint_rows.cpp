@@ -1,7 +1,9 @@
-// core/joints/joint_rows.cpp: dispatch by joint type and the row pieces the types share.
+// core/joints/joint_rows.cpp: a joint's rows by its type's writer (core/joints/joint_types.h) and the
+// row pieces the types share.
 #include "core/joints/joint_rows.h"
 
 #include "core/fixed_rows.h"
+#include "core/joints/joint_types.h"
 
 #include <algorithm>
 #include <limits>
@@ -79,26 +81,29 @@ int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, Rows& out
     return row + 2;
 }
 
-// Child anchor stays on the parent's axis line: C = [d_i . (p_b - p_a), d_j . (p_b - p_a)]
-// (docs/method.md §2). The exact derivative puts the lever arm of body a at p_b - x_a,
-// the material point of a that coincides with p_b (docs/method.md §2).
-template <class Rows> int writeSlidingRows(const Joint& joint, const JointGeometry& g, Rows& out, int row)
+// The child anchor's offset along d (a direction fixed in the parent, `local` in its frame) is
+// held: C = d . (p_b - p_a) (docs/method.md §2). The exact derivative puts the lever arm of body a
+// at p_b - x_a, the material point of a that coincides with p_b (docs/method.md §2).
+template <class Rows> int writeSlidingRow(const Vec3& local, const JointGeometry& g, Rows& out, int row)
 {
     const Vec3 gap = g.p_b - g.p_a;
     const Vec3 lever_a = g.p_b - g.x_a;
-    for (const Vec3& local : {joint.perpParent1, joint.perpParent2})
-    {
-        const Vec3 d = g.R_a * local;
-        out.J_a.row(row).setZero();
-        out.J_b.row(row).setZero();
-        out.J_a.template block<1, 3>(row, 0) = -d.transpose();
-        out.J_a.template block<1, 3>(row, 3) = -lever_a.cross(d).transpose();
-        out.J_b.template block<1, 3>(row, 0) = d.transpose();
-        out.J_b.template block<1, 3>(row, 3) = g.r_b.cross(d).transpose();
-        out.error(row) = d.dot(gap);
-        ++row;
-    }
-    return row;
+    const Vec3 d = g.R_a * local;
+    out.J_a.row(row).setZero();
+    out.J_b.row(row).setZero();
+    out.J_a.template block<1, 3>(row, 0) = -d.transpose();
+    out.J_a.template block<1, 3>(row, 3) = -lever_a.cross(d).transpose();
+    out.J_b.template block<1, 3>(row, 0) = d.transpose();
+    out.J_b.template block<1, 3>(row, 3) = g.r_b.cross(d).transpose();
+    out.error(row) = d.dot(gap);
+    return row + 1;
+}
+
+// Child anchor stays on the parent's axis line: C = [d_i . (p_b - p_a), d_j . (p_b - p_a)].
+template <class Rows> int writeSlidingRows(const Joint& joint, const JointGeometry& g, Rows& out, int row)
+{
+    row = writeSlidingRow(joint.perpParent1, g, out, row);
+    return writeSlidingRow(joint.perpParent2, g, out, row);
 }
 
 // No relative rotation: C = rotation vector of q_b (q_a q_rest)^-1, rows w_b - w_a
@@ -132,6 +137,7 @@ template <class Rows> int writeTwistRow(const Joint& joint, const JointGeometry&
 #define FRONTIER_ROW_WRITERS(Rows)                                                                           \
     template int writeBallRows(const JointGeometry&, Rows&, int);                                            \
     template int writeAxisAlignmentRows(const Joint&, const JointGeometry&, Rows&, int);                     \
+    template int writeSlidingRow(const Vec3&, const JointGeometry&, Rows&, int);                             \
     template int writeSlidingRows(const Joint&, const JointGeometry&, Rows&, int);                           \
     template int writeWeldRotationRows(const Joint&, const JointPose&, Rows&, int);                          \
     template int writeTwistRow(const Joint&, const JointGeometry&, Rows&, int);
@@ -196,29 +202,7 @@ template <class Rows>
 void evaluateJoint(const Joint& joint, const JointPose& pose, const detail::JointGeometry& g,
                    bool parentMoves, Rows& out)
 {
-    using namespace detail;
-    switch (joint.type)
-    {
-    case JointType::Ball:
-    case JointType::Nail:
-        writeBallJoint(joint, pose, g, out);
-        break;
-    case JointType::Revolute:
-        writeRevoluteJoint(joint, pose, g, out);
-        break;
-    case JointType::Angle:
-        writeAngleJoint(joint, pose, g, out);
-        break;
-    case JointType::Cylindrical:
-        writeCylindricalJoint(joint, pose, g, out);
-        break;
-    case JointType::Prismatic:
-        writePrismaticJoint(joint, pose, g, out);
-        break;
-    case JointType::Fixed:
-        writeFixedJoint(joint, pose, g, out);
-        break;
-    }
+    jointRowWriter<Rows>(jointTypeInfo(joint.type))(joint, pose, g, out);
     out.constraintRows = out.count;
     if (!parentMoves && !g.conditionsOnly)
     {

@@ -239,6 +239,7 @@ JointGeometry jointGeometry(const Joint& joint, const JointPose& pose, const Mat
 template <class Rows> int writeBallRows(const JointGeometry& g, Rows& out, int row);
 template <class Rows>
 int writeAxisAlignmentRows(const Joint& joint, const JointGeometry& g, Rows& out, int row);
+template <class Rows> int writeSlidingRow(const Vec3& local, const JointGeometry& g, Rows& out, int row);
 template <class Rows> int writeSlidingRows(const Joint& joint, const JointGeometry& g, Rows& out, int row);
 template <class Rows>
 int writeWeldRotationRows(const Joint& joint, const JointPose& pose, Rows& out, int row);
@@ -257,6 +258,8 @@ template <class Rows>
 void writePrismaticJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, Rows& out);
 template <class Rows>
 void writeFixedJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, Rows& out);
+template <class Rows>
+void writePlanarJoint(const Joint& joint, const JointPose& pose, const JointGeometry& g, Rows& out);
 } // namespace detail
 
 // evaluateJoint with the joint's geometry at that pose at hand (detail::jointGeometry), which the

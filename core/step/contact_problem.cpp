@@ -4,6 +4,7 @@
 
 #include "core/frontier_order.h"
 #include "core/joints/coordinates.h"
+#include "core/joints/joint_types.h"
 
 #include <algorithm>
 #include <utility>
@@ -42,7 +43,7 @@ ContactProblem::ContactProblem(const StepContext& step)
     for (std::size_t k = 0; k < model.joints.size(); ++k)
     {
         const Joint& joint = model.joints[k];
-        if (joint.limits && (joint.type == JointType::Revolute || joint.type == JointType::Prismatic))
+        if (joint.limits && hasLimits(joint.type))
         {
             mLimitedJoints.push_back(static_cast<int>(k));
         }

@@ -13,10 +13,8 @@ namespace frontier::core
 std::unique_ptr<Stepper> makeRattle4Stepper(StepStages& stages)
 {
     // The triple jump (docs/method.md §11): c1 + c2 + c1 = 1.
-    const double cbrt2 = std::cbrt(2.0);
-    const double c1 = 1.0 / (2.0 - cbrt2);
-    const double c2 = -cbrt2 / (2.0 - cbrt2);
-    return std::make_unique<ComposedRattleStepper>(stages, std::vector<double>{c1, c2, c1});
+    const TripleJump jump = tripleJumpCoefficients();
+    return std::make_unique<ComposedRattleStepper>(stages, std::vector<double>{jump.c1, jump.c2, jump.c1});
 }
 
 ComposedRattleStepper::ComposedRattleStepper(StepStages& stages, std::vector<double> coefficients)

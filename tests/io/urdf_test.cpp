@@ -228,15 +228,28 @@ TEST(Urdf, MissingParentLink)
         << e.what();
 }
 
-TEST(Urdf, PlanarJointIsUnsupported)
+// A planar joint moves its child in the plane normal to its axis (docs/method.md §2): anchored at
+// the child link's origin, the axis rotated into the world; it takes no limits and no dynamics.
+TEST(Urdf, PlanarJointMovesTheChildInThePlaneNormalToItsAxis)
 {
     TempDir dir;
-    const InputError e = urdfError(dir, robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" +
-                                              "  <link name=\"b\">" + cGoodInertial + "</link>\n" +
-                                              "  <joint name=\"slide\" type=\"planar\">\n"
-                                              "    <parent link=\"a\"/><child link=\"b\"/>\n  </joint>\n"));
-    EXPECT_INPUT_ERROR_AT(e, dir.file("robot.urdf"), 4, 3,
-                          "joint 'slide' has type planar, which is unsupported");
+    const std::string path =
+        dir.write("robot.urdf",
+                  robot("  <link name=\"a\">" + cGoodInertial + "</link>\n" + "  <link name=\"b\">" +
+                        cGoodInertial + "</link>\n" +
+                        "  <joint name=\"slide\" type=\"planar\">\n"
+                        "    <parent link=\"a\"/><child link=\"b\"/>\n"
+                        "    <origin xyz=\"1 0 0\" rpy=\"1.5707963267948966 0 0\"/><axis xyz=\"0 0 1\"/>\n"
+                        "    <dynamics damping=\"0.5\"/>\n  </joint>\n"));
+    const core::Model model = loadScene(path);
+    ASSERT_EQ(model.joints.size(), 1u);
+    const core::Joint& joint = model.joints[0];
+    EXPECT_EQ(joint.type, core::JointType::Planar);
+    EXPECT_EQ(core::jointRowCount(joint.type), 3);
+    EXPECT_FALSE(joint.limits);
+    EXPECT_EQ(joint.damping, 0.0) << "a planar joint's <dynamics> is ignored";
+    expectNear(joint.anchorParent, core::Vec3(1, 0, 0), "anchor at the child link's origin, in a");
+    expectNear(joint.axisParent, core::Vec3(0, -1, 0), "the axis turned by the joint's origin, in a");
 }
 
 TEST(Urdf, ZeroAxis)

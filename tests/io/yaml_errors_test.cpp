@@ -202,7 +202,7 @@ TEST(YamlErrors, UnknownJointTypeListsKnownTypes)
     EXPECT_INPUT_ERROR_AT(
         e, "scene.yaml", 13, 11,
         "unknown joint type 'hinge' in joint 'j' (known: ball, nail, revolute, angle, cylindrical, "
-        "prismatic, fixed)");
+        "prismatic, fixed, planar)");
 }
 
 TEST(YamlErrors, MisspelledJointTypeSuggests)
