@@ -1,5 +1,6 @@
 // app/check_command.cpp: `frontier check`: re-simulate a scene with the settings its reference
 // trajectory was recorded with (the header line of the CSV) and compare, quantity by quantity.
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "app/progress.h"
 #include "core/impulse_solver.h"
@@ -65,21 +66,49 @@ struct CheckedReference
     std::map<std::string, int> bodyIndex; // moving body name -> index in the model
 };
 
+// Moving body name -> index in the model.
+std::map<std::string, int> movingBodyIndex(const core::Model& model)
+{
+    std::map<std::string, int> index;
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    {
+        if (!model.bodies[i].isStatic)
+        {
+            index[model.bodies[i].name] = static_cast<int>(i);
+        }
+    }
+    return index;
+}
+
+// As many recorded times as the header's steps and record_every make. Throws io::InputError.
+void checkRecordedTimes(const std::string& ref, const CheckedReference& out)
+{
+    const io::Trajectory& reference = out.trajectory;
+    const std::size_t expected = static_cast<std::size_t>(out.steps / out.recordEvery) + 1;
+    if (out.timeStart.size() != expected)
+    {
+        // The first time too many, or the last row when times are missing.
+        const int line = out.timeStart.size() > expected ? reference.rows[out.timeStart[expected]].line
+                                                         : reference.rows.back().line;
+        throw io::InputError(ref, line, 0,
+                             "the reference has " + std::to_string(out.timeStart.size()) +
+                                 " recorded times, but " + std::to_string(out.steps) +
+                                 " steps recorded every " + std::to_string(out.recordEvery) + " make " +
+                                 std::to_string(expected) + " (missing or extra times)");
+    }
+}
+
 // Indexes the reference's rows by time and checks they fit the scene: the same moving bodies at
 // every recorded time, as many times as the header's steps and record_every make. Throws
 // io::InputError.
 void indexReferenceRows(const std::string& scene, const std::string& ref, CheckedReference& out)
 {
-    const core::Model& model = out.model;
     const io::Trajectory& reference = out.trajectory;
     std::set<std::string> sceneBodies;
-    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    out.bodyIndex = movingBodyIndex(out.model);
+    for (const auto& body : out.bodyIndex)
     {
-        if (!model.bodies[i].isStatic)
-        {
-            out.bodyIndex[model.bodies[i].name] = static_cast<int>(i);
-            sceneBodies.insert(model.bodies[i].name);
-        }
+        sceneBodies.insert(body.first);
     }
     std::set<std::string> atThisTime;
     // `line`: the first row of the time being closed.
@@ -121,18 +150,7 @@ void indexReferenceRows(const std::string& scene, const std::string& ref, Checke
         throw io::InputError(ref, 0, 0, "the reference has no rows");
     }
     closeTime(reference.rows.back().time, reference.rows[out.timeStart.back()].line);
-    const std::size_t expected = static_cast<std::size_t>(out.steps / out.recordEvery) + 1;
-    if (out.timeStart.size() != expected)
-    {
-        // The first time too many, or the last row when times are missing.
-        const int line = out.timeStart.size() > expected ? reference.rows[out.timeStart[expected]].line
-                                                         : reference.rows.back().line;
-        throw io::InputError(ref, line, 0,
-                             "the reference has " + std::to_string(out.timeStart.size()) +
-                                 " recorded times, but " + std::to_string(out.steps) +
-                                 " steps recorded every " + std::to_string(out.recordEvery) + " make " +
-                                 std::to_string(expected) + " (missing or extra times)");
-    }
+    checkRecordedTimes(ref, out);
 }
 
 // Reads the reference, loads the scene as the reference's run did (its robot flags, then
@@ -368,6 +386,33 @@ int checkCommand(const CheckOptions& options)
         return cExitBadInput;
     }
     return reportCheck(options, comparison, summary);
+}
+
+namespace
+{
+void addCheckOptions(CLI::App& command, CheckOptions& o)
+{
+
+    command.add_option("scene", o.scene, cSceneFiles)->required();
+    command.add_option("--reference", o.reference, "reference trajectory CSV")->required();
+    command.add_option("--tol", o.positionTolerance, "position tolerance (m)")->check(cTolerance);
+    command.add_option("--tol-orientation", o.orientationTolerance, "orientation tolerance (rad)")
+        ->check(cTolerance);
+    command.add_option("--tol-velocity", o.velocityTolerance, "velocity tolerance (m/s)")->check(cTolerance);
+    command
+        .add_option("--tol-angular-velocity", o.angularVelocityTolerance,
+                    "angular velocity tolerance (rad/s)")
+        ->check(cTolerance);
+    command.add_flag("--quiet", o.quiet, "no progress line");
+    addPackagePathOption(command, o.packagePaths);
+}
+} // namespace
+
+Command addCheckCommand(CLI::App& app)
+{
+    return addCommand<CheckOptions>(app, "check",
+                                    "re-simulate a scene and compare with a recorded reference trajectory",
+                                    addCheckOptions, checkCommand);
 }
 
 } // namespace frontier::app

@@ -1,12 +1,19 @@
-// app/commands.h: the subcommands of the `frontier` executable.
+// app/commands.h: the subcommands of the `frontier` executable: their options, and for each one
+// the function app/main.cpp calls to register it (in the command's file, app/NAME_command.cpp).
 #pragma once
 
 #include "io/scene.h"
 #include "study/sweep.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace CLI
+{
+class App;
+}
 
 namespace frontier::app
 {
@@ -140,5 +147,22 @@ int infoCommand(const InfoOptions& options);
 int renderCommand(const RenderCommandOptions& options);
 int sweepCommand(const SweepOptions& options);
 int stabilityCommand(const StabilityOptions& options);
+
+// A subcommand registered on the command line: its parser, and what runs it once parsed (the
+// command's options, filled by the parser, captured inside). `run` returns the exit code.
+struct Command
+{
+    CLI::App* parser = nullptr;
+    std::function<int()> run;
+};
+
+// Each adds its subcommand and options to `app` (in --help's order, as app/main.cpp calls them).
+Command addRunCommand(CLI::App& app);
+Command addInfoCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
+Command addCheckCommand(CLI::App& app);
+Command addStabilityCommand(CLI::App& app);
+Command addSweepCommand(CLI::App& app);
+Command addBatchCommand(CLI::App& app);
 
 } // namespace frontier::app

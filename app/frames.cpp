@@ -133,6 +133,89 @@ void prepareFrameFolder(const std::string& folder, const std::string& video)
     }
 }
 
+namespace
+{
+// The frames shared out among render threads: each thread takes the next frame not taken, until
+// none is left, a signal arrives, or a thread fails (the others stop then).
+class FrameQueue
+{
+  public:
+    FrameQueue(const core::Model& model, const std::vector<core::State>& frames,
+               const FrameSettings& settings)
+        : mModel(model), mFrames(frames), mSettings(settings)
+    {
+    }
+
+    // One render thread's work, with its own renderer.
+    void work()
+    {
+        try
+        {
+            render::RenderOptions options;
+            options.width = mSettings.width;
+            options.height = mSettings.height;
+            render::Renderer renderer(mModel, options);
+            renderer.frameRun(mFrames); // every frame's bodies in view
+            for (std::size_t k = mNext++; k < mFrames.size() && run::interruptSignal() == 0; k = mNext++)
+            {
+                render::writePng(framePath(mSettings.folder, k), renderer.render(mFrames[k]));
+                ++mDone;
+            }
+        }
+        catch (const std::exception& e)
+        {
+            std::lock_guard<std::mutex> lock(mFailureMutex);
+            if (mFailure.empty())
+            {
+                mFailure = e.what();
+            }
+            mNext = mFrames.size(); // stop the others
+        }
+    }
+
+    std::size_t done() const { return mDone; }
+    // The first thread's failure ("": none); read after the threads ended.
+    const std::string& failure() const { return mFailure; }
+
+  private:
+    const core::Model& mModel;
+    const std::vector<core::State>& mFrames;
+    const FrameSettings& mSettings;
+    std::atomic<std::size_t> mNext{0};
+    std::atomic<std::size_t> mDone{0};
+    std::mutex mFailureMutex;
+    std::string mFailure;
+};
+
+// Runs queue.work() on `threads` threads, progress(done) from this one every 50 ms until they end.
+void renderOnThreads(FrameQueue& queue, int threads, const std::function<void(std::size_t)>& progress)
+{
+    std::atomic<int> running{threads};
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+    {
+        pool.emplace_back(
+            [&]()
+            {
+                queue.work();
+                --running;
+            });
+    }
+    while (running > 0)
+    {
+        if (progress)
+        {
+            progress(queue.done());
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    for (std::thread& t : pool)
+    {
+        t.join();
+    }
+}
+} // namespace
+
 std::size_t renderFrames(const core::Model& model, const std::vector<core::State>& frames,
                          const FrameSettings& settings, const std::function<void(std::size_t)>& progress)
 {
@@ -142,63 +225,14 @@ std::size_t renderFrames(const core::Model& model, const std::vector<core::State
         std::filesystem::remove(marker);
         return 0;
     }
-    render::RenderOptions options;
-    options.width = settings.width;
-    options.height = settings.height;
-    std::atomic<std::size_t> next{0};
-    std::atomic<std::size_t> done{0};
-    std::mutex failureMutex;
-    std::string failure;
-    auto worker = [&]()
+    FrameQueue queue(model, frames, settings);
+    renderOnThreads(queue, std::max(1, std::min<int>(settings.threads, static_cast<int>(frames.size()))),
+                    progress);
+    if (!queue.failure().empty())
     {
-        try
-        {
-            render::Renderer renderer(model, options);
-            renderer.frameRun(frames); // every frame's bodies in view
-            for (std::size_t k = next++; k < frames.size() && run::interruptSignal() == 0; k = next++)
-            {
-                render::writePng(framePath(settings.folder, k), renderer.render(frames[k]));
-                ++done;
-            }
-        }
-        catch (const std::exception& e)
-        {
-            std::lock_guard<std::mutex> lock(failureMutex);
-            if (failure.empty())
-            {
-                failure = e.what();
-            }
-            next = frames.size(); // stop the others
-        }
-    };
-    const int threads = std::max(1, std::min<int>(settings.threads, static_cast<int>(frames.size())));
-    std::atomic<int> running{threads};
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-    {
-        pool.emplace_back(
-            [&]()
-            {
-                worker();
-                --running;
-            });
+        throw io::OutputError(queue.failure());
     }
-    while (running > 0)
-    {
-        if (progress)
-        {
-            progress(done);
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    for (std::thread& t : pool)
-    {
-        t.join();
-    }
-    if (!failure.empty())
-    {
-        throw io::OutputError(failure);
-    }
+    const std::size_t done = queue.done();
     if (progress)
     {
         progress(done);
@@ -337,9 +371,9 @@ std::string interruptedFramesMessage(int signal, std::size_t rendered, std::size
            " marks the folder as incomplete";
 }
 
-int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
-                const FrameSettings& settings, double fps, const std::string& video,
-                const std::function<void(const std::string&)>& status, std::string& error)
+JobResult writeFrames(const core::Model& model, const std::vector<core::State>& frames,
+                      const FrameSettings& settings, double fps, const std::string& video,
+                      const JobStatus& status)
 {
     const std::size_t rendered = renderFrames(
         model, frames, settings,
@@ -347,17 +381,17 @@ int writeFrames(const core::Model& model, const std::vector<core::State>& frames
         { status("rendering " + std::to_string(done) + " / " + std::to_string(frames.size()) + " frames"); });
     if (const int signal = run::interruptSignal(); signal != 0)
     {
-        error = interruptedFramesMessage(signal, rendered, frames.size(), settings.folder);
-        return run::interruptedExitCode(signal);
+        return failedJob(run::interruptedExitCode(signal),
+                         interruptedFramesMessage(signal, rendered, frames.size(), settings.folder));
     }
     if (!video.empty() && !assembleVideo(settings.folder, fps, video))
     {
         const int signal = run::interruptSignal();
-        error = "interrupted by " + run::signalName(signal) + " while ffmpeg made " + video +
-                ": no video written (the frames in " + settings.folder + " are complete)";
-        return run::interruptedExitCode(signal);
+        return failedJob(run::interruptedExitCode(signal),
+                         "interrupted by " + run::signalName(signal) + " while ffmpeg made " + video +
+                             ": no video written (the frames in " + settings.folder + " are complete)");
     }
-    return cExitOk;
+    return {};
 }
 
 } // namespace frontier::app

@@ -5,6 +5,7 @@
 // trajectory recorded at every step renders to the same images as the run did, pixel for pixel.
 #pragma once
 
+#include "app/job_result.h"
 #include "core/model.h"
 #include "core/state.h"
 
@@ -81,11 +82,11 @@ bool assembleVideo(const std::string& folder, double fps, const std::string& vid
 
 // What `run --frames` and `render` do with their frames: renderFrames, with "rendering D / N
 // frames" to `status` as they go, then the video at `fps` when `video` is not empty
-// (assembleVideo). Returns cExitOk (app/commands.h); when a signal stopped the rendering or the
-// video, its interruptedExitCode (run/run_loop.h), with `error` set to say so. Throws
+// (assembleVideo). Returns cExitOk (app/commands.h) and no error; when a signal stopped the
+// rendering or the video, its interruptedExitCode (run/run_loop.h) and the error saying so. Throws
 // io::OutputError.
-int writeFrames(const core::Model& model, const std::vector<core::State>& frames,
-                const FrameSettings& settings, double fps, const std::string& video,
-                const std::function<void(const std::string&)>& status, std::string& error);
+JobResult writeFrames(const core::Model& model, const std::vector<core::State>& frames,
+                      const FrameSettings& settings, double fps, const std::string& video,
+                      const JobStatus& status);
 
 } // namespace frontier::app

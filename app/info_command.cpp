@@ -1,4 +1,5 @@
 // app/info_command.cpp: `frontier info`: what the solver will see for a scene.
+#include "app/cli_options.h"
 #include "app/commands.h"
 #include "collision/contacts.h"
 #include "core/frontier_order.h"
@@ -78,63 +79,46 @@ nlohmann::json describeRobots(const io::LoadReport& report)
     return robots;
 }
 
-nlohmann::json describe(const core::Model& model, const io::LoadReport& report, const std::string& scene)
+// A joint: type, rows, bodies, whether it closes a loop; damping, friction, limits, start and
+// effort limit when it has them.
+nlohmann::json describeJoint(const core::Model& model, const core::FrontierLayout& layout, std::size_t k)
 {
-    const core::FrontierLayout layout = core::buildFrontierLayout(model);
-    nlohmann::json out;
-    out["scene"] = scene;
-    out["name"] = model.name;
-    int moving = 0;
-    for (const core::Body& body : model.bodies)
+    const core::Joint& joint = model.joints[k];
+    nlohmann::json entry = {{"name", joint.name},
+                            {"type", core::jointTypeName(joint.type)},
+                            {"rows", core::jointRowCount(joint.type)},
+                            {"parent", bodyName(model, joint.parent)},
+                            {"child", bodyName(model, joint.child)},
+                            {"loop", layout.jointBlock[k] < 0}};
+    // SI: N m s/rad and N m about a revolute axis, N s/m and N along a prismatic one.
+    if (joint.damping > 0.0)
     {
-        moving += body.isStatic ? 0 : 1;
-        out["bodies"].push_back({{"name", body.name}, {"static", body.isStatic}, {"mass_kg", body.mass}});
+        entry["damping"] = joint.damping;
     }
-    int rows = 0;
-    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    if (joint.friction > 0.0)
     {
-        const core::Joint& joint = model.joints[k];
-        rows += core::jointRowCount(joint.type);
-        nlohmann::json entry = {{"name", joint.name},
-                                {"type", core::jointTypeName(joint.type)},
-                                {"rows", core::jointRowCount(joint.type)},
-                                {"parent", bodyName(model, joint.parent)},
-                                {"child", bodyName(model, joint.child)},
-                                {"loop", layout.jointBlock[k] < 0}};
-        // SI: N m s/rad and N m about a revolute axis, N s/m and N along a prismatic one.
-        if (joint.damping > 0.0)
-        {
-            entry["damping"] = joint.damping;
-        }
-        if (joint.friction > 0.0)
-        {
-            entry["friction"] = joint.friction;
-        }
-        if (joint.limits)
-        {
-            // In the file's own coordinate (a URDF joint may start at a limit: initial_position).
-            entry["limits"] = {(*joint.limits)[0] + joint.initialPosition,
-                               (*joint.limits)[1] + joint.initialPosition};
-        }
-        if (joint.initialPosition != 0.0)
-        {
-            entry["initial_position"] = joint.initialPosition;
-        }
-        if (std::isfinite(joint.effortLimit))
-        {
-            entry["effort_limit"] = joint.effortLimit; // N m or N
-        }
-        out["joints"].push_back(entry);
+        entry["friction"] = joint.friction;
     }
-    if (model.joints.empty())
+    if (joint.limits)
     {
-        out["joints"] = nlohmann::json::array();
+        // In the file's own coordinate (a URDF joint may start at a limit: initial_position).
+        entry["limits"] = {(*joint.limits)[0] + joint.initialPosition,
+                           (*joint.limits)[1] + joint.initialPosition};
     }
-    out["actuators"] = describeActuators(model);
-    out["loads"] = model.loads.size();
-    out["moving_bodies"] = moving;
-    out["constraint_rows"] = rows;
-    out["degrees_of_freedom"] = 6 * moving - rows;
+    if (joint.initialPosition != 0.0)
+    {
+        entry["initial_position"] = joint.initialPosition;
+    }
+    if (std::isfinite(joint.effortLimit))
+    {
+        entry["effort_limit"] = joint.effortLimit; // N m or N
+    }
+    return entry;
+}
+
+// The blocks in the frontier order, and the joints that close loops.
+void describeOrder(const core::Model& model, const core::FrontierLayout& layout, nlohmann::json& out)
+{
     out["trees"] = layout.treeCount;
     nlohmann::json order = nlohmann::json::array();
     for (const core::LayoutBlock& block : layout.blocks)
@@ -150,8 +134,12 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
         loops.push_back(model.joints[static_cast<std::size_t>(joint)].name);
     }
     out["loops"] = loops;
-    // The pairs are O(bodies^2): counted always, listed only for a scene small enough to read them
-    // (listing them also takes O(bodies^2) time).
+}
+
+// The pairs are O(bodies^2): counted always, listed only for a scene small enough to read them
+// (listing them also takes O(bodies^2) time).
+void describePairs(const core::Model& model, nlohmann::json& out)
+{
     collision::ContactDetector detector(model);
     const long long pairCount = detector.candidatePairCount();
     out["collision_pair_count"] = pairCount;
@@ -164,14 +152,40 @@ nlohmann::json describe(const core::Model& model, const io::LoadReport& report, 
         }
         out["collision_pairs"] = pairs;
     }
+}
+
+nlohmann::json describe(const core::Model& model, const io::LoadReport& report, const std::string& scene)
+{
+    const core::FrontierLayout layout = core::buildFrontierLayout(model);
+    nlohmann::json out;
+    out["scene"] = scene;
+    out["name"] = model.name;
+    int moving = 0;
+    for (const core::Body& body : model.bodies)
+    {
+        moving += body.isStatic ? 0 : 1;
+        out["bodies"].push_back({{"name", body.name}, {"static", body.isStatic}, {"mass_kg", body.mass}});
+    }
+    int rows = 0;
+    out["joints"] = nlohmann::json::array();
+    for (std::size_t k = 0; k < model.joints.size(); ++k)
+    {
+        rows += core::jointRowCount(model.joints[k].type);
+        out["joints"].push_back(describeJoint(model, layout, k));
+    }
+    out["actuators"] = describeActuators(model);
+    out["loads"] = model.loads.size();
+    out["moving_bodies"] = moving;
+    out["constraint_rows"] = rows;
+    out["degrees_of_freedom"] = 6 * moving - rows;
+    describeOrder(model, layout, out);
+    describePairs(model, out);
     out["robots"] = describeRobots(report);
     return out;
 }
 
-void printText(const nlohmann::json& info)
+void printBodies(const nlohmann::json& info)
 {
-    std::cout << "scene: " << info["scene"].get<std::string>() << " (" << info["name"].get<std::string>()
-              << ")\n";
     std::cout << "bodies: " << info["bodies"].size() << " (" << info["moving_bodies"].get<int>()
               << " moving)\n";
     for (const auto& body : info["bodies"])
@@ -186,34 +200,47 @@ void printText(const nlohmann::json& info)
             std::cout << "  " << body["mass_kg"].get<double>() << " kg\n";
         }
     }
+}
+
+// A joint's line: type, rows, bodies, loop, damping, friction, limits, start.
+void printJoint(const nlohmann::json& joint)
+{
+    std::cout << "  " << joint["name"].get<std::string>() << "  " << joint["type"].get<std::string>() << " ("
+              << joint["rows"].get<int>() << " rows)  " << joint["parent"].get<std::string>() << " -> "
+              << joint["child"].get<std::string>() << (joint["loop"].get<bool>() ? "  [closes a loop]" : "");
+    const bool turns = joint["type"].get<std::string>() == "revolute";
+    if (joint.contains("damping"))
+    {
+        std::cout << "  damping " << joint["damping"].get<double>() << (turns ? " N m s/rad" : " N s/m");
+    }
+    if (joint.contains("friction"))
+    {
+        std::cout << "  friction " << joint["friction"].get<double>() << (turns ? " N m" : " N");
+    }
+    if (joint.contains("limits"))
+    {
+        std::cout << "  limits [" << joint["limits"][0].get<double>() << ", "
+                  << joint["limits"][1].get<double>() << "]" << (turns ? " rad" : " m");
+    }
+    if (joint.contains("initial_position"))
+    {
+        std::cout << "  starts at " << joint["initial_position"].get<double>();
+    }
+    std::cout << "\n";
+}
+
+void printJoints(const nlohmann::json& info)
+{
     std::cout << "joints: " << info["joints"].size() << ", " << info["constraint_rows"].get<int>()
               << " constraint rows\n";
     for (const auto& joint : info["joints"])
     {
-        std::cout << "  " << joint["name"].get<std::string>() << "  " << joint["type"].get<std::string>()
-                  << " (" << joint["rows"].get<int>() << " rows)  " << joint["parent"].get<std::string>()
-                  << " -> " << joint["child"].get<std::string>()
-                  << (joint["loop"].get<bool>() ? "  [closes a loop]" : "");
-        const bool turns = joint["type"].get<std::string>() == "revolute";
-        if (joint.contains("damping"))
-        {
-            std::cout << "  damping " << joint["damping"].get<double>() << (turns ? " N m s/rad" : " N s/m");
-        }
-        if (joint.contains("friction"))
-        {
-            std::cout << "  friction " << joint["friction"].get<double>() << (turns ? " N m" : " N");
-        }
-        if (joint.contains("limits"))
-        {
-            std::cout << "  limits [" << joint["limits"][0].get<double>() << ", "
-                      << joint["limits"][1].get<double>() << "]" << (turns ? " rad" : " m");
-        }
-        if (joint.contains("initial_position"))
-        {
-            std::cout << "  starts at " << joint["initial_position"].get<double>();
-        }
-        std::cout << "\n";
+        printJoint(joint);
     }
+}
+
+void printActuators(const nlohmann::json& info)
+{
     std::cout << "actuators: " << info["actuators"].size() << ", loads: " << info["loads"].get<int>() << "\n";
     for (const auto& actuator : info["actuators"])
     {
@@ -234,6 +261,11 @@ void printText(const nlohmann::json& info)
         }
         std::cout << "\n";
     }
+}
+
+// Degrees of freedom, the frontier order, the loops.
+void printOrder(const nlohmann::json& info)
+{
     std::cout << "degrees of freedom: " << info["degrees_of_freedom"].get<int>() << "\n";
     std::cout << "frontier order (" << info["trees"].get<int>() << " trees):";
     for (const auto& entry : info["frontier_order"])
@@ -245,6 +277,11 @@ void printText(const nlohmann::json& info)
     {
         std::cout << loop.get<std::string>() << " ";
     }
+}
+
+// Each robot: placement, welded links, repairs, pairs excluded from collision.
+void printRobots(const nlohmann::json& info)
+{
     for (const auto& robot : info["robots"])
     {
         std::cout << "\nrobot " << robot["name"].get<std::string>() << " ("
@@ -268,6 +305,10 @@ void printText(const nlohmann::json& info)
             std::cout << "\n    " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>();
         }
     }
+}
+
+void printPairs(const nlohmann::json& info)
+{
     std::cout << "\ncollision pairs: " << info["collision_pair_count"].get<long long>();
     if (!info.contains("collision_pairs"))
     {
@@ -279,6 +320,18 @@ void printText(const nlohmann::json& info)
     {
         std::cout << "  " << pair[0].get<std::string>() << " - " << pair[1].get<std::string>() << "\n";
     }
+}
+
+void printText(const nlohmann::json& info)
+{
+    std::cout << "scene: " << info["scene"].get<std::string>() << " (" << info["name"].get<std::string>()
+              << ")\n";
+    printBodies(info);
+    printJoints(info);
+    printActuators(info);
+    printOrder(info);
+    printRobots(info);
+    printPairs(info);
 }
 } // namespace
 
@@ -304,6 +357,24 @@ int infoCommand(const InfoOptions& options)
         std::cerr << "frontier: " << error.what() << "\n";
         return cExitBadInput;
     }
+}
+
+namespace
+{
+void addInfoOptions(CLI::App& command, InfoOptions& o)
+{
+
+    command.add_option("scene", o.scene, cSceneFiles)->required();
+    command.add_flag("--json", o.json, "machine-readable output");
+    addRobotOptions(command, o.urdf);
+}
+} // namespace
+
+Command addInfoCommand(CLI::App& app)
+{
+    return addCommand<InfoOptions>(app, "info",
+                                   "bodies, joints, degrees of freedom, frontier order, loops, pairs",
+                                   addInfoOptions, infoCommand);
 }
 
 } // namespace frontier::app

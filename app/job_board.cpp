@@ -106,15 +106,15 @@ int runBatch(const std::vector<std::string>& names, int threads, bool quiet, con
         names.size(), threads,
         [&](std::size_t job)
         {
-            std::string error;
-            const int result = work(
-                job, [&](const std::string& text) { board.update(job, text); }, summaries[job], error);
-            if (batch || result != 0)
+            const JobResult result = work(job, [&](const std::string& text) { board.update(job, text); });
+            summaries[job] = result.summary;
+            if (batch || result.exitCode != 0)
             {
-                board.finish(job,
-                             result == 0 ? "done" : "FAILED (exit " + std::to_string(result) + "): " + error);
+                board.finish(job, result.exitCode == 0 ? "done"
+                                                       : "FAILED (exit " + std::to_string(result.exitCode) +
+                                                             "): " + result.error);
             }
-            return result;
+            return result.exitCode;
         });
     board.close();
     if (!quiet)

@@ -2,6 +2,8 @@
 // redrawn in place (at most ten times a second); otherwise each job prints one line when it ends.
 #pragma once
 
+#include "app/job_result.h"
+
 #include <chrono>
 #include <functional>
 #include <mutex>
@@ -32,10 +34,9 @@ class JobBoard
 // Runs work(job) for every job on `threads` threads; returns the largest exit code.
 int runJobs(std::size_t count, int threads, const std::function<int(std::size_t)>& work);
 
-// One job of a batch: reports progress through `status`, fills `summary` (printed on stdout at the
-// end, in job order) or `error`, returns its exit code.
-using BatchJob = std::function<int(std::size_t job, const std::function<void(const std::string&)>& status,
-                                   std::string& summary, std::string& error)>;
+// One job of a batch: reports progress through `status`; returns its exit code, its summary
+// (printed on stdout at the end, in job order) and its error.
+using BatchJob = std::function<JobResult(std::size_t job, const JobStatus& status)>;
 
 // Runs the named jobs in parallel (`threads`), one progress line each, a failing job reported on
 // its line while the others finish; with one job, only a failure is reported. Returns the worst

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "app/commands.h"
+#include "app/job_result.h"
 #include "app/outputs.h"
 #include "run/scene_loading.h"
 
@@ -15,12 +16,20 @@ namespace frontier::app
 // Loads the scene of a run; empty: loadScene(scene, options.urdf).
 using SceneLoader = std::function<run::LoadedScene()>;
 
-// Runs `scene` with the flags of `options` into `out`; returns its exit code (cExitOk, cExitFailed,
-// cExitBadInput, or interruptedExitCode). Progress goes to `status`, the one-line summary to
-// `summaryText`, messages for the user to `error`. A failed run keeps its rows under failedPath
+// One run: a scene, the flags it runs with, where its outputs go.
+struct RunRequest
+{
+    RunOptions options; // the flags of `frontier run` (its scene list is not read)
+    std::string scene;
+    JobOutputs out;
+    int renderThreads = 1;
+    JobStatus status; // progress lines; empty: none
+    SceneLoader load; // empty: run::loadScene(scene, options.urdf)
+};
+
+// Runs the request; its exit code (cExitOk, cExitFailed, cExitBadInput, or interruptedExitCode),
+// the one-line summary, and the message for the user. A failed run keeps its rows under failedPath
 // names and writes stats with "completed": false.
-int runOne(const RunOptions& options, const std::string& scene, const JobOutputs& out, int renderThreads,
-           const std::function<void(const std::string&)>& status, std::string& summaryText,
-           std::string& error, const SceneLoader& load = {});
+JobResult runOne(const RunRequest& request);
 
 } // namespace frontier::app

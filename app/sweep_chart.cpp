@@ -277,52 +277,67 @@ struct Chart
     std::string script;
 };
 
-Chart buildChart(const std::string& sceneName, const SweepResult& result, Accuracy accuracy)
+// One method's line: its cells, coarse to fine.
+struct Series
 {
-    // The data: the Pareto front, then one block per method (cost, error, dt label); blocks are
-    // separated by two blank lines (gnuplot's `index`).
-    Chart chart;
-    chart.data = "# frontier sweep chart data: wall seconds per simulated second, " + accuracyAxis(accuracy) +
-                 ", dt\n";
-    int block = 0;
+    int lineType = 0;
+    std::vector<std::size_t> cells;
+};
+
+// The chart's data blocks (the Pareto front, then one block per method; blocks separated by two
+// blank lines, gnuplot's `index`) and the plot command of each.
+struct ChartPlots
+{
+    std::string data;
+    std::vector<std::string> plots;
+    std::vector<std::size_t> frontShown; // the front's cells drawn
+    std::vector<Series> series;
+    int keyEntries = 0;
+    int blocks = 0;
+};
+
+// The methods' labels, in the order of their first cell.
+std::vector<std::string> methodLabels(const std::vector<SweepCell>& cells)
+{
     std::vector<std::string> labels;
-    for (const SweepCell& c : result.cells)
+    for (const SweepCell& c : cells)
     {
         if (std::find(labels.begin(), labels.end(), cellLabel(c)) == labels.end())
         {
             labels.push_back(cellLabel(c));
         }
     }
-    // The Pareto front first, under the methods' lines.
-    const std::vector<std::size_t> front = paretoFront(result.cells, accuracy);
-    std::vector<std::size_t> frontShown;
+    return labels;
+}
+
+// The Pareto front first, under the methods' lines.
+void addFront(const SweepResult& result, Accuracy accuracy, ChartPlots& chart)
+{
     std::string frontPoints;
-    for (std::size_t i : front)
+    for (std::size_t i : paretoFront(result.cells, accuracy))
     {
         if (plottable(result.cells[i], accuracy))
         {
             frontPoints += point(result.cells[i], accuracy);
-            frontShown.push_back(i);
+            chart.frontShown.push_back(i);
         }
     }
-    std::vector<std::string> plots;
-    int keyEntries = 0;
-    if (!frontPoints.empty())
+    if (frontPoints.empty())
     {
-        chart.data += "# Pareto front\n" + frontPoints;
-        plots.push_back("data index 0 using 1:2 with steps lw 7 lc rgb '#a0d62728' title 'Pareto front (no "
-                        "other cell both cheaper and more accurate)'");
-        plots.push_back("data index 0 using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb '#d62728' notitle");
-        ++block;
-        ++keyEntries;
+        return;
     }
-    struct Series
-    {
-        int lineType = 0;
-        std::vector<std::size_t> cells; // coarse to fine
-    };
-    std::vector<Series> series;
-    for (const std::string& label : labels)
+    chart.data += "# Pareto front\n" + frontPoints;
+    chart.plots.push_back("data index 0 using 1:2 with steps lw 7 lc rgb '#a0d62728' title 'Pareto front (no "
+                          "other cell both cheaper and more accurate)'");
+    chart.plots.push_back("data index 0 using 1:2 with points pt 6 ps 2.4 lw 2 lc rgb '#d62728' notitle");
+    ++chart.blocks;
+    ++chart.keyEntries;
+}
+
+// One block and line per method with a cell to draw.
+void addSeries(const SweepResult& result, Accuracy accuracy, ChartPlots& chart)
+{
+    for (const std::string& label : methodLabels(result.cells))
     {
         Series one;
         std::string points;
@@ -339,19 +354,23 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
         {
             continue;
         }
-        chart.data += (block > 0 ? "\n\n" : "") + std::string("# ") + label + "\n" + points;
-        one.lineType = static_cast<int>(series.size()) + 1;
+        chart.data += (chart.blocks > 0 ? "\n\n" : "") + std::string("# ") + label + "\n" + points;
+        one.lineType = static_cast<int>(chart.series.size()) + 1;
         const std::string lt = std::to_string(one.lineType);
-        plots.push_back("data index " + std::to_string(block) + " using 1:2 with linespoints lt " + lt +
-                        " lw 2 pt 7 ps 1.2 title " + gnuplotQuote(label));
-        series.push_back(one);
-        ++block;
-        ++keyEntries;
+        chart.plots.push_back("data index " + std::to_string(chart.blocks) +
+                              " using 1:2 with linespoints lt " + lt + " lw 2 pt 7 ps 1.2 title " +
+                              gnuplotQuote(label));
+        chart.series.push_back(one);
+        ++chart.blocks;
+        ++chart.keyEntries;
     }
+}
 
-    // Geometry: the legend's rows set the bottom margin; the ranges are whole decades.
+// Geometry: the legend's rows set the bottom margin; the ranges are whole decades.
+Axes chartAxes(const SweepResult& result, Accuracy accuracy, const ChartPlots& chart)
+{
     Axes axes;
-    const int keyRows = (keyEntries + 1) / 2;
+    const int keyRows = (chart.keyEntries + 1) / 2;
     axes.bottom = (cBelowAxisPx + keyRows * cKeyRowPx + 18.0) / cHeightPx;
     double xLo = 1e300, xHi = -1e300, yLo = 1e300, yHi = -1e300;
     for (const SweepCell& c : result.cells)
@@ -364,14 +383,20 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
             yHi = std::max(yHi, accuracyOf(c, accuracy));
         }
     }
-    if (!plots.empty())
+    if (!chart.plots.empty())
     {
         decades(xLo, xHi, axes.logX0, axes.logX1);
         decades(yLo, yHi, axes.logY0, axes.logY1);
     }
+    return axes;
+}
 
-    // dt labels: each placed at the first free spot around its point, or left out.
+// What a dt label must not cover: the front's rings and steps, the methods' markers and lines.
+std::vector<Rect> labelObstacles(const SweepResult& result, Accuracy accuracy, const Axes& axes,
+                                 const ChartPlots& chart)
+{
     std::vector<Rect> obstacles;
+    const std::vector<std::size_t>& frontShown = chart.frontShown;
     for (std::size_t i : frontShown)
     {
         const SweepCell& c = result.cells[i];
@@ -388,7 +413,7 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
         addSegment(obstacles, axes.px(b.secondsPerSimSecond), axes.py(accuracyOf(a, accuracy)),
                    axes.px(b.secondsPerSimSecond), axes.py(accuracyOf(b, accuracy)), 4.0);
     }
-    for (const Series& one : series)
+    for (const Series& one : chart.series)
     {
         for (std::size_t k = 0; k < one.cells.size(); ++k)
         {
@@ -404,10 +429,19 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
             }
         }
     }
+    return obstacles;
+}
+
+// dt labels: each placed at the first free spot around its point, or left out. The gnuplot
+// commands, numbered from 1.
+std::string dtLabels(const SweepResult& result, Accuracy accuracy, const Axes& axes, const ChartPlots& chart)
+{
+    std::vector<Rect> obstacles = labelObstacles(result, accuracy, axes, chart);
+    const std::vector<std::size_t>& frontShown = chart.frontShown;
     const Rect area = axes.area();
     std::string labelCommands;
     int labelCount = 0;
-    for (const Series& one : series)
+    for (const Series& one : chart.series)
     {
         for (std::size_t i : one.cells)
         {
@@ -449,7 +483,12 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
             }
         }
     }
+    return labelCommands;
+}
 
+// The title: the scene and what the chart compares.
+std::string chartTitle(const std::string& sceneName, const SweepResult& result, Accuracy accuracy)
+{
     char title[512];
     if (accuracy == Accuracy::TrajectoryError)
         std::snprintf(
@@ -469,6 +508,31 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
             " . \"\\n\" . " + gnuplotQuote("(chaotic: error does not rank the methods; no method's "
                                            "error falls as dt is refined)");
     }
+    return titleExpression;
+}
+
+// The plot command: every line and point set, or a note that there is nothing to draw.
+std::string plotCommand(const std::vector<std::string>& plots)
+{
+    if (plots.empty())
+    {
+        return "set label 1 'no cell survived: nothing to draw' at graph 0.5, graph 0.5 center\n"
+               "plot NaN notitle\n";
+    }
+    std::string command = "plot ";
+    for (std::size_t i = 0; i < plots.size(); ++i)
+    {
+        command += (i > 0 ? ", \\\n     " : "") + plots[i];
+    }
+    return command + "\n";
+}
+
+// The gnuplot script: terminal, title, margins, ranges, key, labels, plots.
+std::string chartScript(const std::string& titleExpression, const Axes& axes, Accuracy accuracy,
+                        const ChartPlots& chart, const std::string& labelCommands)
+{
+    const int keyRows = (chart.keyEntries + 1) / 2;
+    const std::vector<std::string>& plots = chart.plots;
     const double keyTop = axes.bottom - cBelowAxisPx / cHeightPx;
     std::string script =
         "# sweep.gp: the chart of `frontier sweep`; `gnuplot sweep.gp` in this folder draws sweep.png\n"
@@ -513,21 +577,21 @@ Chart buildChart(const std::string& sceneName, const SweepResult& result, Accura
         "set key at screen 0.5, screen " +
         number(keyTop) + " center top vertical maxrows " + std::to_string(std::max(keyRows, 1)) +
         " box Left reverse width 2 noenhanced\n" + labelCommands;
-    if (plots.empty())
-    {
-        script += "set label 1 'no cell survived: nothing to draw' at graph 0.5, graph 0.5 center\n"
-                  "plot NaN notitle\n";
-    }
-    else
-    {
-        script += "plot ";
-        for (std::size_t i = 0; i < plots.size(); ++i)
-        {
-            script += (i > 0 ? ", \\\n     " : "") + plots[i];
-        }
-        script += "\n";
-    }
-    chart.script = script;
+    return script + plotCommand(plots);
+}
+
+Chart buildChart(const std::string& sceneName, const SweepResult& result, Accuracy accuracy)
+{
+    ChartPlots plots;
+    plots.data = "# frontier sweep chart data: wall seconds per simulated second, " + accuracyAxis(accuracy) +
+                 ", dt\n";
+    addFront(result, accuracy, plots);
+    addSeries(result, accuracy, plots);
+    const Axes axes = chartAxes(result, accuracy, plots);
+    const std::string labelCommands = dtLabels(result, accuracy, axes, plots);
+    Chart chart;
+    chart.data = plots.data;
+    chart.script = chartScript(chartTitle(sceneName, result, accuracy), axes, accuracy, plots, labelCommands);
     return chart;
 }
 } // namespace

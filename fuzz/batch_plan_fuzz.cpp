@@ -3,8 +3,8 @@
 // batch runs them (app::loadBatchScene: the scene paths set in the scene's text, which is loaded
 // again, the seed's perturbation) and a few steps of each. The plan sits in a folder holding copies
 // of three bundled scenes (ball.yaml, pendulum.yaml, stack.yaml) for its `scenes:` to name or glob.
-#include "app/batch_plan.h"
-#include "app/batch_scene.h"
+#include "app/batch/plan.h"
+#include "app/batch/scene.h"
 #include "fuzz/fuzz_input.h"
 #include "fuzz/fuzz_steps.h"
 

@@ -1,7 +1,7 @@
 // tests/app/app_test_util.h: running the `frontier` executable in a per-test folder.
 #pragma once
 
-#include "app/shell_quote.h"
+#include "app/batch/shell_quote.h"
 
 #include <chrono>
 #include <csignal>

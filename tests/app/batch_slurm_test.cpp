@@ -1,5 +1,5 @@
 // tests/app/batch_slurm_test.cpp: the scripts of `frontier batch --slurm` against hostile values.
-// The quoting they share with the shell (app/shell_quote.h) gives the same text back through bash
+// The quoting they share with the shell (app/batch/shell_quote.h) gives the same text back through bash
 // and through sbatch's reading of #SBATCH lines; a plan path, --out, --package-path and --chart
 // with spaces, quotes, $(...), backticks, '%' and '#' reach the commands as data, and what cannot go
 // onto an #SBATCH line (a line break, a backslash in --out, a partition or time limit Slurm would
@@ -460,7 +460,7 @@ TEST(BatchSlurm, TasksAndMergeGetThePackagePaths)
 
 // Every option of `frontier batch` is one the scripts handle: forwarded to the tasks and the merge
 // when it changes what a job does or where it finds its files (forwardedOptions in
-// app/batch_slurm.cpp), or turned into the scripts' own settings. An option added to `batch` fails
+// app/batch/slurm.cpp), or turned into the scripts' own settings. An option added to `batch` fails
 // here until it is sorted into one of these.
 TEST(BatchSlurm, EveryBatchOptionIsForwardedOrTakenByTheScripts)
 {

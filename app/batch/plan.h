@@ -1,4 +1,4 @@
-// app/batch_plan.h: the plan of `frontier batch` (README "Batches", docs/batch.md): scenes (files or
+// app/batch/plan.h: the plan of `frontier batch` (README "Batches", docs/batch.md): scenes (files or
 // globs, relative to the plan) times a grid of variations, expanded into jobs with stable ids.
 #pragma once
 
@@ -59,6 +59,9 @@ struct BatchPlan
 // Reads and expands a plan. Throws io::InputError with the plan's file:line:column and what was
 // expected (also for a scene path that no scene of the plan has).
 BatchPlan readBatchPlan(const std::string& path);
+
+// The job's variation as "dt=0.001 solver=pgs" (its `vary:` settings, in the plan's key order).
+std::string describeVariation(const PlanJob& job);
 
 // The setting `key` of the job, or nullptr.
 const BatchSetting* findSetting(const PlanJob& job, const std::string& key);

@@ -1,8 +1,8 @@
-// app/batch_jobs.h: the parts of `frontier batch` (app/batch_command.cpp runs them): a job's folder
-// and files, when a job is complete, shards, the merge and the Slurm scripts.
+// app/batch/jobs.h: a batch job's folder and files, when a job is complete, and which shard this
+// process runs.
 #pragma once
 
-#include "app/batch_plan.h"
+#include "app/batch/plan.h"
 #include "app/commands.h"
 #include "app/outputs.h"
 
@@ -43,10 +43,5 @@ Shard parseShard(const std::string& text);
 // io::InputError saying what is missing.
 Shard shardFromEnvironment(const std::string& variable, std::optional<int> shards,
                            std::optional<int> planShards);
-
-// --merge: DIR/batch.csv, DIR/summary.md, with --chart DIR/chart.png. Returns the exit code.
-int mergeBatch(const BatchPlan& plan, const BatchOptions& options);
-// --slurm: DIR/slurm/batch.sbatch and merge.sbatch; with --submit, sbatch both. Returns the exit code.
-int slurmBatch(const BatchPlan& plan, const BatchOptions& options);
 
 } // namespace frontier::app

@@ -1,5 +1,5 @@
-// app/batch_jobs.cpp: a batch job's files, its completeness, and the shard of this process.
-#include "app/batch_jobs.h"
+// app/batch/jobs.cpp: a batch job's files, its completeness, and the shard of this process.
+#include "app/batch/jobs.h"
 
 #include "app/frames.h"
 #include "io/file_util.h"
@@ -119,38 +119,63 @@ Shard parseShard(const std::string& text)
     return {static_cast<int>(*index), static_cast<int>(*count)};
 }
 
+namespace
+{
+// The shard count when the environment gives only the index (named `indexName`): --shards, the
+// plan's `shards:`, FRONTIER_SHARD_COUNT.
+int shardCount(const std::string& indexName, std::optional<int> shards, std::optional<int> planShards)
+{
+    if (shards)
+    {
+        return *shards;
+    }
+    if (planShards)
+    {
+        return *planShards;
+    }
+    if (const std::optional<long long> n = envNumber("FRONTIER_SHARD_COUNT", 1, 1000000))
+    {
+        return static_cast<int>(*n);
+    }
+    throw io::InputError("--shard-from-env", 0, 0,
+                         indexName + " gives the shard's index; the shard count comes from --shards N, the "
+                                     "plan's 'shards:' or FRONTIER_SHARD_COUNT, and none is set");
+}
+
+// Shard `index` of `count`, as `from` gives them.
+Shard envShard(long long index, long long count, const std::string& from)
+{
+    if (index < 0 || count < 1 || index >= count)
+    {
+        throw io::InputError("--shard-from-env", 0, 0,
+                             from + " gives shard " + std::to_string(index) + " of " + std::to_string(count) +
+                                 "; expected 0 <= index < count");
+    }
+    return {static_cast<int>(index), static_cast<int>(count)};
+}
+
+// A Slurm array task: its id less the array's first, of the array's count (from _COUNT, or _MIN
+// and _MAX; else as shardCount).
+Shard slurmShard(long long task, std::optional<int> shards, std::optional<int> planShards)
+{
+    const long long low = envNumber("SLURM_ARRAY_TASK_MIN").value_or(0);
+    std::optional<long long> count = envNumber("SLURM_ARRAY_TASK_COUNT");
+    if (const std::optional<long long> high = envNumber("SLURM_ARRAY_TASK_MAX"); !count && high)
+    {
+        count = *high - low + 1;
+    }
+    if (!count)
+    {
+        return envShard(task - low, shardCount("SLURM_ARRAY_TASK_ID", shards, planShards),
+                        "SLURM_ARRAY_TASK_ID");
+    }
+    return envShard(task - low, *count, "SLURM_ARRAY_TASK_ID");
+}
+} // namespace
+
 Shard shardFromEnvironment(const std::string& variable, std::optional<int> shards,
                            std::optional<int> planShards)
 {
-    auto countFrom = [&](const std::string& indexName) -> int
-    {
-        if (shards)
-        {
-            return *shards;
-        }
-        if (planShards)
-        {
-            return *planShards;
-        }
-        if (const std::optional<long long> n = envNumber("FRONTIER_SHARD_COUNT", 1, 1000000))
-        {
-            return static_cast<int>(*n);
-        }
-        throw io::InputError("--shard-from-env", 0, 0,
-                             indexName +
-                                 " gives the shard's index; the shard count comes from --shards N, the "
-                                 "plan's 'shards:' or FRONTIER_SHARD_COUNT, and none is set");
-    };
-    auto make = [](long long index, long long count, const std::string& from) -> Shard
-    {
-        if (index < 0 || count < 1 || index >= count)
-        {
-            throw io::InputError("--shard-from-env", 0, 0,
-                                 from + " gives shard " + std::to_string(index) + " of " +
-                                     std::to_string(count) + "; expected 0 <= index < count");
-        }
-        return {static_cast<int>(index), static_cast<int>(count)};
-    };
     if (!variable.empty())
     {
         const std::optional<long long> index = envNumber(variable);
@@ -160,25 +185,16 @@ Shard shardFromEnvironment(const std::string& variable, std::optional<int> shard
                                  "expected a whole number >= 0 in the environment variable " + variable +
                                      ", which is not set");
         }
-        return make(*index, countFrom(variable), variable);
+        return envShard(*index, shardCount(variable, shards, planShards), variable);
     }
     if (const std::optional<long long> task = envNumber("SLURM_ARRAY_TASK_ID"))
     {
-        const long long low = envNumber("SLURM_ARRAY_TASK_MIN").value_or(0);
-        std::optional<long long> count = envNumber("SLURM_ARRAY_TASK_COUNT");
-        if (const std::optional<long long> high = envNumber("SLURM_ARRAY_TASK_MAX"); !count && high)
-        {
-            count = *high - low + 1;
-        }
-        if (!count)
-        {
-            return make(*task - low, countFrom("SLURM_ARRAY_TASK_ID"), "SLURM_ARRAY_TASK_ID");
-        }
-        return make(*task - low, *count, "SLURM_ARRAY_TASK_ID");
+        return slurmShard(*task, shards, planShards);
     }
     if (const std::optional<long long> index = envNumber("JOB_COMPLETION_INDEX"))
     {
-        return make(*index, countFrom("JOB_COMPLETION_INDEX"), "JOB_COMPLETION_INDEX");
+        return envShard(*index, shardCount("JOB_COMPLETION_INDEX", shards, planShards),
+                        "JOB_COMPLETION_INDEX");
     }
     throw io::InputError("--shard-from-env", 0, 0,
                          "no shard in the environment: expected SLURM_ARRAY_TASK_ID (a Slurm array job), "

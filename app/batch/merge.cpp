@@ -1,7 +1,7 @@
-// app/batch_merge.cpp: `frontier batch --merge`: DIR/batch.csv (one row per job, in job order),
+// app/batch/merge.cpp: `frontier batch --merge`: DIR/batch.csv (one row per job, in job order),
 // DIR/summary.md, and with --chart X,Y the chart DIR/chart.png (drawn as the sweep's, by gnuplot).
-#include "app/batch_jobs.h"
-#include "app/batch_scene.h"
+#include "app/batch/batch.h"
+#include "app/batch/scene.h"
 #include "app/sweep_chart.h"
 #include "io/atomic_file.h"
 #include "io/csv_output.h"
@@ -25,7 +25,7 @@ namespace
 {
 namespace fs = std::filesystem;
 
-struct JobResult
+struct MergedJob
 {
     std::string status; // done, failed, missing, stale (done from inputs that have changed since)
     std::optional<io::RunStats> stats;
@@ -175,10 +175,20 @@ struct Table
     std::vector<std::vector<std::string>> rows;
 };
 
-Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
+// The stats columns: the stats JSON's keys (docs/files.md), then the extra ones; the wall-clock
+// ones apart (they go last). The scene and the failure have columns of their own; the warnings and
+// the inputs (digest and files) none; the actuators theirs (actuatorPrefixes); a varied setting has
+// its column already (the value as the plan gives it).
+struct StatsColumns
+{
+    std::vector<std::string> stats;
+    std::vector<std::string> wall;
+};
+
+StatsColumns statsColumns(const BatchPlan& plan, const std::vector<MergedJob>& results)
 {
     std::set<std::string> extra;
-    for (const JobResult& r : results)
+    for (const MergedJob& r : results)
     {
         if (r.stats)
         {
@@ -188,92 +198,112 @@ Table makeTable(const BatchPlan& plan, const std::vector<JobResult>& results)
             }
         }
     }
-    // The stats JSON's keys (docs/files.md), then the extra ones. The scene and the failure have
-    // columns of their own; the warnings and the inputs (digest and files) none; the actuators
-    // theirs below.
-    std::vector<std::string> statsKeys;
-    std::vector<std::string> wallKeys;
+    StatsColumns columns;
     for (const std::string& key : io::statsKeys())
     {
         if (key != "scene" && key != "failure" && key != "warnings" && key != "inputs_digest" &&
             key != "input_files" && key != "actuators")
         {
-            (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
+            (isWallClock(key) ? columns.wall : columns.stats).push_back(key);
         }
     }
     for (const std::string& key : extra)
     {
-        (isWallClock(key) ? wallKeys : statsKeys).push_back(key);
+        (isWallClock(key) ? columns.wall : columns.stats).push_back(key);
     }
-    // A varied setting has its column already (the value as the plan gives it).
     std::erase_if(
-        statsKeys, [&](const std::string& key)
+        columns.stats, [&](const std::string& key)
         { return std::find(plan.varyKeys.begin(), plan.varyKeys.end(), key) != plan.varyKeys.end(); });
-    // Then the actuators' columns, grouped by actuator in the order the jobs first name them.
-    std::vector<std::string> actuatorPrefixes;
-    for (const JobResult& r : results)
+    return columns;
+}
+
+// The actuators' column prefixes, grouped by actuator in the order the jobs first name them.
+std::vector<std::string> actuatorPrefixes(const std::vector<MergedJob>& results)
+{
+    std::vector<std::string> prefixes;
+    for (const MergedJob& r : results)
     {
         for (std::size_t a = 0; r.stats && a < r.stats->actuators.size(); ++a)
         {
             const std::string prefix = actuatorPrefix(*r.stats, r.stats->actuators[a]);
-            if (std::find(actuatorPrefixes.begin(), actuatorPrefixes.end(), prefix) == actuatorPrefixes.end())
+            if (std::find(prefixes.begin(), prefixes.end(), prefix) == prefixes.end())
             {
-                actuatorPrefixes.push_back(prefix);
+                prefixes.push_back(prefix);
             }
         }
     }
-    Table table;
-    table.header = {"job", "scene"};
-    table.header.insert(table.header.end(), plan.varyKeys.begin(), plan.varyKeys.end());
-    table.header.push_back("status");
-    table.header.insert(table.header.end(), statsKeys.begin(), statsKeys.end());
-    for (const std::string& prefix : actuatorPrefixes)
+    return prefixes;
+}
+
+// job, scene, the varied settings, status, stats, actuators, failure, wall clock.
+std::vector<std::string> tableHeader(const BatchPlan& plan, const StatsColumns& columns,
+                                     const std::vector<std::string>& prefixes)
+{
+    std::vector<std::string> header = {"job", "scene"};
+    header.insert(header.end(), plan.varyKeys.begin(), plan.varyKeys.end());
+    header.push_back("status");
+    header.insert(header.end(), columns.stats.begin(), columns.stats.end());
+    for (const std::string& prefix : prefixes)
     {
         for (const char* figure : cActuatorFigures)
         {
-            table.header.push_back(prefix + "." + figure);
+            header.push_back(prefix + "." + figure);
         }
     }
-    table.header.push_back("failure");
-    for (const std::string& key : wallKeys)
+    header.push_back("failure");
+    for (const std::string& key : columns.wall)
     {
-        table.header.push_back(wallColumn(key));
+        header.push_back(wallColumn(key));
     }
+    return header;
+}
+
+// One job's row, in the header's order.
+std::vector<std::string> tableRow(const PlanJob& job, const MergedJob& r, const StatsColumns& columns,
+                                  const std::vector<std::string>& prefixes)
+{
+    std::vector<std::string> row = {job.id, job.scene};
+    for (const BatchSetting& s : job.variation)
+    {
+        row.push_back(s.value);
+    }
+    row.push_back(r.status);
+    for (const std::string& key : columns.stats)
+    {
+        row.push_back(r.stats ? statsField(*r.stats, key) : "");
+    }
+    for (const std::string& prefix : prefixes)
+    {
+        const io::ActuatorStats* actuator = nullptr;
+        for (std::size_t a = 0; r.stats && a < r.stats->actuators.size(); ++a)
+        {
+            if (actuatorPrefix(*r.stats, r.stats->actuators[a]) == prefix)
+            {
+                actuator = &r.stats->actuators[a];
+            }
+        }
+        for (const char* figure : cActuatorFigures)
+        {
+            row.push_back(actuator ? actuatorField(*actuator, figure) : "");
+        }
+    }
+    row.push_back(r.stats ? r.stats->failure : "");
+    for (const std::string& key : columns.wall)
+    {
+        row.push_back(r.stats ? statsField(*r.stats, key) : "");
+    }
+    return row;
+}
+
+Table makeTable(const BatchPlan& plan, const std::vector<MergedJob>& results)
+{
+    const StatsColumns columns = statsColumns(plan, results);
+    const std::vector<std::string> prefixes = actuatorPrefixes(results);
+    Table table;
+    table.header = tableHeader(plan, columns, prefixes);
     for (std::size_t j = 0; j < plan.jobs.size(); ++j)
     {
-        const PlanJob& job = plan.jobs[j];
-        const JobResult& r = results[j];
-        std::vector<std::string> row = {job.id, job.scene};
-        for (const BatchSetting& s : job.variation)
-        {
-            row.push_back(s.value);
-        }
-        row.push_back(r.status);
-        for (const std::string& key : statsKeys)
-        {
-            row.push_back(r.stats ? statsField(*r.stats, key) : "");
-        }
-        for (const std::string& prefix : actuatorPrefixes)
-        {
-            const io::ActuatorStats* actuator = nullptr;
-            for (std::size_t a = 0; r.stats && a < r.stats->actuators.size(); ++a)
-            {
-                if (actuatorPrefix(*r.stats, r.stats->actuators[a]) == prefix)
-                {
-                    actuator = &r.stats->actuators[a];
-                }
-            }
-            for (const char* figure : cActuatorFigures)
-            {
-                row.push_back(actuator ? actuatorField(*actuator, figure) : "");
-            }
-        }
-        row.push_back(r.stats ? r.stats->failure : "");
-        for (const std::string& key : wallKeys)
-        {
-            row.push_back(r.stats ? statsField(*r.stats, key) : "");
-        }
-        table.rows.push_back(std::move(row));
+        table.rows.push_back(tableRow(plan.jobs[j], results[j], columns, prefixes));
     }
     return table;
 }
@@ -312,11 +342,26 @@ std::string cell(const std::string& text)
     return out;
 }
 
-void writeSummary(const std::string& path, const BatchPlan& plan, const std::vector<JobResult>& results)
+// summary.md's table of the failed jobs: id, scene, variation, message.
+std::string failedJobsTable(const BatchPlan& plan, const std::vector<MergedJob>& results)
+{
+    std::string out = "\n## Failed jobs\n\n| job | scene | variation | message |\n|---|---|---|---|\n";
+    for (std::size_t j = 0; j < plan.jobs.size(); ++j)
+    {
+        if (results[j].status == "failed")
+        {
+            out += "| " + plan.jobs[j].id + " | " + cell(plan.jobs[j].scene) + " | " +
+                   cell(describeVariation(plan.jobs[j])) + " | " + cell(results[j].stats->failure) + " |\n";
+        }
+    }
+    return out;
+}
+
+void writeSummary(const std::string& path, const BatchPlan& plan, const std::vector<MergedJob>& results)
 {
     std::size_t done = 0, failed = 0, missing = 0, stale = 0;
     double simulatedS = 0.0, wallS = 0.0;
-    for (const JobResult& r : results)
+    for (const MergedJob& r : results)
     {
         done += r.status == "done";
         failed += r.status == "failed";
@@ -338,20 +383,7 @@ void writeSummary(const std::string& path, const BatchPlan& plan, const std::vec
     std::string out = text;
     if (failed > 0)
     {
-        out += "\n## Failed jobs\n\n| job | scene | variation | message |\n|---|---|---|---|\n";
-        for (std::size_t j = 0; j < plan.jobs.size(); ++j)
-        {
-            if (results[j].status == "failed")
-            {
-                std::string variation;
-                for (const BatchSetting& s : plan.jobs[j].variation)
-                {
-                    variation += (variation.empty() ? "" : " ") + s.key + "=" + s.value;
-                }
-                out += "| " + plan.jobs[j].id + " | " + cell(plan.jobs[j].scene) + " | " + cell(variation) +
-                       " | " + cell(results[j].stats->failure) + " |\n";
-            }
-        }
+        out += failedJobsTable(plan, results);
     }
     for (const auto& [status, count, title] :
          {std::tuple<const char*, std::size_t, const char*>{"missing", missing, "Missing jobs"},
@@ -425,9 +457,12 @@ bool drawChart(const std::string& folder, const Table& table, const std::string&
 }
 } // namespace
 
-int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
+namespace
 {
-    std::vector<JobResult> results(plan.jobs.size());
+// Each job's status (done, failed, missing, stale) and stats, from its folder.
+std::vector<MergedJob> readJobs(const BatchPlan& plan, const BatchOptions& options)
+{
+    std::vector<MergedJob> results(plan.jobs.size());
     CurrentDigests digests(plan, options.urdf);
     for (std::size_t j = 0; j < plan.jobs.size(); ++j)
     {
@@ -453,25 +488,64 @@ int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
                             : results[j].stats->completed      ? "missing"
                                                                : "failed";
     }
+    return results;
+}
+
+// DIR/batch.csv, DIR/summary.md, with --chart DIR/chart.png. Throws io::InputError,
+// io::OutputError, ChartError, std::filesystem::filesystem_error.
+void writeMerge(const BatchPlan& plan, const BatchOptions& options, const std::vector<MergedJob>& results)
+{
     const Table table = makeTable(plan, results);
     const fs::path folder(options.out);
+    fs::create_directories(folder);
+    writeCsv((folder / "batch.csv").string(), plan, table);
+    writeSummary((folder / "summary.md").string(), plan, results);
+    if (options.chart.empty())
+    {
+        return;
+    }
+    if (options.chart.size() != 2)
+    {
+        throw io::InputError("--chart", 0, 0, "expected two column names X,Y");
+    }
+    if (!drawChart(options.out, table, options.chart[0], options.chart[1]))
+    {
+        std::cerr << "frontier: note: gnuplot is not installed, so there is no chart; `cd " << options.out
+                  << " && gnuplot chart.gp` draws it\n";
+    }
+}
+
+// The first jobs not done are named here; summary.md lists them all (a study of 10 000 jobs merged
+// halfway would otherwise print thousands of lines). Returns how many are not done.
+std::size_t reportNotDone(const BatchPlan& plan, const std::vector<MergedJob>& results,
+                          const fs::path& folder)
+{
+    constexpr std::size_t cNamedAtMost = 20;
+    std::size_t bad = 0;
+    for (std::size_t j = 0; j < results.size(); ++j)
+    {
+        if (results[j].status != "done" && ++bad <= cNamedAtMost)
+        {
+            std::cerr << "frontier: job " << plan.jobs[j].id << " " << results[j].status
+                      << (results[j].status == "failed" ? ": " + results[j].stats->failure : std::string())
+                      << "\n";
+        }
+    }
+    if (bad > cNamedAtMost)
+    {
+        std::cerr << "frontier: ... and " << bad - cNamedAtMost << " more jobs not done ("
+                  << (folder / "summary.md").string() << " lists them)\n";
+    }
+    return bad;
+}
+} // namespace
+
+int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
+{
+    const std::vector<MergedJob> results = readJobs(plan, options);
     try
     {
-        fs::create_directories(folder);
-        writeCsv((folder / "batch.csv").string(), plan, table);
-        writeSummary((folder / "summary.md").string(), plan, results);
-        if (!options.chart.empty())
-        {
-            if (options.chart.size() != 2)
-            {
-                throw io::InputError("--chart", 0, 0, "expected two column names X,Y");
-            }
-            if (!drawChart(options.out, table, options.chart[0], options.chart[1]))
-            {
-                std::cerr << "frontier: note: gnuplot is not installed, so there is no chart; `cd "
-                          << options.out << " && gnuplot chart.gp` draws it\n";
-            }
-        }
+        writeMerge(plan, options, results);
     }
     catch (const io::InputError& e)
     {
@@ -493,24 +567,8 @@ int mergeBatch(const BatchPlan& plan, const BatchOptions& options)
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
     }
-    // The first jobs not done are named here; summary.md lists them all (a study of 10 000 jobs
-    // merged halfway would otherwise print thousands of lines).
-    constexpr std::size_t cNamedAtMost = 20;
-    std::size_t bad = 0;
-    for (std::size_t j = 0; j < results.size(); ++j)
-    {
-        if (results[j].status != "done" && ++bad <= cNamedAtMost)
-        {
-            std::cerr << "frontier: job " << plan.jobs[j].id << " " << results[j].status
-                      << (results[j].status == "failed" ? ": " + results[j].stats->failure : std::string())
-                      << "\n";
-        }
-    }
-    if (bad > cNamedAtMost)
-    {
-        std::cerr << "frontier: ... and " << bad - cNamedAtMost << " more jobs not done ("
-                  << (folder / "summary.md").string() << " lists them)\n";
-    }
+    const fs::path folder(options.out);
+    const std::size_t bad = reportNotDone(plan, results, folder);
     std::printf("Wrote %s and %s: %zu jobs, %zu not done.\n", (folder / "batch.csv").c_str(),
                 (folder / "summary.md").c_str(), plan.jobs.size(), bad);
     return bad > 0 ? cExitFailed : cExitOk;

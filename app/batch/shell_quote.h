@@ -1,4 +1,4 @@
-// app/shell_quote.h: one word for the shell, also read as one argument on an #SBATCH line.
+// app/batch/shell_quote.h: one word for the shell, also read as one argument on an #SBATCH line.
 #pragma once
 
 #include <string>

@@ -1,9 +1,9 @@
-// app/batch_slurm.cpp: `frontier batch --slurm`: DIR/slurm/batch.sbatch (an array job, task I
+// app/batch/slurm.cpp: `frontier batch --slurm`: DIR/slurm/batch.sbatch (an array job, task I
 // running `frontier batch PLAN --out DIR --shards N --shard-from-env SLURM_ARRAY_TASK_ID`, shard I
 // of N) and DIR/slurm/merge.sbatch; with --submit, sbatch runs both, the merge after the array
 // succeeded (afterok).
-#include "app/batch_jobs.h"
-#include "app/shell_quote.h"
+#include "app/batch/batch.h"
+#include "app/batch/shell_quote.h"
 #include "io/atomic_file.h"
 #include "io/package_paths.h"
 #include "io/scene.h"
@@ -280,48 +280,90 @@ std::optional<std::string> capture(const std::string& command)
 }
 } // namespace
 
+namespace
+{
+// The two scripts of DIR/slurm/.
+struct SlurmScripts
+{
+    std::string batch; // the array job
+    std::string merge; // the merge after it
+};
+
+// Writes both scripts: the array job of `shards` tasks (each one shard, --jobs from --cpus), and
+// the merge. Throws io::OutputError, std::filesystem::filesystem_error.
+SlurmScripts writeSlurmScripts(const BatchOptions& options, const fs::path& folder, int jobs, int shards)
+{
+    // Every word of the commands quoted (app/batch/shell_quote.h); options as --name=VALUE, so that no
+    // value can pass for an option.
+    const std::string command = "exec " + shellQuote(selfPath()) + " batch " +
+                                shellQuote(absolute(options.plan)) + " " +
+                                shellQuote("--out=" + absolute(options.out)) + forwardedOptions(options);
+    const SlurmScripts scripts{(folder / "batch.sbatch").string(), (folder / "merge.sbatch").string()};
+    fs::create_directories(folder);
+    std::string batch = header(options, "frontier-batch", outputPattern(folder.string(), "shard-%a.out"));
+    batch += "#SBATCH --array=0-" + std::to_string(std::max(shards, 1) - 1) + "\n";
+    batch += "#SBATCH --cpus-per-task=" + std::to_string(options.cpus) + "\n";
+    // The shard is the task id itself, not its rank in the array: `sbatch --array=1 batch.sbatch`
+    // reruns shard 1 of N alone (Slurm's task count would be 1 there).
+    batch += "# " + std::to_string(jobs) + " jobs in " + std::to_string(shards) +
+             " shards: task I runs the jobs whose index mod " + std::to_string(shards) +
+             " is I; sbatch --array=I reruns task I alone.\n";
+    batch += command + " --jobs " + std::to_string(options.cpus) + " --shards " + std::to_string(shards) +
+             " --shard-from-env SLURM_ARRAY_TASK_ID\n";
+    writeScript(scripts.batch, batch);
+    std::string merge = header(options, "frontier-merge", outputPattern(folder.string(), "merge.out"));
+    merge += command + " --merge";
+    if (options.chart.size() == 2)
+    {
+        merge += " " + shellQuote("--chart=" + options.chart[0] + "," + options.chart[1]);
+    }
+    writeScript(scripts.merge, merge + "\n");
+    return scripts;
+}
+
+// --submit: sbatch the array, then the merge after it (afterok). Returns the exit code.
+int submitScripts(const SlurmScripts& scripts)
+{
+    const std::optional<std::string> array = capture("sbatch --parsable " + shellQuote(scripts.batch));
+    const std::string arrayId =
+        array ? array->substr(0, array->find(';')) : ""; // "ID;CLUSTER" when federated
+    if (arrayId.empty() ||
+        !std::all_of(arrayId.begin(), arrayId.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
+    {
+        std::cerr << "frontier: sbatch " << scripts.batch << " failed"
+                  << (arrayId.empty() ? std::string() : " (it printed no job id but '" + *array + "')")
+                  << "\n";
+        return cExitFailed;
+    }
+    const std::optional<std::string> merged =
+        capture("sbatch --parsable --dependency=afterok:" + arrayId + " " + shellQuote(scripts.merge));
+    if (!merged || merged->empty())
+    {
+        std::cerr << "frontier: sbatch " << scripts.merge << " failed (the array job " << arrayId
+                  << " is submitted)\n";
+        return cExitFailed;
+    }
+    std::printf("Submitted the array job %s and the merge job %s.\n", arrayId.c_str(),
+                merged->substr(0, merged->find(';')).c_str());
+    return cExitOk;
+}
+} // namespace
+
 int slurmBatch(const BatchPlan& plan, const BatchOptions& options)
 {
     const int jobs = static_cast<int>(plan.jobs.size());
     const int shards = std::min(options.shards.value_or(std::min(jobs, 100)), jobs);
     const fs::path folder = fs::path(absolute(options.out)) / "slurm";
+    SlurmScripts scripts;
     try
     {
         checkSlurmOptions(options, folder.string());
+        scripts = writeSlurmScripts(options, folder, jobs, shards);
     }
     catch (const io::InputError& e)
     {
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
-    }
-    // Every word of the commands quoted (app/shell_quote.h); options as --name=VALUE, so that no
-    // value can pass for an option.
-    const std::string command = "exec " + shellQuote(selfPath()) + " batch " +
-                                shellQuote(absolute(options.plan)) + " " +
-                                shellQuote("--out=" + absolute(options.out)) + forwardedOptions(options);
-    const std::string batchScript = (folder / "batch.sbatch").string();
-    const std::string mergeScript = (folder / "merge.sbatch").string();
-    try
-    {
-        fs::create_directories(folder);
-        std::string batch = header(options, "frontier-batch", outputPattern(folder.string(), "shard-%a.out"));
-        batch += "#SBATCH --array=0-" + std::to_string(std::max(shards, 1) - 1) + "\n";
-        batch += "#SBATCH --cpus-per-task=" + std::to_string(options.cpus) + "\n";
-        // The shard is the task id itself, not its rank in the array: `sbatch --array=1 batch.sbatch`
-        // reruns shard 1 of N alone (Slurm's task count would be 1 there).
-        batch += "# " + std::to_string(jobs) + " jobs in " + std::to_string(shards) +
-                 " shards: task I runs the jobs whose index mod " + std::to_string(shards) +
-                 " is I; sbatch --array=I reruns task I alone.\n";
-        batch += command + " --jobs " + std::to_string(options.cpus) + " --shards " + std::to_string(shards) +
-                 " --shard-from-env SLURM_ARRAY_TASK_ID\n";
-        writeScript(batchScript, batch);
-        std::string merge = header(options, "frontier-merge", outputPattern(folder.string(), "merge.out"));
-        merge += command + " --merge";
-        if (options.chart.size() == 2)
-        {
-            merge += " " + shellQuote("--chart=" + options.chart[0] + "," + options.chart[1]);
-        }
-        writeScript(mergeScript, merge + "\n");
     }
     catch (const io::OutputError& e)
     {
@@ -333,36 +375,15 @@ int slurmBatch(const BatchPlan& plan, const BatchOptions& options)
         std::cerr << "frontier: " << e.what() << "\n";
         return cExitBadInput;
     }
-    std::printf("Wrote %s (%d jobs in an array of %d tasks) and %s.\n", batchScript.c_str(), jobs, shards,
-                mergeScript.c_str());
+    std::printf("Wrote %s (%d jobs in an array of %d tasks) and %s.\n", scripts.batch.c_str(), jobs, shards,
+                scripts.merge.c_str());
     if (!options.submit)
     {
         std::printf("Submit with: id=$(sbatch --parsable %s) && sbatch --dependency=afterok:${id%%%%;*} %s\n",
-                    shellQuote(batchScript).c_str(), shellQuote(mergeScript).c_str());
+                    shellQuote(scripts.batch).c_str(), shellQuote(scripts.merge).c_str());
         return cExitOk;
     }
-    const std::optional<std::string> array = capture("sbatch --parsable " + shellQuote(batchScript));
-    const std::string arrayId =
-        array ? array->substr(0, array->find(';')) : ""; // "ID;CLUSTER" when federated
-    if (arrayId.empty() ||
-        !std::all_of(arrayId.begin(), arrayId.end(), [](unsigned char c) { return std::isdigit(c) != 0; }))
-    {
-        std::cerr << "frontier: sbatch " << batchScript << " failed"
-                  << (arrayId.empty() ? std::string() : " (it printed no job id but '" + *array + "')")
-                  << "\n";
-        return cExitFailed;
-    }
-    const std::optional<std::string> merged =
-        capture("sbatch --parsable --dependency=afterok:" + arrayId + " " + shellQuote(mergeScript));
-    if (!merged || merged->empty())
-    {
-        std::cerr << "frontier: sbatch " << mergeScript << " failed (the array job " << arrayId
-                  << " is submitted)\n";
-        return cExitFailed;
-    }
-    std::printf("Submitted the array job %s and the merge job %s.\n", arrayId.c_str(),
-                merged->substr(0, merged->find(';')).c_str());
-    return cExitOk;
+    return submitScripts(scripts);
 }
 
 } // namespace frontier::app

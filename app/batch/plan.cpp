@@ -1,8 +1,8 @@
-// app/batch_plan.cpp: reading a batch plan (io/yaml_tree.h, located errors of io/yaml_util.h) and
+// app/batch/plan.cpp: reading a batch plan (io/yaml_tree.h, located errors of io/yaml_util.h) and
 // expanding it into jobs.
-#include "app/batch_plan.h"
+#include "app/batch/plan.h"
 
-#include "app/batch_scene.h"
+#include "app/batch/scene.h"
 #include "app/model_overrides.h"
 #include "io/file_util.h"
 #include "io/scene.h"
@@ -35,7 +35,7 @@ const std::vector<std::string> cRunSettings = {"dt",         "duration",       "
                                                "integrator", "pgs_iterations", "seed"};
 const std::vector<std::string> cOutputs = {"stats", "trajectory", "frames", "joints", "contacts"};
 
-// The node as yaml-cpp's tree, for its emitter and for the scene paths (app/batch_scene.h): the
+// The node as yaml-cpp's tree, for its emitter and for the scene paths (app/batch/scene.h): the
 // same kinds, scalars, tags, collection styles and shared nodes (an alias) as the text gave.
 YAML::Node yamlCppNode(const YamlNode& node, std::map<std::uint32_t, YAML::Node>& made)
 {
@@ -132,11 +132,9 @@ void checkRunValue(const YamlSource& source, const std::string& key, const YamlN
     }
 }
 
-// The scene files of `scenes:`: each entry a file or a glob (*, ?, [...]) relative to the plan's
-// folder; labels are the paths as the plan spells them, globs expanded in sorted order.
-std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& source, const YamlNode& node)
+// The entries of `scenes:`: a list, or one entry.
+std::vector<YamlNode> sceneEntries(const YamlSource& source, const YamlNode& node)
 {
-    std::vector<std::pair<std::string, std::string>> scenes; // label, path
     if (!node.isSequence() && !node.isScalar())
     {
         failAt(source, node,
@@ -159,42 +157,57 @@ std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& 
     {
         failAt(source, node, "expected at least one scene in 'scenes'");
     }
-    for (const YamlNode& entry : entries)
+    return entries;
+}
+
+// The files of one entry of `scenes:` (label, path): a file, or a glob's matches in sorted order.
+std::vector<std::pair<std::string, std::string>> entryScenes(const YamlSource& source, const YamlNode& entry)
+{
+    const std::string pattern = io::detail::toString(source, entry, "an entry of 'scenes'");
+    const bool isGlob = pattern.find_first_of("*?[") != std::string::npos;
+    const std::string full = io::detail::resolvePath(source.baseDir, pattern);
+    if (!isGlob)
     {
-        const std::string pattern = io::detail::toString(source, entry, "an entry of 'scenes'");
-        const bool isGlob = pattern.find_first_of("*?[") != std::string::npos;
-        const std::string full = io::detail::resolvePath(source.baseDir, pattern);
-        if (!isGlob)
-        {
-            std::error_code error;
-            if (!fs::is_regular_file(full, error))
-            {
-                failAt(source, entry,
-                       "no scene file '" + full +
-                           "'; expected a .yaml scene, a .urdf model, an MJCF .xml model or an SDF file");
-            }
-            scenes.emplace_back(pattern, full);
-            continue;
-        }
-        glob_t matches{};
-        const int code = ::glob(full.c_str(), 0, nullptr, &matches);
-        std::vector<std::string> paths;
-        for (std::size_t i = 0; code == 0 && i < matches.gl_pathc; ++i)
-        {
-            paths.emplace_back(matches.gl_pathv[i]);
-        }
-        ::globfree(&matches);
-        if (paths.empty())
+        std::error_code error;
+        if (!fs::is_regular_file(full, error))
         {
             failAt(source, entry,
-                   "the glob '" + pattern + "' matches no file (relative to the plan's folder)");
+                   "no scene file '" + full +
+                       "'; expected a .yaml scene, a .urdf model, an MJCF .xml model or an SDF file");
         }
-        for (const std::string& path : paths) // glob(3) sorts them
-        {
-            const std::string label =
-                source.baseDir.empty() ? path : fs::path(path).lexically_relative(source.baseDir).string();
-            scenes.emplace_back(label, path);
-        }
+        return {{pattern, full}};
+    }
+    glob_t matches{};
+    const int code = ::glob(full.c_str(), 0, nullptr, &matches);
+    std::vector<std::string> paths;
+    for (std::size_t i = 0; code == 0 && i < matches.gl_pathc; ++i)
+    {
+        paths.emplace_back(matches.gl_pathv[i]);
+    }
+    ::globfree(&matches);
+    if (paths.empty())
+    {
+        failAt(source, entry, "the glob '" + pattern + "' matches no file (relative to the plan's folder)");
+    }
+    std::vector<std::pair<std::string, std::string>> scenes;
+    for (const std::string& path : paths) // glob(3) sorts them
+    {
+        const std::string label =
+            source.baseDir.empty() ? path : fs::path(path).lexically_relative(source.baseDir).string();
+        scenes.emplace_back(label, path);
+    }
+    return scenes;
+}
+
+// The scene files of `scenes:`: each entry a file or a glob (*, ?, [...]) relative to the plan's
+// folder; labels are the paths as the plan spells them, globs expanded in sorted order.
+std::vector<std::pair<std::string, std::string>> expandScenes(const YamlSource& source, const YamlNode& node)
+{
+    std::vector<std::pair<std::string, std::string>> scenes; // label, path
+    for (const YamlNode& entry : sceneEntries(source, node))
+    {
+        const auto files = entryScenes(source, entry);
+        scenes.insert(scenes.end(), files.begin(), files.end());
     }
     std::vector<const std::string*> labels; // sorted: a label named twice sits next to itself
     labels.reserve(scenes.size());
@@ -381,6 +394,16 @@ bool isRunSetting(const std::string& key)
     return std::find(cRunSettings.begin(), cRunSettings.end(), key) != cRunSettings.end();
 }
 
+std::string describeVariation(const PlanJob& job)
+{
+    std::string text;
+    for (const BatchSetting& s : job.variation)
+    {
+        text += (text.empty() ? "" : " ") + s.key + "=" + s.value;
+    }
+    return text;
+}
+
 const BatchSetting* findSetting(const PlanJob& job, const std::string& key)
 {
     for (const BatchSetting& s : job.settings)
@@ -409,160 +432,171 @@ std::optional<double> numberSetting(const BatchPlan& plan, const PlanJob& job, c
     return value;
 }
 
-BatchPlan readBatchPlan(const std::string& path)
+namespace
 {
-    const YamlSource source{path, io::detail::directoryOf(path)};
-    BatchPlan plan;
-    plan.file = path;
-    const std::string text = io::detail::readTextFile(path, "batch plan");
-    io::detail::YamlDocuments documents; // the first document (more are ignored)
-    try
-    {
-        io::detail::parseYaml(text, path, documents);
-    }
-    catch (const YAML::ParserException& e)
-    {
-        failAt(source, e.mark, "invalid YAML: " + e.msg);
-    }
-    const YamlNode root = documents.first.root();
-    if (!root.isMap())
-    {
-        failAt(source, root,
-               "expected a map with 'scenes' (and 'vary') for the batch plan, got " +
-                   io::detail::describeNode(root));
-    }
-    const MapNode map(source, root, "the batch plan");
-    map.checkKeys(cPlanKeys);
-    const auto scenes = expandScenes(source, map.require("scenes"));
+using SceneFiles = std::vector<std::pair<std::string, std::string>>; // label, path (expandScenes)
 
-    // Fixed settings: run settings at the top level, scene paths under `set:`.
-    std::vector<BatchSetting> fixed;
-    std::vector<YamlNode> fixedNodes;
+// The settings every job has: run settings at the top level, scene paths under `set:`; with the
+// nodes of their values. `seen`: every setting key, where it was given.
+struct FixedSettings
+{
+    std::vector<BatchSetting> settings;
+    std::vector<YamlNode> nodes;
+};
+
+FixedSettings readFixedSettings(const YamlSource& source, const MapNode& map,
+                                std::map<std::string, YAML::Mark>& seen)
+{
+    FixedSettings fixed;
     for (const std::string& key : cRunSettings)
     {
         if (map.has(key))
         {
             checkRunValue(source, key, map.get(key));
-            fixed.push_back(makeSetting(key, map.get(key)));
-            fixedNodes.push_back(map.get(key));
+            fixed.settings.push_back(makeSetting(key, map.get(key)));
+            fixed.nodes.push_back(map.get(key));
         }
     }
-    std::map<std::string, YAML::Mark> seen; // every setting key, where it was given
-    for (const BatchSetting& s : fixed)
+    for (const BatchSetting& s : fixed.settings)
     {
         seen[s.key] = map.keyMark(s.key);
     }
-    if (map.has("set"))
+    if (!map.has("set"))
     {
-        const MapNode set(source, map.get("set"), "'set'");
-        for (std::size_t i = 0; i < set.node().size(); ++i)
+        return fixed;
+    }
+    const MapNode set(source, map.get("set"), "'set'");
+    for (std::size_t i = 0; i < set.node().size(); ++i)
+    {
+        const YamlNode keyNode = set.node().key(i);
+        const std::string key = keyNode.scalar();
+        checkSettingKey(source, keyNode.mark(), key, "'set'");
+        if (isRunSetting(key))
         {
-            const YamlNode keyNode = set.node().key(i);
-            const std::string key = keyNode.scalar();
-            checkSettingKey(source, keyNode.mark(), key, "'set'");
-            if (isRunSetting(key))
-            {
-                failAt(source, keyNode,
-                       "'" + key + "' is a run setting: give it at the top level of the plan");
-            }
-            if (!seen.emplace(key, keyNode.mark()).second)
-            {
-                failAt(source, keyNode, "'" + key + "' is given twice");
-            }
-            fixed.push_back(makeSetting(key, set.node().value(i)));
-            fixedNodes.push_back(set.node().value(i));
+            failAt(source, keyNode, "'" + key + "' is a run setting: give it at the top level of the plan");
+        }
+        if (!seen.emplace(key, keyNode.mark()).second)
+        {
+            failAt(source, keyNode, "'" + key + "' is given twice");
+        }
+        fixed.settings.push_back(makeSetting(key, set.node().value(i)));
+        fixed.nodes.push_back(set.node().value(i));
+    }
+    return fixed;
+}
+
+// One key of `vary:` and its values, each checked and given once.
+Axis readAxis(const YamlSource& source, const YamlNode& keyNode, const YamlNode& values,
+              ValueNumbers& numbers)
+{
+    const std::string key = keyNode.scalar();
+    const std::string what = "'" + key + "' in 'vary'";
+    io::detail::requireSequence(source, values, what);
+    if (values.size() == 0)
+    {
+        failAt(source, values, "expected a non-empty list of values for " + what);
+    }
+    Axis axis{key, {}, {}};
+    std::map<std::size_t, YamlNode> given; // by ValueNumbers: equal values are given twice
+    for (std::size_t v = 0; v < values.size(); ++v)
+    {
+        const YamlNode value = values[v];
+        if (isRunSetting(key))
+        {
+            checkRunValue(source, key, value);
+        }
+        axis.values.push_back(value);
+        axis.settings.push_back(makeSetting(key, value));
+        const auto [first, fresh] = given.emplace(numbers.of(value), value);
+        if (!fresh)
+        {
+            const YAML::Mark at = first->second.mark();
+            failAt(source, value,
+                   "the value " + axis.settings.back().value + " is given twice for " + what +
+                       " (equal to the one at line " + std::to_string(at.line + 1) + ", column " +
+                       std::to_string(at.column + 1) + ")");
         }
     }
+    return axis;
+}
 
+// The axes of `vary:`, in the plan's key order; a key also fixed (in `seen`) is an error.
+std::vector<Axis> readVary(const YamlSource& source, const MapNode& map,
+                           std::map<std::string, YAML::Mark>& seen)
+{
     std::vector<Axis> axes;
+    if (!map.has("vary"))
+    {
+        return axes;
+    }
     ValueNumbers numbers;
-    if (map.has("vary"))
+    const YamlNode vary = map.get("vary");
+    MapNode(source, vary, "'vary'"); // a map
+    for (std::size_t i = 0; i < vary.size(); ++i)
     {
-        const YamlNode vary = map.get("vary");
-        MapNode(source, vary, "'vary'"); // a map
-        for (std::size_t i = 0; i < vary.size(); ++i)
+        const YamlNode keyNode = vary.key(i);
+        const std::string key = keyNode.scalar();
+        checkSettingKey(source, keyNode.mark(), key, "'vary'");
+        if (const auto at = seen.find(key); at != seen.end())
         {
-            const YamlNode keyNode = vary.key(i);
-            const YamlNode values = vary.value(i);
-            const std::string key = keyNode.scalar();
-            checkSettingKey(source, keyNode.mark(), key, "'vary'");
-            if (const auto at = seen.find(key); at != seen.end())
-            {
-                failAt(source, keyNode,
-                       "'" + key + "' is also given at line " + std::to_string(at->second.line + 1) +
-                           "; a setting is either fixed or varied");
-            }
-            seen.emplace(key, keyNode.mark());
-            const std::string what = "'" + key + "' in 'vary'";
-            io::detail::requireSequence(source, values, what);
-            if (values.size() == 0)
-            {
-                failAt(source, values, "expected a non-empty list of values for " + what);
-            }
-            Axis axis{key, {}, {}};
-            std::map<std::size_t, YamlNode> given; // by ValueNumbers: equal values are given twice
-            for (std::size_t v = 0; v < values.size(); ++v)
-            {
-                const YamlNode value = values[v];
-                if (isRunSetting(key))
-                {
-                    checkRunValue(source, key, value);
-                }
-                axis.values.push_back(value);
-                axis.settings.push_back(makeSetting(key, value));
-                const auto [first, fresh] = given.emplace(numbers.of(value), value);
-                if (!fresh)
-                {
-                    const YAML::Mark at = first->second.mark();
-                    failAt(source, value,
-                           "the value " + axis.settings.back().value + " is given twice for " + what +
-                               " (equal to the one at line " + std::to_string(at.line + 1) + ", column " +
-                               std::to_string(at.column + 1) + ")");
-                }
-            }
-            plan.varyKeys.push_back(key);
-            axes.push_back(std::move(axis));
+            failAt(source, keyNode,
+                   "'" + key + "' is also given at line " + std::to_string(at->second.line + 1) +
+                       "; a setting is either fixed or varied");
+        }
+        seen.emplace(key, keyNode.mark());
+        axes.push_back(readAxis(source, keyNode, vary.value(i), numbers));
+    }
+    return axes;
+}
+
+// The values a run setting takes in the plan: fixed, or varied.
+std::vector<YamlNode> givenValues(const MapNode& map, const std::vector<Axis>& axes, const std::string& key)
+{
+    std::vector<YamlNode> given;
+    if (map.has(key))
+    {
+        given.push_back(map.get(key));
+    }
+    for (const Axis& axis : axes)
+    {
+        if (axis.key == key)
+        {
+            given = axis.values;
         }
     }
+    return given;
+}
 
-    auto givenValues = [&](const std::string& key)
+// `outputs:`: the files each job writes besides its stats.
+BatchOutputs readOutputs(const YamlSource& source, const MapNode& map)
+{
+    BatchOutputs wanted;
+    if (!map.has("outputs"))
     {
-        std::vector<YamlNode> given;
-        if (map.has(key))
-        {
-            given.push_back(map.get(key));
-        }
-        for (const Axis& axis : axes)
-        {
-            if (axis.key == key)
-            {
-                given = axis.values;
-            }
-        }
-        return given;
-    };
-    checkStepCount(source, givenValues("dt"), givenValues("duration"));
-
-    if (map.has("outputs"))
-    {
-        const YamlNode outputs = map.get("outputs");
-        io::detail::requireSequence(source, outputs, "'outputs'");
-        for (std::size_t i = 0; i < outputs.size(); ++i)
-        {
-            const YamlNode entry = outputs[i];
-            const std::string name = io::detail::toString(source, entry, "an entry of 'outputs'");
-            if (std::find(cOutputs.begin(), cOutputs.end(), name) == cOutputs.end())
-            {
-                failAt(source, entry,
-                       "unknown output '" + name +
-                           "'; expected stats, trajectory, frames, joints or contacts");
-            }
-            plan.outputs.trajectory = plan.outputs.trajectory || name == "trajectory";
-            plan.outputs.frames = plan.outputs.frames || name == "frames";
-            plan.outputs.joints = plan.outputs.joints || name == "joints";
-            plan.outputs.contacts = plan.outputs.contacts || name == "contacts";
-        }
+        return wanted;
     }
+    const YamlNode outputs = map.get("outputs");
+    io::detail::requireSequence(source, outputs, "'outputs'");
+    for (std::size_t i = 0; i < outputs.size(); ++i)
+    {
+        const YamlNode entry = outputs[i];
+        const std::string name = io::detail::toString(source, entry, "an entry of 'outputs'");
+        if (std::find(cOutputs.begin(), cOutputs.end(), name) == cOutputs.end())
+        {
+            failAt(source, entry,
+                   "unknown output '" + name + "'; expected stats, trajectory, frames, joints or contacts");
+        }
+        wanted.trajectory = wanted.trajectory || name == "trajectory";
+        wanted.frames = wanted.frames || name == "frames";
+        wanted.joints = wanted.joints || name == "joints";
+        wanted.contacts = wanted.contacts || name == "contacts";
+    }
+    return wanted;
+}
+
+// record_every, width, height, fps, shards, perturb.
+void readJobShape(const YamlSource& source, const MapNode& map, BatchPlan& plan)
+{
     auto wholeIn = [&](const std::string& key, int low, int high, int fallback)
     {
         const std::optional<int> value = map.optInteger(key);
@@ -589,59 +623,83 @@ BatchPlan readBatchPlan(const std::string& path)
         plan.perturbVelocityMps =
             perturb.optNonNegative("velocity", "(m/s)").value_or(plan.perturbVelocityMps);
     }
+}
 
-    if (scenes.size() > 1000000)
+// The cells of the grid of `vary`; at most 1000000 jobs with the scenes.
+std::size_t gridCells(const YamlSource& source, const MapNode& map, std::size_t sceneCount,
+                      const std::vector<Axis>& axes)
+{
+    if (sceneCount > 1000000)
     {
         failAt(source, map.keyMark("scenes"), "the plan makes more than 1000000 jobs");
     }
-    std::size_t cells = 1; // of the grid of `vary`
+    std::size_t cells = 1;
     for (const Axis& axis : axes)
     {
         cells *= axis.values.size();
-        if (cells * scenes.size() > 1000000)
+        if (cells * sceneCount > 1000000)
         {
             failAt(source, map.keyMark("vary"), "the plan makes more than 1000000 jobs");
         }
     }
+    return cells;
+}
 
-    // Scene paths are checked against every scene: a path no scene has is a mistake of the plan.
+// Scene paths are checked against every scene: a path no scene has is a mistake of the plan.
+class ScenePathCheck
+{
+  public:
+    ScenePathCheck(const YamlSource& source, const std::string& label, const std::string& file)
+        : mSource(source), mLabel(label), mFile(file)
+    {
+    }
+
+    void operator()(const std::string& key, const YamlNode& value)
+    {
+        if (isRunSetting(key))
+        {
+            return;
+        }
+        if (const std::string ext = io::detail::lowerExtension(mFile); ext != ".yaml" && ext != ".yml")
+        {
+            failAt(mSource, value,
+                   "'" + key + "' is a scene path, and " + mLabel + " is a model file (" + ext +
+                       "), not a YAML scene");
+        }
+        if (!mRoot)
+        {
+            try
+            {
+                mRoot = YAML::Load(io::detail::readTextFile(mFile, "scene file"));
+            }
+            catch (const YAML::Exception& e)
+            {
+                failAt(mSource, value, mLabel + " is not valid YAML: " + e.msg);
+            }
+        }
+        const std::string problem = applySceneSetting(YAML::Clone(*mRoot), key, yamlCppNode(value));
+        if (!problem.empty())
+        {
+            failAt(mSource, value, "'" + key + "' does not fit " + mLabel + ": " + problem);
+        }
+    }
+
+  private:
+    const YamlSource& mSource;
+    const std::string& mLabel;
+    const std::string& mFile;
+    std::optional<YAML::Node> mRoot; // the scene, read at its first scene path
+};
+
+void checkScenePaths(const YamlSource& source, const SceneFiles& scenes, const FixedSettings& fixed,
+                     const std::vector<Axis>& axes)
+{
     for (const auto& scene : scenes)
     {
-        const std::string& label = scene.first; // named copies: a lambda below uses them (clang 14
-        const std::string& file = scene.second; // cannot capture structured bindings)
-        std::optional<YAML::Node> sceneRoot;
-        auto checkPath = [&](const std::string& key, const YamlNode& value)
+        ScenePathCheck checkPath(source, scene.first, scene.second);
+        for (std::size_t k = 0; k < fixed.settings.size(); ++k)
         {
-            if (isRunSetting(key))
-            {
-                return;
-            }
-            if (const std::string ext = io::detail::lowerExtension(file); ext != ".yaml" && ext != ".yml")
-            {
-                failAt(source, value,
-                       "'" + key + "' is a scene path, and " + label + " is a model file (" + ext +
-                           "), not a YAML scene");
-            }
-            if (!sceneRoot)
-            {
-                try
-                {
-                    sceneRoot = YAML::Load(io::detail::readTextFile(file, "scene file"));
-                }
-                catch (const YAML::Exception& e)
-                {
-                    failAt(source, value, label + " is not valid YAML: " + e.msg);
-                }
-            }
-            const std::string problem = applySceneSetting(YAML::Clone(*sceneRoot), key, yamlCppNode(value));
-            if (!problem.empty())
-            {
-                failAt(source, value, "'" + key + "' does not fit " + label + ": " + problem);
-            }
-        };
-        for (std::size_t k = 0; k < fixed.size(); ++k)
-        {
-            checkPath(fixed[k].key, fixedNodes[k]);
+            checkPath(fixed.settings[k].key, fixed.nodes[k]);
         }
         for (const Axis& axis : axes)
         {
@@ -651,8 +709,12 @@ BatchPlan readBatchPlan(const std::string& path)
             }
         }
     }
+}
 
-    // The grid: scenes outer, then the vary keys in the plan's order, the last one fastest.
+// The grid: scenes outer, then the vary keys in the plan's order, the last one fastest.
+void expandJobs(BatchPlan& plan, const SceneFiles& scenes, const std::vector<BatchSetting>& fixed,
+                const std::vector<Axis>& axes, std::size_t cells)
+{
     plan.jobs.reserve(cells * scenes.size());
     for (const auto& [label, file] : scenes)
     {
@@ -677,6 +739,47 @@ BatchPlan readBatchPlan(const std::string& path)
             plan.jobs.push_back(std::move(job));
         }
     }
+}
+} // namespace
+
+BatchPlan readBatchPlan(const std::string& path)
+{
+    const YamlSource source{path, io::detail::directoryOf(path)};
+    BatchPlan plan;
+    plan.file = path;
+    const std::string text = io::detail::readTextFile(path, "batch plan");
+    io::detail::YamlDocuments documents; // the first document (more are ignored)
+    try
+    {
+        io::detail::parseYaml(text, path, documents);
+    }
+    catch (const YAML::ParserException& e)
+    {
+        failAt(source, e.mark, "invalid YAML: " + e.msg);
+    }
+    const YamlNode root = documents.first.root();
+    if (!root.isMap())
+    {
+        failAt(source, root,
+               "expected a map with 'scenes' (and 'vary') for the batch plan, got " +
+                   io::detail::describeNode(root));
+    }
+    const MapNode map(source, root, "the batch plan");
+    map.checkKeys(cPlanKeys);
+    const SceneFiles scenes = expandScenes(source, map.require("scenes"));
+    std::map<std::string, YAML::Mark> seen; // every setting key, where it was given
+    const FixedSettings fixed = readFixedSettings(source, map, seen);
+    const std::vector<Axis> axes = readVary(source, map, seen);
+    for (const Axis& axis : axes)
+    {
+        plan.varyKeys.push_back(axis.key);
+    }
+    checkStepCount(source, givenValues(map, axes, "dt"), givenValues(map, axes, "duration"));
+    plan.outputs = readOutputs(source, map);
+    readJobShape(source, map, plan);
+    const std::size_t cells = gridCells(source, map, scenes.size(), axes);
+    checkScenePaths(source, scenes, fixed, axes);
+    expandJobs(plan, scenes, fixed.settings, axes, cells);
     return plan;
 }
 

@@ -1,8 +1,8 @@
-// app/batch_scene.h: a batch job's scene: the scene file with the job's scene paths set
+// app/batch/scene.h: a batch job's scene: the scene file with the job's scene paths set
 // ("bodies.ball.position: [0, 0, 2]"), and its initial state perturbed by the job's seed.
 #pragma once
 
-#include "app/batch_plan.h"
+#include "app/batch/plan.h"
 #include "core/model.h"
 #include "run/scene_loading.h"
 

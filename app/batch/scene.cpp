@@ -1,5 +1,5 @@
-// app/batch_scene.cpp: scene paths set in the scene's YAML, and the seeded perturbation.
-#include "app/batch_scene.h"
+// app/batch/scene.cpp: scene paths set in the scene's YAML, and the seeded perturbation.
+#include "app/batch/scene.h"
 
 #include "io/file_util.h"
 #include "io/input_digest.h"
