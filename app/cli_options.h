@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,23 @@ extern const CLI::Validator cFrameHeight;
 
 // What the scene arguments take (io::loadScene).
 inline constexpr const char* cSceneFiles = "scene .yaml, model .urdf, MJCF .xml, or SDF .sdf/.world/.model";
+
+// names[0] + separator + names[1] + ...
+std::string joined(const std::vector<std::string>& names, const std::string& separator);
+
+// A flag's help for a choice among the names of core's table (core::solvers(), core::integrators()):
+// "a | b | c (a: what it is; b: ...)".
+template <class Info> std::string choiceHelp(std::span<const Info> table)
+{
+    std::string names;
+    std::string descriptions;
+    for (const Info& info : table)
+    {
+        names += (names.empty() ? "" : " | ") + std::string(info.name);
+        descriptions += (descriptions.empty() ? "" : "; ") + std::string(info.name) + ": " + info.description;
+    }
+    return names + " (" + descriptions + ")";
+}
 
 // --package-path: where package://NAME/ meshes are.
 void addPackagePathOption(CLI::App& command, std::vector<std::string>& packagePaths);

@@ -3,6 +3,7 @@
 #include "app/commands.h"
 #include "collision/contacts.h"
 #include "core/frontier_order.h"
+#include "core/joints/joint_types.h"
 #include "io/scene.h"
 #include "run/scene_loading.h"
 
@@ -208,7 +209,8 @@ void printJoint(const nlohmann::json& joint)
     std::cout << "  " << joint["name"].get<std::string>() << "  " << joint["type"].get<std::string>() << " ("
               << joint["rows"].get<int>() << " rows)  " << joint["parent"].get<std::string>() << " -> "
               << joint["child"].get<std::string>() << (joint["loop"].get<bool>() ? "  [closes a loop]" : "");
-    const bool turns = joint["type"].get<std::string>() == "revolute";
+    const std::optional<core::JointType> type = core::jointTypeFromName(joint["type"].get<std::string>());
+    const bool turns = type && core::jointTypeInfo(*type).limitCoordinate == core::JointCoordinate::Rotation;
     if (joint.contains("damping"))
     {
         std::cout << "  damping " << joint["damping"].get<double>() << (turns ? " N m s/rad" : " N s/m");

@@ -105,14 +105,11 @@ void addRunOptions(CLI::App& run, RunOptions& o)
     auto* duration = run.add_option("--duration", o.duration, "simulated time (s)")->check(cDuration);
     run.add_option("--steps", o.steps, "number of steps")->transform(cStepCount)->excludes(duration);
     run.add_option("--dt", o.dt, "time step (s)")->check(cTimeStep);
-    run.add_option("--solver", o.solver, "linear | dense | pgs")
-        ->check(CLI::IsMember({"linear", "dense", "pgs"}));
+    run.add_option("--solver", o.solver, choiceHelp(core::solvers()))
+        ->check(CLI::IsMember(core::solverNames()));
     run.add_option("--pgs-iterations", o.pgsIterations, "sweeps of the pgs solver")->transform(cIterations);
-    run.add_option("--integrator", o.integrator,
-                   "euler | rattle | rattle4 (fourth order, 3 rattle stages a step; a step with contacts "
-                   "or joint limits is one rattle step, first order across an impact; order 4 for "
-                   "conservative joints only: damping, friction, servos are first order)")
-        ->check(CLI::IsMember({"euler", "rattle", "rattle4"}));
+    run.add_option("--integrator", o.integrator, choiceHelp(core::integrators()))
+        ->check(CLI::IsMember(core::integratorNames()));
     addContactToleranceOptions(run, o.contact, "every step");
     run.add_option("--trajectory", o.trajectory, "write the trajectory CSV here")->check(cPath);
     run.add_option("--record-every", o.recordEvery, "trajectory, joints and contacts rows every K steps")

@@ -288,12 +288,14 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
         ->allow_extra_args(false);
     sweep
         .add_option("--solver", o.solvers,
-                    "solvers, comma-separated: linear, dense, pgs, pgs:K (K sweeps); default: linear")
+                    "solvers, comma-separated: " + joined(core::solverNames(), ", ") +
+                        ", pgs:K (K sweeps); default: linear")
         ->delimiter(',')
         ->allow_extra_args(false);
     sweep
         .add_option("--integrator", o.integrators,
-                    "integrators, comma-separated: euler, rattle, rattle4; default: euler, rattle")
+                    "integrators, comma-separated: " + joined(core::integratorNames(), ", ") +
+                        "; default: euler, rattle")
         ->delimiter(',')
         ->allow_extra_args(false);
     sweep

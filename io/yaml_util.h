@@ -1,5 +1,5 @@
 // io/yaml_util.h: typed, located reading of YAML nodes (io/yaml_tree.h), for io/'s readers and the
-// batch plan reader (app/batch_plan.cpp); not part of the installed API.
+// batch plan reader (app/batch/plan.cpp); not part of the installed API.
 //
 // Every error is an InputError with the file and the 1-based line:column of the offending node
 // (yaml-cpp's marks are 0-based). Missing keys have no node, so they are reported at the parent

@@ -4,6 +4,7 @@
 
 #include "app/batch/scene.h"
 #include "app/model_overrides.h"
+#include "core/model.h"
 #include "io/file_util.h"
 #include "io/scene.h"
 #include "io/yaml_util.h"
@@ -110,14 +111,12 @@ void checkRunValue(const YamlSource& source, const std::string& key, const YamlN
     else if (key == "solver" || key == "integrator")
     {
         const std::string name = io::detail::toString(source, value, what);
-        const std::vector<std::string> names = key == "solver"
-                                                   ? std::vector<std::string>{"linear", "dense", "pgs"}
-                                                   : std::vector<std::string>{"euler", "rattle", "rattle4"};
+        const std::vector<std::string> names =
+            key == "solver" ? core::solverNames() : core::integratorNames();
         if (std::find(names.begin(), names.end(), name) == names.end())
         {
             failAt(source, value,
-                   "unknown " + key + " '" + name + "'; expected " + names[0] + ", " + names[1] + " or " +
-                       names[2]);
+                   "unknown " + key + " '" + name + "'; expected " + core::nameList(names, "or"));
         }
     }
     else if (key == "pgs_iterations" || key == "seed")
