@@ -299,10 +299,9 @@ class UrdfConverter
             const urdf::JointConstSharedPtr joint = mRobot.getJoint(name);
             if (joint)
             {
-                throw JointPositionError(name,
-                                         "joint '" + name +
-                                             "' has no position to start from (it is fixed or floating; "
-                                             "revolute, continuous and prismatic joints have one)");
+                throw JointPositionError(name, "joint '" + name + "' has no position to start from (it is " +
+                                                   jointTypeWord(joint->type) +
+                                                   "; revolute, continuous and prismatic joints have one)");
             }
             std::vector<std::string> names;
             for (const auto& [jointName, j] : mRobot.joints_)
@@ -859,7 +858,13 @@ class UrdfConverter
         {
             readLimits(joint, j);
         }
-        if (joint.limits && std::isfinite(joint.limits->effort) && joint.limits->effort > 0.0)
+        if (joint.limits && !core::hasLimits(j.type))
+        {
+            warn(mIndex.element("joint", joint.name, "limit"), "joint '" + joint.name + "': <limit> of a " +
+                                                                   core::jointTypeName(j.type) +
+                                                                   " joint is not supported and is ignored");
+        }
+        else if (joint.limits && std::isfinite(joint.limits->effort) && joint.limits->effort > 0.0)
         {
             j.effortLimit = joint.limits->effort; // N m or N; 0 (a file that leaves it out) means none
         }

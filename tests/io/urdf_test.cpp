@@ -240,16 +240,44 @@ TEST(Urdf, PlanarJointMovesTheChildInThePlaneNormalToItsAxis)
                         "  <joint name=\"slide\" type=\"planar\">\n"
                         "    <parent link=\"a\"/><child link=\"b\"/>\n"
                         "    <origin xyz=\"1 0 0\" rpy=\"1.5707963267948966 0 0\"/><axis xyz=\"0 0 1\"/>\n"
+                        "    <limit lower=\"-1\" upper=\"1\" effort=\"5\" velocity=\"1\"/>\n"
                         "    <dynamics damping=\"0.5\"/>\n  </joint>\n"));
-    const core::Model model = loadScene(path);
+    LoadReport report;
+    const core::Model model = loadScene(path, {}, &report);
     ASSERT_EQ(model.joints.size(), 1u);
     const core::Joint& joint = model.joints[0];
     EXPECT_EQ(joint.type, core::JointType::Planar);
     EXPECT_EQ(core::jointRowCount(joint.type), 3);
     EXPECT_FALSE(joint.limits);
     EXPECT_EQ(joint.damping, 0.0) << "a planar joint's <dynamics> is ignored";
+    EXPECT_TRUE(std::isinf(joint.effortLimit)) << "nor does its <limit effort> bound anything";
+    ASSERT_EQ(report.warnings.size(), 2u);
+    EXPECT_NE(report.warnings[0].find(":7:"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("<limit> of a planar joint is not supported and is ignored"),
+              std::string::npos)
+        << report.warnings[0];
+    EXPECT_NE(report.warnings[1].find("<dynamics> of a planar joint is not supported and is ignored"),
+              std::string::npos)
+        << report.warnings[1];
     expectNear(joint.anchorParent, core::Vec3(1, 0, 0), "anchor at the child link's origin, in a");
     expectNear(joint.axisParent, core::Vec3(0, -1, 0), "the axis turned by the joint's origin, in a");
+
+    // It has no coordinate to start away from: a start position for it is refused, naming its type.
+    UrdfOptions start;
+    start.jointPositions = {{"slide", 0.1}};
+    try
+    {
+        loadScene(path, start);
+        ADD_FAILURE() << "a start position for a planar joint was taken";
+    }
+    catch (const InputError& e)
+    {
+        EXPECT_NE(
+            std::string(e.what()).find("--joint-position slide: joint 'slide' has no position to start from "
+                                       "(it is planar; revolute"),
+            std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Urdf, ZeroAxis)
