@@ -1,11 +1,14 @@
 // io/yaml_actuators.cpp: the `actuators:` list of a YAML scene (core::Actuator): servos, motors and
 // efforts on joint coordinates, named by joint (a URDF model's joints with its prefix).
 #include "core/joints/coordinates.h"
+#include "core/joints/joint_types.h"
 #include "io/scene.h"
 #include "io/suggest.h"
 #include "io/yaml_scene.h"
 
 #include <map>
+#include <string>
+#include <vector>
 
 namespace frontier::io::detail
 {
@@ -48,8 +51,14 @@ core::JointCoordinate readCoordinate(const MapNode& map, const core::Joint& join
     {
         if (coordinates.size() > 1)
         {
-            map.fail(map.context() + " drives cylindrical joint '" + joint.name +
-                     "', which has two coordinates; give 'coordinate: slide' or 'coordinate: rotation'");
+            std::vector<std::string> choices;
+            for (const core::JointCoordinate coordinate : coordinates)
+            {
+                choices.push_back("'coordinate: " + std::string(core::coordinateName(coordinate)) + "'");
+            }
+            map.fail(map.context() + " drives " + core::jointTypeName(joint.type) + " joint '" + joint.name +
+                     "', which has " + std::to_string(coordinates.size()) + " coordinates; give " +
+                     core::nameList(choices, "or"));
         }
         return coordinates.front();
     }
@@ -98,8 +107,11 @@ void readActuator(SceneBuilder& builder, const YamlNode& node, std::size_t index
     {
         failAt(source, jointNode,
                "joint '" + joint.name + "' is a " + core::jointTypeName(joint.type) +
-                   " joint; an actuator drives a revolute, prismatic or cylindrical joint (continuous in a "
-                   "URDF)");
+                   " joint; an actuator drives a " +
+                   core::nameList(core::jointTypeNames([](const core::JointTypeInfo& type)
+                                                       { return !type.coordinates.empty(); }),
+                                  "or") +
+                   " joint (continuous in a URDF)");
     }
     actuator.kind = readKind(map);
     actuator.coordinate = readCoordinate(map, joint);
