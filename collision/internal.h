@@ -65,9 +65,9 @@ enum class CollisionKind : std::uint8_t
     Box,
     Cylinder,
     Hull,
-    Triangles,
+    Triangles, // the last kind: cCollisionKinds counts up to it
 };
-inline constexpr int cCollisionKinds = 6;
+inline constexpr int cCollisionKinds = static_cast<int>(CollisionKind::Triangles) + 1;
 
 // "sphere", "capsule", "box", "cylinder", "hull", "triangles".
 const char* collisionKindName(CollisionKind kind);

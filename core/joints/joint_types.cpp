@@ -58,6 +58,26 @@ constexpr bool tableInOrder()
 }
 static_assert(tableInOrder(), "cJointTypeTable: one row per JointType, in its order, of 1 to 6 rows; a "
                               "limited type has that one coordinate");
+
+// Names every JointType and has no default, so a value added to the enum is a compile error
+// (-Wswitch, warnings are errors) here until it has its case, and a row: tableInOrder checks the order.
+constexpr bool hasRow(JointType type)
+{
+    switch (type)
+    {
+    case JointType::Ball:
+    case JointType::Nail:
+    case JointType::Revolute:
+    case JointType::Angle:
+    case JointType::Cylindrical:
+    case JointType::Prismatic:
+    case JointType::Fixed:
+    case JointType::Planar:
+        return static_cast<std::size_t>(type) < std::size(cJointTypeTable);
+    }
+    return false;
+}
+static_assert(hasRow(JointType::Planar), "cJointTypeTable: a row for every JointType");
 } // namespace
 
 std::span<const JointTypeInfo> jointTypes()
