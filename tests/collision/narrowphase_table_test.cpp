@@ -1,6 +1,7 @@
 // tests/collision/narrowphase_table_test.cpp: the narrowphase table (collision/narrowphase.cpp) has
-// a pair function for every pair of collision kinds, the same either way round, and every model
-// shape that is not a plane becomes an instance of a kind the table knows.
+// a pair function for every pair of collision kinds, the same either way round and the one the
+// narrowphase's rules name, and every model shape that is not a plane becomes an instance of a kind
+// the table knows.
 #include "collision/internal.h"
 
 #include <gtest/gtest.h>
@@ -29,6 +30,38 @@ TEST(NarrowphaseTable, EveryPairOfKindsHasAFunction)
             ASSERT_NE(name, nullptr) << "no narrowphase for " << detail::collisionKindName(kindAt(a)) << " - "
                                      << detail::collisionKindName(kindAt(b));
             EXPECT_EQ(std::string(name), std::string(detail::narrowphaseName(kindAt(b), kindAt(a))));
+        }
+}
+
+// Each pair goes where the narrowphase's rules send it, written here as the rules read: two swept
+// spheres (sphere, capsule) in closed form; two polytopes by their faces (two boxes by the box-box
+// clipping); triangles against a polytope by its faces, against anything else by FCL's triangles;
+// every other pair by the convex-convex route.
+std::string expectedPairFunction(CollisionKind a, CollisionKind b)
+{
+    const auto sweptSphere = [](CollisionKind k)
+    { return k == CollisionKind::Sphere || k == CollisionKind::Capsule; };
+    const auto polytope = [](CollisionKind k) { return k == CollisionKind::Box || k == CollisionKind::Hull; };
+    if (sweptSphere(a) && sweptSphere(b))
+        return "sweptSpherePair";
+    if (a == CollisionKind::Triangles || b == CollisionKind::Triangles)
+        return polytope(a == CollisionKind::Triangles ? b : a) ? "trianglePolytopePair" : "triangleShapePair";
+    if (a == CollisionKind::Box && b == CollisionKind::Box)
+        return "boxBoxPair";
+    if (polytope(a) && polytope(b))
+        return "polytopePair";
+    return "convexPair";
+}
+
+TEST(NarrowphaseTable, EveryPairGoesWhereTheRulesSendIt)
+{
+    for (int a = 0; a < detail::cCollisionKinds; ++a)
+        for (int b = 0; b < detail::cCollisionKinds; ++b)
+        {
+            const char* name = detail::narrowphaseName(kindAt(a), kindAt(b));
+            ASSERT_NE(name, nullptr);
+            EXPECT_EQ(std::string(name), expectedPairFunction(kindAt(a), kindAt(b)))
+                << detail::collisionKindName(kindAt(a)) << " - " << detail::collisionKindName(kindAt(b));
         }
 }
 

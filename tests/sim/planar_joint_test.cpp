@@ -1,10 +1,13 @@
 // tests/sim/planar_joint_test.cpp: a body on a planar joint (docs/method.md §2) under gravity and
 // a push with components off the plane stays in its plane and keeps its axis, while it moves and
-// turns in the plane as a free body would.
+// turns in the plane as a free body would; two free bodies on one keep their momentum and angular
+// momentum.
 #include "joint_models.h"
 #include "sim_test_util.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
+#include <utility>
 
 namespace frontier::sim::test
 {
@@ -74,6 +77,60 @@ TEST(PlanarJoint, StaysInItsPlaneAndMovesFreelyInIt)
         EXPECT_LE(worstVelocity, 1e-9) << "in the plane it moves as a free body";
         EXPECT_LE(worstSpin, 1e-9) << "it turns freely about the normal";
         EXPECT_GT(state.bodies[0].velocity_W.norm(), 4.0) << "it did move";
+    }
+}
+
+// Two cubes in free space on a planar joint between them (the parent moves too: its lever arm and its
+// copy of the normal turn with it), both moving and turning off the plane at the start: the joint
+// impulses are internal, so the total momentum and angular momentum stay, and the joint holds.
+TEST(PlanarJoint, BetweenTwoFreeBodiesConservesMomentum)
+{
+    for (const core::IntegratorKind integrator : cIntegrators)
+    {
+        SCOPED_TRACE(core::integratorName(integrator));
+        core::Model model = emptyTestModel(core::Vec3::Zero(), integrator, 1e-3);
+        core::Body a = jointTestBox("a", 3.0, core::Vec3(0.4, 0.2, 0.3), core::Vec3(0.0, 0.0, 1.0));
+        core::Body b = jointTestBox("b", 1.0, core::Vec3(0.2, 0.2, 0.2), core::Vec3(0.5, 0.1, 1.2));
+        a.velocity_W = core::Vec3(0.2, -0.1, 0.3);
+        a.angularVelocity_W = core::Vec3(0.5, 1.0, -0.3);
+        b.velocity_W = core::Vec3(-0.4, 0.6, -0.5);
+        b.angularVelocity_W = core::Vec3(-1.0, 0.2, 2.0);
+        model.bodies = {a, b};
+        const core::Vec3 normal_W = core::Vec3(0.0, 1.0, 1.0).normalized();
+        addTestJoint(model, core::JointType::Planar, 0, 1, core::Vec3(0.3, 0.0, 1.1), normal_W);
+        const auto momenta = [&model](const core::State& state)
+        {
+            core::Vec3 p = core::Vec3::Zero();
+            core::Vec3 l = core::Vec3::Zero(); // about the origin
+            for (std::size_t k = 0; k < model.bodies.size(); ++k)
+            {
+                const core::BodyState& s = state.bodies[k];
+                const core::Mat3 inertia_W = s.orientation_WB * model.bodies[k].inertia_B *
+                                             s.orientation_WB.toRotationMatrix().transpose();
+                p += model.bodies[k].mass * s.velocity_W;
+                l +=
+                    model.bodies[k].mass * s.position_W.cross(s.velocity_W) + inertia_W * s.angularVelocity_W;
+            }
+            return std::pair(p, l);
+        };
+        core::Simulator sim(model);
+        core::State state = core::initialState(model);
+        sim.step(state); // the first step takes out the velocities the joint forbids
+        const auto [p0, l0] = momenta(state);
+        double worstP = 0.0, worstL = 0.0;
+        for (long k = 1; k < stepsFor(1.0, model.simulation.dt); ++k)
+        {
+            sim.step(state);
+            const auto [p, l] = momenta(state);
+            worstP = std::max(worstP, (p - p0).norm());
+            worstL = std::max(worstL, (l - l0).norm());
+        }
+        const auto [position, rotation] = sim.jointErrors(state);
+        EXPECT_LE(position, 1e-9) << "the child's anchor stays in the parent's plane";
+        EXPECT_LE(rotation, 1e-9) << "the child's normal stays on the parent's";
+        EXPECT_LE(worstP, 1e-12 * p0.norm() + 1e-13) << "momentum";
+        EXPECT_LE(worstL, 1e-9 * l0.norm()) << "angular momentum about the origin";
+        EXPECT_GT((state.bodies[1].position_W - model.bodies[1].position_W).norm(), 0.1) << "it did move";
     }
 }
 
