@@ -173,14 +173,4 @@ void addContactToleranceOptions(CLI::App& command, core::ContactTolerances& o, c
         ->check(inRange(core::isRelativeContactTolerance, core::cRelativeContactToleranceRange));
 }
 
-std::string joined(const std::vector<std::string>& names, const std::string& separator)
-{
-    std::string out;
-    for (const std::string& name : names)
-    {
-        out += (out.empty() ? "" : separator) + name;
-    }
-    return out;
-}
-
 } // namespace frontier::app

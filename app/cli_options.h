@@ -44,9 +44,6 @@ extern const CLI::Validator cFrameHeight;
 // What the scene arguments take (io::loadScene).
 inline constexpr const char* cSceneFiles = "scene .yaml, model .urdf, MJCF .xml, or SDF .sdf/.world/.model";
 
-// names[0] + separator + names[1] + ...
-std::string joined(const std::vector<std::string>& names, const std::string& separator);
-
 // A flag's help for a choice among the names of core's table (core::solvers(), core::integrators()):
 // "a | b | c (a: what it is; b: ...)".
 template <class Info> std::string choiceHelp(std::span<const Info> table)

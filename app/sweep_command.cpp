@@ -10,6 +10,7 @@
 #include "io/atomic_file.h"
 #include "io/file_util.h"
 #include "io/scene.h"
+#include "io/suggest.h"
 #include "run/run_loop.h"
 #include "run/scene_loading.h"
 #include "study/study.h"
@@ -288,13 +289,13 @@ void addSweepOptions(CLI::App& sweep, SweepOptions& o)
         ->allow_extra_args(false);
     sweep
         .add_option("--solver", o.solvers,
-                    "solvers, comma-separated: " + joined(core::solverNames(), ", ") +
+                    "solvers, comma-separated: " + io::detail::joinNames(core::solverNames()) +
                         ", pgs:K (K sweeps); default: linear")
         ->delimiter(',')
         ->allow_extra_args(false);
     sweep
         .add_option("--integrator", o.integrators,
-                    "integrators, comma-separated: " + joined(core::integratorNames(), ", ") +
+                    "integrators, comma-separated: " + io::detail::joinNames(core::integratorNames()) +
                         "; default: euler, rattle")
         ->delimiter(',')
         ->allow_extra_args(false);
