@@ -49,6 +49,52 @@ std::vector<int> parseList(const std::string& text)
     return out;
 }
 
+// Per K, over every mesh tabled: the largest distance (m), the smallest volume kept (%) and how
+// many meshes have more than K corners.
+struct Worst
+{
+    std::vector<double> distance;
+    std::vector<double> volume;
+    std::vector<int> capped;
+    int meshes = 0;
+};
+
+// One mesh's line (if it has more than the smallest K corners), adding it to worst; false, with
+// the reason on stderr, when a capped hull cannot be made.
+bool tableMesh(const std::string& file, const core::Body& body, const core::Shape& shape,
+               const std::vector<int>& caps, Worst& worst)
+{
+    collision::ConvexHull full;
+    std::string reason;
+    if (!collision::computeConvexHull(shape.vertices, full, reason))
+        return true;
+    ++worst.meshes;
+    const double fullVolume = enclosedVolume(full);
+    const bool shown = full.vertices.size() > static_cast<std::size_t>(caps.front());
+    if (shown)
+        std::printf("| %s | %s | %zu |", file.substr(file.find_last_of('/') + 1).c_str(), body.name.c_str(),
+                    full.vertices.size());
+    for (std::size_t c = 0; c < caps.size(); ++c)
+    {
+        collision::ConvexHull small;
+        if (!collision::capConvexHull(full, caps[c], small, reason))
+        {
+            std::fprintf(stderr, "%s: %s: %s\n", file.c_str(), body.name.c_str(), reason.c_str());
+            return false;
+        }
+        const double distance = collision::hullDeviation(full, small);
+        const double volume = 100.0 * enclosedVolume(small) / fullVolume;
+        worst.distance[c] = std::max(worst.distance[c], distance);
+        worst.volume[c] = std::min(worst.volume[c], volume);
+        worst.capped[c] += full.vertices.size() > static_cast<std::size_t>(caps[c]) ? 1 : 0;
+        if (shown)
+            std::printf(" %.2f, %.1f |", 1e3 * distance, volume);
+    }
+    if (shown)
+        std::printf("\n");
+    return true;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -69,10 +115,8 @@ int main(int argc, char** argv)
         return 2;
     }
     std::sort(caps.begin(), caps.end());
-    std::vector<double> worstDistance(caps.size(), 0.0);
-    std::vector<double> worstVolume(caps.size(), 100.0);
-    std::vector<int> capped(caps.size(), 0);
-    int meshes = 0;
+    Worst worst{std::vector<double>(caps.size(), 0.0), std::vector<double>(caps.size(), 100.0),
+                std::vector<int>(caps.size(), 0), 0};
     std::printf("| file | body | corners |");
     for (const int k : caps)
         std::printf(" K=%d: mm, volume %% |", k);
@@ -86,44 +130,16 @@ int main(int argc, char** argv)
                 continue;
             for (const core::Shape& shape : body.shapes)
             {
-                if (shape.type != core::ShapeType::Mesh)
-                    continue;
-                collision::ConvexHull full;
-                std::string reason;
-                if (!collision::computeConvexHull(shape.vertices, full, reason))
-                    continue;
-                ++meshes;
-                const double fullVolume = enclosedVolume(full);
-                const bool shown = full.vertices.size() > static_cast<std::size_t>(caps.front());
-                if (shown)
-                    std::printf("| %s | %s | %zu |", file.substr(file.find_last_of('/') + 1).c_str(),
-                                body.name.c_str(), full.vertices.size());
-                for (std::size_t c = 0; c < caps.size(); ++c)
-                {
-                    collision::ConvexHull small;
-                    if (!collision::capConvexHull(full, caps[c], small, reason))
-                    {
-                        std::fprintf(stderr, "%s: %s: %s\n", file.c_str(), body.name.c_str(), reason.c_str());
-                        return 1;
-                    }
-                    const double distance = collision::hullDeviation(full, small);
-                    const double volume = 100.0 * enclosedVolume(small) / fullVolume;
-                    worstDistance[c] = std::max(worstDistance[c], distance);
-                    worstVolume[c] = std::min(worstVolume[c], volume);
-                    capped[c] += full.vertices.size() > static_cast<std::size_t>(caps[c]) ? 1 : 0;
-                    if (shown)
-                        std::printf(" %.2f, %.1f |", 1e3 * distance, volume);
-                }
-                if (shown)
-                    std::printf("\n");
+                if (shape.type == core::ShapeType::Mesh && !tableMesh(file, body, shape, caps, worst))
+                    return 1;
             }
         }
     }
     std::printf("\n%d meshes\n\n| K | meshes capped | largest distance (mm) | smallest volume kept (%%) "
                 "|\n|---|---|---|---|\n",
-                meshes);
+                worst.meshes);
     for (std::size_t c = 0; c < caps.size(); ++c)
-        std::printf("| %d | %d | %.2f | %.1f |\n", caps[c], capped[c], 1e3 * worstDistance[c],
-                    worstVolume[c]);
+        std::printf("| %d | %d | %.2f | %.1f |\n", caps[c], worst.capped[c], 1e3 * worst.distance[c],
+                    worst.volume[c]);
     return 0;
 }

@@ -32,19 +32,16 @@ double triangleArea2(const Vec3& a, const Vec3& b, const Vec3& c)
     return (b - a).cross(c - a).norm(); // twice the area (m^2)
 }
 
-} // namespace
-
-void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double mergeDistance,
-                    std::size_t maxPoints)
+// Drops the non-finite contacts from begin on.
+void dropNonFinite(std::vector<RawContact>& out, std::size_t begin)
 {
     const auto first = out.begin() + static_cast<std::ptrdiff_t>(begin);
     out.erase(std::remove_if(first, out.end(), [](const RawContact& c) { return !finite(c); }), out.end());
-    if (out.size() <= begin + 1)
-        return; // one contact or none: nothing to merge or reduce
-    std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end(), deeper);
+}
 
-    // Greedy merge: a contact closer than mergeDistance to a deeper kept one is dropped.
-    const double merge2 = mergeDistance * mergeDistance;
+// Greedy merge: a contact closer than sqrt(merge2) (m) to a deeper kept one is dropped.
+void mergeNear(std::vector<RawContact>& out, std::size_t begin, double merge2)
+{
     std::size_t kept = begin;
     for (std::size_t i = begin; i < out.size(); ++i)
     {
@@ -55,69 +52,96 @@ void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double merg
             out[kept++] = out[i];
     }
     out.resize(kept);
+}
 
-    const std::size_t count = kept - begin;
-    maxPoints = std::clamp<std::size_t>(maxPoints, 1, 4);
-    if (count <= maxPoints)
-        return;
-
-    // Reduce: the deepest, the farthest from it, the one spanning the largest triangle with
-    // them, and the one adding the most area to that triangle.
-    auto point = [&](std::size_t i) -> const Vec3& { return out[i].point_W; };
-    std::array<std::size_t, 4> sel{begin, begin, begin, begin};
-    std::size_t nsel = 1;
-    auto argmax = [&](auto score)
+// The contact from begin on with the largest score of its point, and that score.
+template <class Score>
+std::pair<std::size_t, double> argmax(const std::vector<RawContact>& out, std::size_t begin, Score score)
+{
+    std::size_t best = begin;
+    double bestScore = -1.0;
+    for (std::size_t i = begin; i < out.size(); ++i)
     {
-        std::size_t best = begin;
-        double bestScore = -1.0;
-        for (std::size_t i = begin; i < out.size(); ++i)
+        const double value = score(out[i].point_W);
+        if (value > bestScore)
         {
-            const double value = score(point(i));
-            if (value > bestScore)
-            {
-                bestScore = value;
-                best = i;
-            }
+            bestScore = value;
+            best = i;
         }
-        return std::pair{best, bestScore};
-    };
+    }
+    return std::pair{best, bestScore};
+}
 
-    const Vec3 p0 = point(sel[0]);
+struct Selection
+{
+    std::array<std::size_t, 4> index; // into out
+    std::size_t count;
+};
+
+// The deepest (out[begin]), the farthest from it, the one spanning the largest triangle with
+// them, and the one adding the most area to that triangle: at most maxPoints (1 to 4) of them.
+Selection selectSpread(const std::vector<RawContact>& out, std::size_t begin, double merge2,
+                       std::size_t maxPoints)
+{
+    auto point = [&](std::size_t i) -> const Vec3& { return out[i].point_W; };
+    Selection s{{begin, begin, begin, begin}, 1};
+    const Vec3 p0 = point(s.index[0]);
     if (maxPoints >= 2)
-        sel[nsel++] = argmax([&](const Vec3& q) { return (q - p0).squaredNorm(); }).first;
+        s.index[s.count++] = argmax(out, begin, [&](const Vec3& q) { return (q - p0).squaredNorm(); }).first;
     if (maxPoints >= 3)
     {
-        const Vec3 p1 = point(sel[1]);
+        const Vec3 p1 = point(s.index[1]);
         const double span2 = (p1 - p0).squaredNorm();
-        const auto [i2, area] = argmax([&](const Vec3& q) { return triangleArea2(p0, p1, q); });
+        const auto [i2, area] = argmax(out, begin, [&](const Vec3& q) { return triangleArea2(p0, p1, q); });
         if (area > 1e-6 * span2)
-            sel[nsel++] = i2;
+            s.index[s.count++] = i2;
         else
         {
             // Collinear: keep both ends of the line (and the deepest point, already in).
-            const auto [end2, dist2] = argmax([&](const Vec3& q) { return (q - p1).squaredNorm(); });
+            const auto [end2, dist2] =
+                argmax(out, begin, [&](const Vec3& q) { return (q - p1).squaredNorm(); });
             if ((point(end2) - p0).squaredNorm() > merge2 && (p1 - p0).squaredNorm() < dist2)
-                sel[nsel++] = end2;
+                s.index[s.count++] = end2;
         }
     }
-    if (maxPoints >= 4 && nsel == 3)
+    if (maxPoints >= 4 && s.count == 3)
     {
-        const Vec3 p1 = point(sel[1]);
-        const Vec3 p2 = point(sel[2]);
+        const Vec3 p1 = point(s.index[1]);
+        const Vec3 p2 = point(s.index[2]);
         const double area = triangleArea2(p0, p1, p2);
-        const auto [i3, total] = argmax(
-            [&](const Vec3& q)
-            { return triangleArea2(p0, p1, q) + triangleArea2(p1, p2, q) + triangleArea2(p2, p0, q); });
+        const auto [i3, total] =
+            argmax(out, begin,
+                   [&](const Vec3& q) {
+                       return triangleArea2(p0, p1, q) + triangleArea2(p1, p2, q) + triangleArea2(p2, p0, q);
+                   });
         if (total > area * (1.0 + 1e-6))
-            sel[nsel++] = i3;
+            s.index[s.count++] = i3;
     }
+    return s;
+}
 
+} // namespace
+
+void mergeAndReduce(std::vector<RawContact>& out, std::size_t begin, double mergeDistance,
+                    std::size_t maxPoints)
+{
+    dropNonFinite(out, begin);
+    if (out.size() <= begin + 1)
+        return; // one contact or none: nothing to merge or reduce
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end(), deeper);
+    const double merge2 = mergeDistance * mergeDistance;
+    mergeNear(out, begin, merge2);
+    maxPoints = std::clamp<std::size_t>(maxPoints, 1, 4);
+    if (out.size() - begin <= maxPoints)
+        return;
+
+    const Selection s = selectSpread(out, begin, merge2, maxPoints);
     std::array<RawContact, 4> chosen;
-    for (std::size_t k = 0; k < nsel; ++k)
-        chosen[k] = out[sel[k]];
-    for (std::size_t k = 0; k < nsel; ++k)
+    for (std::size_t k = 0; k < s.count; ++k)
+        chosen[k] = out[s.index[k]];
+    for (std::size_t k = 0; k < s.count; ++k)
         out[begin + k] = chosen[k];
-    out.resize(begin + nsel);
+    out.resize(begin + s.count);
 }
 
 } // namespace frontier::collision::detail

@@ -191,14 +191,7 @@ class MjcfTranslation
     // other weld group, preceded by the frames of its joints (io/mjcf_model.h).
     void addBodies()
     {
-        core::Model& model = mFragment.model;
-        core::Body world;
-        world.name = mPlacement.prefix + bodyName(0);
-        world.isStatic = true;
-        world.position_W = mPlacement.position;
-        world.orientation_WB = mPlacement.orientation;
-        mBodyOfWeld[0] = 0;
-        model.bodies.push_back(world);
+        addWorldBody();
         for (int b = 1; b < m->nbody; ++b)
         {
             if (m->body_mocapid[b] >= 0)
@@ -212,45 +205,70 @@ class MjcfTranslation
                 mFragment.report.welded.emplace_back(bodyName(b), mPlacement.prefix + bodyName(group));
                 continue;
             }
-            CompositeMass group = groupInertial(b);
-            if (group.mass <= 0.0)
-            {
-                // A massless body with joints: it carries its subtree, as a frame does.
-                const double mass = std::max(cFrameMassFraction * m->body_subtreemass[b], 1e-9); // kg
-                warn("body " + quotedName(bodyName(b)) + " has no mass: given " + formatNumber(mass) +
-                     " kg, a frame's share of what it carries");
-                group.mass = mass;
-                group.centre = toScene(mujocoVec3(mData->xpos + 3 * b));
-                group.inertia = mass * 1e-4 * core::Mat3::Identity(); // a 1 cm radius of gyration
-            }
-            const core::Mat3 rotation = toScene(mujocoMat3(mData->ximat + 9 * b));
-            core::Body body;
-            body.name = mPlacement.prefix + bodyName(b);
-            body.mass = group.mass;
-            body.inertia_B = rotation.transpose() * group.inertia * rotation;
-            body.position_W = group.centre;
-            body.orientation_WB = core::Quat(rotation).normalized();
-            // The frames take their shares of the body's mass and inertia, so that the body and its
-            // frames together are the MuJoCo body at the start.
-            const int frameCount = std::max(m->body_jntnum[b] - 1, 0);
-            std::vector<int> frames;
-            for (int k = 0; k < frameCount; ++k)
-            {
-                core::Body frame = body;
-                frame.name = body.name + ":" + jointName(m->body_jntadr[b] + k);
-                frame.mass = cFrameMassFraction * group.mass;
-                frame.inertia_B = cFrameMassFraction * body.inertia_B;
-                frames.push_back(static_cast<int>(model.bodies.size()));
-                model.bodies.push_back(std::move(frame));
-            }
-            body.mass *= 1.0 - frameCount * cFrameMassFraction;
-            body.inertia_B *= 1.0 - frameCount * cFrameMassFraction;
-            mFramesOf[b] = frames;
-            mBodyOfWeld[b] = static_cast<int>(model.bodies.size());
-            model.bodies.push_back(std::move(body));
+            addMovingBody(b);
         }
         addArmature();
         setVelocities();
+    }
+
+    // The static body of the world's weld group, at the placement's pose.
+    void addWorldBody()
+    {
+        core::Body world;
+        world.name = mPlacement.prefix + bodyName(0);
+        world.isStatic = true;
+        world.position_W = mPlacement.position;
+        world.orientation_WB = mPlacement.orientation;
+        mBodyOfWeld[0] = 0;
+        mFragment.model.bodies.push_back(world);
+    }
+
+    // The mass of weld group b; a massless one carries its subtree, as a frame does.
+    CompositeMass movingGroupMass(int b)
+    {
+        CompositeMass group = groupInertial(b);
+        if (group.mass <= 0.0)
+        {
+            const double mass = std::max(cFrameMassFraction * m->body_subtreemass[b], 1e-9); // kg
+            warn("body " + quotedName(bodyName(b)) + " has no mass: given " + formatNumber(mass) +
+                 " kg, a frame's share of what it carries");
+            group.mass = mass;
+            group.centre = toScene(mujocoVec3(mData->xpos + 3 * b));
+            group.inertia = mass * 1e-4 * core::Mat3::Identity(); // a 1 cm radius of gyration
+        }
+        return group;
+    }
+
+    // The moving body of weld group b, preceded by the frames of its joints but the last.
+    void addMovingBody(int b)
+    {
+        core::Model& model = mFragment.model;
+        const CompositeMass group = movingGroupMass(b);
+        const core::Mat3 rotation = toScene(mujocoMat3(mData->ximat + 9 * b));
+        core::Body body;
+        body.name = mPlacement.prefix + bodyName(b);
+        body.mass = group.mass;
+        body.inertia_B = rotation.transpose() * group.inertia * rotation;
+        body.position_W = group.centre;
+        body.orientation_WB = core::Quat(rotation).normalized();
+        // The frames take their shares of the body's mass and inertia, so that the body and its
+        // frames together are the MuJoCo body at the start.
+        const int frameCount = std::max(m->body_jntnum[b] - 1, 0);
+        std::vector<int> frames;
+        for (int k = 0; k < frameCount; ++k)
+        {
+            core::Body frame = body;
+            frame.name = body.name + ":" + jointName(m->body_jntadr[b] + k);
+            frame.mass = cFrameMassFraction * group.mass;
+            frame.inertia_B = cFrameMassFraction * body.inertia_B;
+            frames.push_back(static_cast<int>(model.bodies.size()));
+            model.bodies.push_back(std::move(frame));
+        }
+        body.mass *= 1.0 - frameCount * cFrameMassFraction;
+        body.inertia_B *= 1.0 - frameCount * cFrameMassFraction;
+        mFramesOf[b] = frames;
+        mBodyOfWeld[b] = static_cast<int>(model.bodies.size());
+        model.bodies.push_back(std::move(body));
     }
 
     // The Frontier body MuJoCo joint j moves: the next frame of its body's chain, or the body.

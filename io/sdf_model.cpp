@@ -408,35 +408,54 @@ class SdfConverter
         core::Body body;
         body.name = top.name;
         body.isStatic = g.isStatic;
-        Pose bodyWorld = top.world;
-        if (!g.isStatic)
-        {
-            std::vector<MassPart> parts;
-            for (const int k : g.links)
-            {
-                parts.push_back(massPart(mLinks[static_cast<std::size_t>(k)]));
-            }
-            const CompositeMass mass = combineMassParts(parts);
-            if (!(mass.mass > 0.0))
-            {
-                fail(top.link->Element(), "link '" + top.name + "' has no mass (<inertial><mass> 0" +
-                                              (g.links.size() > 1 ? " in it and the links fixed to it" : "") +
-                                              ") but it moves; give it a mass, or make it static");
-            }
-            bodyWorld = top.world * toPose(top.link->Inertial().Pose());
-            bodyWorld.translation() = mass.centre;
-            const core::Mat3 R = bodyWorld.linear();
-            body.mass = mass.mass;
-            body.inertia_B = R.transpose() * mass.inertia * R;
-            if (!isPositiveDefinite(body.inertia_B))
-            {
-                fail(top.link->Element(), "the links welded into body '" + top.name +
-                                              "' have an inertia that is not positive-definite");
-            }
-        }
+        const Pose bodyWorld = g.isStatic ? top.world : setMass(g, top, body);
         body.position_W = bodyWorld.translation();
         body.orientation_WB = rotationOf(bodyWorld);
-        const Pose worldToBody = bodyWorld.inverse();
+        addGroupCollisions(g, bodyWorld.inverse(), body);
+        const ModelPlace& model = mModels[static_cast<std::size_t>(top.model)];
+        const ModelPlace& robot = mModels[static_cast<std::size_t>(model.top)];
+        if (!mOptions.selfCollision.value_or(robot.model->SelfCollide()))
+        {
+            body.group = robot.model->Name();
+        }
+        g.body = static_cast<int>(mOut.bodies.size());
+        mBodyModel.push_back(model.top);
+        mOut.bodies.push_back(std::move(body));
+    }
+
+    // The mass and inertia (kg, kg m^2) of a moving group's body, from the <inertial> of its links;
+    // returns the body's world pose: at the centre of mass, along the top link's inertial axes.
+    Pose setMass(const LinkGroup& g, const LinkPlace& top, core::Body& body)
+    {
+        std::vector<MassPart> parts;
+        for (const int k : g.links)
+        {
+            parts.push_back(massPart(mLinks[static_cast<std::size_t>(k)]));
+        }
+        const CompositeMass mass = combineMassParts(parts);
+        if (!(mass.mass > 0.0))
+        {
+            fail(top.link->Element(), "link '" + top.name + "' has no mass (<inertial><mass> 0" +
+                                          (g.links.size() > 1 ? " in it and the links fixed to it" : "") +
+                                          ") but it moves; give it a mass, or make it static");
+        }
+        Pose bodyWorld = top.world * toPose(top.link->Inertial().Pose());
+        bodyWorld.translation() = mass.centre;
+        const core::Mat3 R = bodyWorld.linear();
+        body.mass = mass.mass;
+        body.inertia_B = R.transpose() * mass.inertia * R;
+        if (!isPositiveDefinite(body.inertia_B))
+        {
+            fail(top.link->Element(), "the links welded into body '" + top.name +
+                                          "' have an inertia that is not positive-definite");
+        }
+        return bodyWorld;
+    }
+
+    // The shapes of every link of the group, in the body's frame; the links after the first are
+    // reported as welded into it.
+    void addGroupCollisions(const LinkGroup& g, const Pose& worldToBody, core::Body& body)
+    {
         for (const int k : g.links)
         {
             core::throwIfInterrupted(); // a checkpoint between links (core/interrupt.h)
@@ -451,15 +470,6 @@ class SdfConverter
                                                                                          body.name);
             }
         }
-        const ModelPlace& model = mModels[static_cast<std::size_t>(top.model)];
-        const ModelPlace& robot = mModels[static_cast<std::size_t>(model.top)];
-        if (!mOptions.selfCollision.value_or(robot.model->SelfCollide()))
-        {
-            body.group = robot.model->Name();
-        }
-        g.body = static_cast<int>(mOut.bodies.size());
-        mBodyModel.push_back(model.top);
-        mOut.bodies.push_back(std::move(body));
     }
 
     void addCollision(const LinkPlace& place, const sdf::Collision& collision, const Pose& worldToBody,

@@ -111,30 +111,29 @@ core::Shape readMesh(const MapNode& map)
     return mesh;
 }
 
-ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::string& context)
+// The index in cShapeTypes of the `type:` named; failing with a suggestion for an unknown one.
+std::size_t readShapeType(const MapNode& map, const YamlNode& typeNode, const std::string& context)
 {
-    MapNode map(source, node, context);
-    if (!map.has("type"))
-    {
-        map.checkKeys(cAllShapeKeys);
-    }
-    ShapeEntry entry;
-    entry.typeNode = map.require("type");
-    const std::string typeName = toString(source, entry.typeNode, map.what("type"));
+    const YamlSource& source = map.source();
+    const std::string typeName = toString(source, typeNode, map.what("type"));
     const std::size_t typeIndex = static_cast<std::size_t>(
         std::find(cShapeTypes.begin(), cShapeTypes.end(), typeName) - cShapeTypes.begin());
     if (typeIndex == cShapeTypes.size())
     {
         const std::string match = closestMatch(typeName, cShapeTypes);
-        failAt(source, entry.typeNode,
+        failAt(source, typeNode,
                "unknown shape type '" + typeName + "' in " + context +
                    (match.empty() ? "" : "; did you mean '" + match + "'?") +
                    " (known: " + joinNames(cShapeTypes) + ")");
     }
+    return typeIndex;
+}
+
+// The keys giving the size of a shape of entry.shape.type (m), or its mesh file.
+void readShapeSize(const MapNode& map, ShapeEntry& entry)
+{
+    const YamlSource& source = map.source();
     core::Shape& shape = entry.shape;
-    shape.type = cShapeSyntax[typeIndex].type;
-    map.setContext(typeName + " " + context);
-    map.checkKeys(cShapeSyntax[typeIndex].keys);
     switch (shape.type)
     {
     case core::ShapeType::Box:
@@ -170,6 +169,23 @@ ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::
         shape = readMesh(map);
         break;
     }
+}
+
+ShapeEntry readShape(const YamlSource& source, const YamlNode& node, const std::string& context)
+{
+    MapNode map(source, node, context);
+    if (!map.has("type"))
+    {
+        map.checkKeys(cAllShapeKeys);
+    }
+    ShapeEntry entry;
+    entry.typeNode = map.require("type");
+    const std::size_t typeIndex = readShapeType(map, entry.typeNode, context);
+    core::Shape& shape = entry.shape;
+    shape.type = cShapeSyntax[typeIndex].type;
+    map.setContext(cShapeTypes[typeIndex] + " " + context);
+    map.checkKeys(cShapeSyntax[typeIndex].keys);
+    readShapeSize(map, entry);
     shape.position_BS = map.optPosition("position").value_or(core::Vec3::Zero());
     shape.rotation_BS = map.optQuaternion("orientation").value_or(core::Quat::Identity());
     return entry;

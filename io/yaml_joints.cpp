@@ -49,38 +49,31 @@ void readJointForces(const MapNode& map, const std::string& typeName, core::Join
     joint.friction = map.optNonNegative("friction", turns ? "(N m)" : "(N)").value_or(0.0);
 }
 
-} // namespace
-
-void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
+// `type:`, one of the joint types (core/joints/joint_types.h); the name read is returned too.
+core::JointType readJointType(const MapNode& map, std::string& typeName)
 {
-    const YamlSource& source = builder.source;
-    core::Model& model = builder.model;
-    MapNode map(source, node, "joint #" + std::to_string(index + 1));
-    if (map.get("name").isScalar())
-    {
-        map.setContext("joint '" + map.get("name").scalar() + "'");
-    }
-    map.checkKeys(cJointKeys);
-    const std::string& context = map.context();
-    core::Joint joint;
-    const YamlNode nameNode = map.require("name");
-    joint.name = toString(source, nameNode, map.what("name"));
-    checkNewName(builder, nameNode, "joint");
-
+    const YamlSource& source = map.source();
     const YamlNode typeNode = map.require("type");
-    const std::string typeName = toString(source, typeNode, map.what("type"));
+    typeName = toString(source, typeNode, map.what("type"));
     const std::optional<core::JointType> type = core::jointTypeFromName(typeName);
     if (!type)
     {
         const std::vector<std::string> known = core::jointTypeNames();
         const std::string match = closestMatch(typeName, known);
         failAt(source, typeNode,
-               "unknown joint type '" + typeName + "' in " + context +
+               "unknown joint type '" + typeName + "' in " + map.context() +
                    (match.empty() ? "" : "; did you mean '" + match + "'?") + " (known: " + joinNames(known) +
                    ")");
     }
-    joint.type = *type;
+    return *type;
+}
 
+// `parent:` and `child:`: two different bodies, the child moving; a nail's parent is world-like.
+void readJointBodies(SceneBuilder& builder, const MapNode& map, core::Joint& joint)
+{
+    const YamlSource& source = builder.source;
+    const core::Model& model = builder.model;
+    const std::string& context = map.context();
     const YamlNode parentNode = map.require("parent");
     const YamlNode childNode = map.require("child");
     joint.parent = resolveBodyName(builder, parentNode, "the parent of " + context, true);
@@ -105,40 +98,77 @@ void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
                    " must be 'world' or a static body (a nail pins a body to the "
                    "world)");
     }
+}
 
-    core::Vec3 anchor = child.position_W; // fixed joints: the child's centre of mass by default
+// `axis:` (unit, world frame) of the types that need one; +z, unused, for the others.
+core::Vec3 readJointAxis(const MapNode& map, const std::string& typeName, const core::JointTypeInfo& info)
+{
+    if (info.needsAxis)
+    {
+        return toDirection(map.source(), map.require("axis"), map.what("axis"));
+    }
+    if (map.has("axis"))
+    {
+        map.failAtKey("axis",
+                      map.context() + " of type " + typeName + " takes no 'axis'" + onlyTypesDo(needsAxis));
+    }
+    return core::Vec3::UnitZ();
+}
+
+// `limits: [lower, upper]` (rad or m) of the joint's coordinate, if given.
+void readJointLimits(const MapNode& map, const std::string& typeName, core::Joint& joint)
+{
+    if (!map.has("limits"))
+    {
+        return;
+    }
+    const YamlSource& source = map.source();
+    if (!hasLimits(core::jointTypeInfo(joint.type)))
+    {
+        map.failAtKey("limits",
+                      map.context() + " of type " + typeName + " takes no 'limits'" + onlyTypesDo(hasLimits));
+    }
+    const YamlNode limitsNode = map.get("limits");
+    const std::vector<double> limits =
+        toNumbers(source, limitsNode, map.what("limits") + " [lower, upper]", 2);
+    if (limits[0] > limits[1])
+    {
+        failAt(source, limitsNode,
+               "expected lower <= upper for " + map.what("limits") + ", got [" + limitsNode[0].scalar() +
+                   ", " + limitsNode[1].scalar() + "]");
+    }
+    joint.limits = std::array<double, 2>{limits[0], limits[1]};
+}
+
+} // namespace
+
+void readJoint(SceneBuilder& builder, const YamlNode& node, std::size_t index)
+{
+    const YamlSource& source = builder.source;
+    core::Model& model = builder.model;
+    MapNode map(source, node, "joint #" + std::to_string(index + 1));
+    if (map.get("name").isScalar())
+    {
+        map.setContext("joint '" + map.get("name").scalar() + "'");
+    }
+    map.checkKeys(cJointKeys);
+    core::Joint joint;
+    const YamlNode nameNode = map.require("name");
+    joint.name = toString(source, nameNode, map.what("name"));
+    checkNewName(builder, nameNode, "joint");
+
+    std::string typeName;
+    joint.type = readJointType(map, typeName);
+    readJointBodies(builder, map, joint);
+
+    // Fixed joints: the child's centre of mass (m, world) by default.
+    core::Vec3 anchor = model.bodies[static_cast<std::size_t>(joint.child)].position_W;
     if (joint.type != core::JointType::Fixed || map.has("anchor"))
     {
         anchor = toPosition(source, map.require("anchor"), map.what("anchor"));
     }
-    core::Vec3 axis = core::Vec3::UnitZ();
-    const core::JointTypeInfo& info = core::jointTypeInfo(joint.type);
-    if (info.needsAxis)
-    {
-        axis = toDirection(source, map.require("axis"), map.what("axis"));
-    }
-    else if (map.has("axis"))
-    {
-        map.failAtKey("axis", context + " of type " + typeName + " takes no 'axis'" + onlyTypesDo(needsAxis));
-    }
-    if (map.has("limits"))
-    {
-        if (!hasLimits(info))
-        {
-            map.failAtKey("limits",
-                          context + " of type " + typeName + " takes no 'limits'" + onlyTypesDo(hasLimits));
-        }
-        const YamlNode limitsNode = map.get("limits");
-        const std::vector<double> limits =
-            toNumbers(source, limitsNode, map.what("limits") + " [lower, upper]", 2);
-        if (limits[0] > limits[1])
-        {
-            failAt(source, limitsNode,
-                   "expected lower <= upper for " + map.what("limits") + ", got [" + limitsNode[0].scalar() +
-                       ", " + limitsNode[1].scalar() + "]");
-        }
-        joint.limits = std::array<double, 2>{limits[0], limits[1]};
-    }
+    const core::Vec3 axis = readJointAxis(map, typeName, core::jointTypeInfo(joint.type));
+    readJointLimits(map, typeName, joint);
     readJointForces(map, typeName, joint);
     joint.collideConnected = map.optBool("collide").value_or(false);
     core::setJointFrames(model, joint, anchor, axis);

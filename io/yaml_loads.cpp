@@ -14,20 +14,9 @@ namespace
 const std::vector<std::string> cLoadKeys = {"body",  "force", "torque", "impulse", "at",
                                             "frame", "from",  "to",     "time"};
 
-void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
+// `frame:` world (the default) or body: the frame the force and torque are given in.
+void readLoadFrame(const MapNode& map, core::Load& load)
 {
-    const YamlSource& source = builder.source;
-    MapNode map(source, node, "load #" + std::to_string(index + 1));
-    map.checkKeys(cLoadKeys);
-    const YamlNode bodyNode = map.require("body");
-    core::Load load;
-    load.body = resolveBodyName(builder, bodyNode, map.what("body"), false);
-    const core::Body& body = builder.model.bodies[static_cast<std::size_t>(load.body)];
-    map.setContext("the load on body '" + body.name + "'");
-    if (body.isStatic)
-    {
-        failAt(source, bodyNode, "body '" + body.name + "' is static; a load acts on a moving body");
-    }
     if (map.has("frame"))
     {
         const std::string frame = map.string("frame");
@@ -38,23 +27,27 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         }
         load.frame = frame == "body" ? core::LoadFrame::Body : core::LoadFrame::World;
     }
-    load.point = map.optPosition("at");
-    if (map.has("impulse"))
+}
+
+// `impulse:` (N s) at `time:` (s); no force, torque or window.
+void readImpulse(const MapNode& map, core::Load& load)
+{
+    for (const char* key : {"force", "torque", "from", "to"})
     {
-        for (const char* key : {"force", "torque", "from", "to"})
+        if (map.has(key))
         {
-            if (map.has(key))
-            {
-                map.failAtKey(key, "an 'impulse' acts at one instant ('time'); '" + std::string(key) +
-                                       "' is for a force over a window [from, to)");
-            }
+            map.failAtKey(key, "an 'impulse' acts at one instant ('time'); '" + std::string(key) +
+                                   "' is for a force over a window [from, to)");
         }
-        load.force = *map.optVec3("impulse");
-        map.require("time");
-        load.instant = map.optNonNegative("time", "(s; the run starts at t = 0)");
-        builder.model.loads.push_back(load);
-        return;
     }
+    load.force = *map.optVec3("impulse");
+    map.require("time");
+    load.instant = map.optNonNegative("time", "(s; the run starts at t = 0)");
+}
+
+// `force:` (N) and/or `torque:` (N m) over the window [`from:`, `to:`) (s).
+void readForceWindow(const MapNode& map, core::Load& load)
+{
     if (map.has("time"))
     {
         map.failAtKey("time", "'time' is the instant of an 'impulse'; a force acts over [from, to)");
@@ -74,6 +67,32 @@ void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
         message << "expected 'to' > 'from' for " << map.context() << ", got from = " << load.from
                 << " s, to = " << load.to << " s";
         map.failAtValue("to", message.str());
+    }
+}
+
+void readLoad(SceneBuilder& builder, const YamlNode& node, std::size_t index)
+{
+    const YamlSource& source = builder.source;
+    MapNode map(source, node, "load #" + std::to_string(index + 1));
+    map.checkKeys(cLoadKeys);
+    const YamlNode bodyNode = map.require("body");
+    core::Load load;
+    load.body = resolveBodyName(builder, bodyNode, map.what("body"), false);
+    const core::Body& body = builder.model.bodies[static_cast<std::size_t>(load.body)];
+    map.setContext("the load on body '" + body.name + "'");
+    if (body.isStatic)
+    {
+        failAt(source, bodyNode, "body '" + body.name + "' is static; a load acts on a moving body");
+    }
+    readLoadFrame(map, load);
+    load.point = map.optPosition("at");
+    if (map.has("impulse"))
+    {
+        readImpulse(map, load);
+    }
+    else
+    {
+        readForceWindow(map, load);
     }
     builder.model.loads.push_back(load);
 }

@@ -330,9 +330,9 @@ void bindRecording(py::module_& m)
              });
 }
 
-void bindSimulator(py::module_& m)
+// Simulator.step and the clock and settings it advances under.
+void bindStepping(py::class_<Simulator>& simulator)
 {
-    py::class_<Simulator> simulator(m, "Simulator", cSimulatorDoc);
     simulator
         .def(
             "step",
@@ -369,7 +369,13 @@ void bindSimulator(py::module_& m)
         .def_property(
             "gravity", [](const Simulator& s) { return vec3Array(s.model().simulation.gravity); },
             [](Simulator& s, const py::object& g) { s.setGravity(vec3Of(g, "gravity")); },
-            "Gravity (3,) in m/s^2, world frame; setting it acts from the next step on.")
+            "Gravity (3,) in m/s^2, world frame; setting it acts from the next step on.");
+}
+
+// The names (and static properties) of the bodies, joints and actuators.
+void bindNames(py::class_<Simulator>& simulator)
+{
+    simulator
         .def_property_readonly(
             "body_names", [](const Simulator& sim) { return texts(bodyNames(sim)); },
             "Names of the bodies, in index order.")
@@ -387,7 +393,13 @@ void bindSimulator(py::module_& m)
             "actuator_names", [](const Simulator& sim) { return texts(actuatorNames(sim)); },
             "Names of the actuators: the coordinate each drives (coordinate_names).")
         .def_property_readonly("actuator_kinds", &actuatorKinds,
-                               "Per actuator: position, velocity or effort.")
+                               "Per actuator: position, velocity or effort.");
+}
+
+// What the state and the last step give: poses, velocities, contacts, efforts, energy.
+void bindOutputs(py::class_<Simulator>& simulator)
+{
+    simulator
         .def_property_readonly("positions", &positions, "(n, 3) float64: centres of mass (m), world frame.")
         .def_property_readonly("orientations", &orientations,
                                "(n, 4) float64: unit quaternions w, x, y, z, body to world (as in the CSV).")
@@ -415,7 +427,13 @@ void bindSimulator(py::module_& m)
             "Kinetic plus gravitational potential energy of the moving bodies (J).")
         .def_property_readonly(
             "joint_error", [](Simulator& s) { return s.jointErrors(); },
-            "(m, rad): the largest violation of a joint's conditions in the current state.")
+            "(m, rad): the largest violation of a joint's conditions in the current state.");
+}
+
+// External pushes, saving and restoring the state, body look-up.
+void bindForcesAndSaving(py::class_<Simulator>& simulator)
+{
+    simulator
         .def(
             "apply_force",
             [](Simulator& s, const py::object& body, const py::object& force, const py::object& torque,
@@ -436,7 +454,13 @@ void bindSimulator(py::module_& m)
         .def("set_state", &Simulator::setState, "state"_a,
              "Restores a state from get_state (of this simulator or another loaded from the same "
              "file): the same steps then give the same states, bit for bit.")
-        .def("body_index", &Simulator::bodyIndex, "name"_a, "The index of the body named so.")
+        .def("body_index", &Simulator::bodyIndex, "name"_a, "The index of the body named so.");
+}
+
+// Actuator targets.
+void bindActuators(py::class_<Simulator>& simulator)
+{
+    simulator
         .def(
             "set_actuator_target",
             [](Simulator& s, const py::object& actuator, double value)
@@ -471,7 +495,13 @@ void bindSimulator(py::module_& m)
                 }
             },
             "values"_a,
-            "Sets every actuator's target at once, in actuator_names order (units as set_actuator_target).")
+            "Sets every actuator's target at once, in actuator_names order (units as set_actuator_target).");
+}
+
+// Images of the current state and recordings of the steps to come.
+void bindRenderingAndRecording(py::class_<Simulator>& simulator)
+{
+    simulator
         .def(
             "render",
             [](Simulator& s, int width, int height, const py::object& camera)
@@ -502,6 +532,17 @@ void bindSimulator(py::module_& m)
             "when it is closed; a loop that raised leaves its rows under NAME.failed.csv and stats "
             "with completed: false. `frontier check` reruns the scene file: it matches a recording "
             "started at time 0 of a loop that only stepped.");
+}
+
+void bindSimulator(py::module_& m)
+{
+    py::class_<Simulator> simulator(m, "Simulator", cSimulatorDoc);
+    bindStepping(simulator);
+    bindNames(simulator);
+    bindOutputs(simulator);
+    bindForcesAndSaving(simulator);
+    bindActuators(simulator);
+    bindRenderingAndRecording(simulator);
 }
 
 } // namespace

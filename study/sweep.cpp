@@ -498,6 +498,39 @@ bool runCell(core::Model& work, const core::Model& model, const SweepSchedule& s
     finishCell(trajectoryError, cell);
     return true;
 }
+
+// The cells, one after another, into result.cells; index counts the runs (the reference is 0).
+// Stops at an interrupt, which it records in result.interruptedBy.
+void runCells(core::Model& work, const core::Model& model, const SweepGrid& grid,
+              const SweepSchedule& schedule, const std::vector<int>& compared,
+              const Samples& referenceSamples, const std::function<RunFraction(const std::string&)>& report,
+              int& index, SweepResult& result)
+{
+    grid.contact.applyTo(work.contact);
+    result.contact = grid.contact;
+    for (core::IntegratorKind integrator : grid.integrators)
+    {
+        for (const run::Method& solver : grid.solvers)
+        {
+            for (double dt : grid.dts)
+            {
+                ++index;
+                SweepCell cell;
+                cell.method = {solver.solver, solver.pgsIterations, integrator};
+                cell.dt = dt;
+                cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
+                cell.bodies = result.bodies;
+                if (!runCell(work, model, schedule, compared, referenceSamples,
+                             report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell))
+                {
+                    result.interruptedBy = run::interruptSignal();
+                    return;
+                }
+                result.cells.push_back(std::move(cell));
+            }
+        }
+    }
+}
 } // namespace
 
 SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const SweepSchedule& schedule,
@@ -539,31 +572,7 @@ SweepResult runSweep(const core::Model& model, const SweepGrid& grid, const Swee
         }
     }
 
-    // The cells, one after another.
-    grid.contact.applyTo(work.contact);
-    result.contact = grid.contact;
-    for (core::IntegratorKind integrator : grid.integrators)
-    {
-        for (const run::Method& solver : grid.solvers)
-        {
-            for (double dt : grid.dts)
-            {
-                ++index;
-                SweepCell cell;
-                cell.method = {solver.solver, solver.pgsIterations, integrator};
-                cell.dt = dt;
-                cell.steps = schedule.units * stepsPerUnit(schedule.unitS, dt);
-                cell.bodies = result.bodies;
-                if (!runCell(work, model, schedule, compared, referenceSamples,
-                             report(cell.method.label() + " dt " + formatSeconds(dt) + " s"), cell))
-                {
-                    result.interruptedBy = run::interruptSignal();
-                    return result;
-                }
-                result.cells.push_back(std::move(cell));
-            }
-        }
-    }
+    runCells(work, model, grid, schedule, compared, referenceSamples, report, index, result);
     return result;
 }
 
