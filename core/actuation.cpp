@@ -70,7 +70,7 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
     const std::size_t n = model.actuators.size();
     mRow.resize(n);
     mLoop.assign(n, 0);
-    mBounded.assign(n, 0);
+    mMemory.bounded.assign(n, 0);
     for (std::size_t a = 0; a < n; ++a)
     {
         const Actuator& actuator = model.actuators[a];
@@ -81,7 +81,7 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
         {
             ++mDriveActuators;
             mLoop[a] = layout.jointBlock[static_cast<std::size_t>(actuator.joint)] < 0 ? 1 : 0;
-            mBounded[a] = mLoop[a];
+            mMemory.bounded[a] = mLoop[a];
         }
     }
     for (const Load& load : model.loads)
@@ -94,20 +94,20 @@ Actuation::Actuation(const Model& model, const FrontierLayout& layout) : mModel(
     }
     mStepImpulse.assign(n, 0.0);
     mStepAtLimit.assign(n, 0);
-    mLastFraction.assign(n, 0.0);
-    mEfforts.assign(n, ActuatorEffort{});
-    mTargets.resize(n);
+    mMemory.lastFraction.assign(n, 0.0);
+    mMemory.efforts.assign(n, ActuatorEffort{});
+    mMemory.targets.resize(n);
     updateGains();
 }
 
 void Actuation::setTarget(std::size_t actuator, TimeFunction target)
 {
-    mTargets.at(actuator) = std::move(target);
+    mMemory.targets.at(actuator) = std::move(target);
 }
 
 const TimeFunction& Actuation::targetOf(std::size_t a) const
 {
-    return mTargets[a] ? *mTargets[a] : mModel.actuators[a].target;
+    return mMemory.targets[a] ? *mMemory.targets[a] : mModel.actuators[a].target;
 }
 
 void Actuation::updateGains()
@@ -116,21 +116,21 @@ void Actuation::updateGains()
     {
         return;
     }
-    mGains.resize(mModel.joints.size());
+    mMemory.gains.resize(mModel.joints.size());
     for (std::size_t k = 0; k < mModel.joints.size(); ++k)
     {
-        mGains[k] = dampingGains(mModel.joints[k]);
+        mMemory.gains[k] = dampingGains(mModel.joints[k]);
     }
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
         const Actuator& actuator = mModel.actuators[a];
-        if (!drivesRow(actuator) || mBounded[a])
+        if (!drivesRow(actuator) || mMemory.bounded[a])
         {
             continue;
         }
         const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
-        DriveGains& row = mGains[static_cast<std::size_t>(actuator.joint)]
-                                [static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
+        DriveGains& row = mMemory.gains[static_cast<std::size_t>(actuator.joint)]
+                                       [static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
         const DriveGains own = actuatorGains(actuator);
         row.stiffness += own.stiffness;
         row.damping += own.damping;
@@ -156,11 +156,11 @@ void Actuation::addWrench(int body, const Vec3& force_N, const Vec3& torque_Nm)
                                     mModel.bodies[static_cast<std::size_t>(body)].name +
                                     "' needs a finite force (N) and torque (N m)");
     }
-    const auto same = std::find_if(mWrenches.begin(), mWrenches.end(),
+    const auto same = std::find_if(mMemory.wrenches.begin(), mMemory.wrenches.end(),
                                    [body](const Wrench& wrench) { return wrench.body == body; });
-    if (same == mWrenches.end())
+    if (same == mMemory.wrenches.end())
     {
-        mWrenches.push_back({body, force_N, torque_Nm});
+        mMemory.wrenches.push_back({body, force_N, torque_Nm});
         return;
     }
     same->force += force_N;
@@ -208,7 +208,7 @@ void Actuation::applyForces(State& state, double t0, double t1)
         addImpulse(mModel, state, load.body, scale * force, scale * (torque + lever.cross(force)));
     }
     const double wrenchScale = sign * overlap(from, to, mStepFrom, mStepTo); // s
-    for (const Wrench& wrench : mWrenches)
+    for (const Wrench& wrench : mMemory.wrenches)
     {
         addImpulse(mModel, state, wrench.body, wrenchScale * wrench.force, wrenchScale * wrench.torque);
     }
@@ -258,14 +258,15 @@ void Actuation::setRowTargets(const State& state, double tEnd, double h, BlockVe
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
         const Actuator& actuator = mModel.actuators[a];
-        if (!drivesRow(actuator) || mBounded[a])
+        if (!drivesRow(actuator) || mMemory.bounded[a])
         {
             continue;
         }
         const Joint& joint = mModel.joints[static_cast<std::size_t>(actuator.joint)];
         const std::size_t k = static_cast<std::size_t>(actuator.joint);
         const Command c = command(a, state, tEnd);
-        const DriveGains& gains = mGains[k][static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
+        const DriveGains& gains =
+            mMemory.gains[k][static_cast<std::size_t>(mRow[a] - jointRowCount(joint.type))];
         rhs.joint[k](mRow[a]) = driveRow(gains, h, c.force, c.speed).target;
     }
 }
@@ -276,7 +277,7 @@ void Actuation::appendBoundedRows(const State& state, double tEnd, double h,
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
         const Actuator& actuator = mModel.actuators[a];
-        if (!drivesRow(actuator) || !mBounded[a])
+        if (!drivesRow(actuator) || !mMemory.bounded[a])
         {
             continue;
         }
@@ -302,7 +303,7 @@ bool Actuation::acceptSolve(const RowSystem& rows, const BlockVector& solution,
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
         const Actuator& actuator = mModel.actuators[a];
-        if (!drivesRow(actuator) || mBounded[a])
+        if (!drivesRow(actuator) || mMemory.bounded[a])
         {
             continue;
         }
@@ -318,7 +319,7 @@ bool Actuation::acceptSolve(const RowSystem& rows, const BlockVector& solution,
         const double impulse = solution.joint[k](mRow[a]) + joint.damping * h * speed;
         if (std::abs(impulse) > actuator.effortLimit * h)
         {
-            mBounded[a] = 1; // out of the block: a bounded extra row from now on
+            mMemory.bounded[a] = 1; // out of the block: a bounded extra row from now on
             beyond = true;
         }
         mSolveImpulse[a] = impulse;
@@ -344,7 +345,7 @@ bool Actuation::acceptSolve(const RowSystem& rows, const BlockVector& solution,
         }
         const double bound = actuator.effortLimit * h;
         const double fraction = std::abs(mSolveImpulse[a]) / bound; // 0 without a limit
-        mLastFraction[a] = fraction;
+        mMemory.lastFraction[a] = fraction;
         mStepAtLimit[a] = mStepAtLimit[a] || fraction >= 1.0;
         mStepImpulse[a] += mSolveImpulse[a];
     }
@@ -355,14 +356,14 @@ bool Actuation::finishStep(double dt)
 {
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
-        mEfforts[a] = {mStepImpulse[a] / dt, mStepAtLimit[a] != 0};
+        mMemory.efforts[a] = {mStepImpulse[a] / dt, mStepAtLimit[a] != 0};
     }
     bool changed = false;
     for (std::size_t a = 0; a < mModel.actuators.size(); ++a)
     {
-        if (mBounded[a] && !mLoop[a] && mLastFraction[a] < cReleaseFraction)
+        if (mMemory.bounded[a] && !mLoop[a] && mMemory.lastFraction[a] < cReleaseFraction)
         {
-            mBounded[a] = 0;
+            mMemory.bounded[a] = 0;
             changed = true;
         }
     }
@@ -371,23 +372,13 @@ bool Actuation::finishStep(double dt)
         updateGains();
     }
     clearStepImpulses();
-    mWrenches.clear();
+    mMemory.wrenches.clear();
     return changed;
-}
-
-Actuation::Memory Actuation::memory() const
-{
-    return {mBounded, mGains, mLastFraction, mEfforts, mTargets, mWrenches};
 }
 
 void Actuation::restore(const Memory& memory)
 {
-    mBounded = memory.bounded;
-    mGains = memory.gains;
-    mLastFraction = memory.lastFraction;
-    mEfforts = memory.efforts;
-    mTargets = memory.targets;
-    mWrenches = memory.wrenches;
+    mMemory = memory;
     clearStepImpulses();
 }
 

@@ -59,7 +59,7 @@ class Actuation
 
     // Per joint, the gains of its drive rows with the actuators now in the joints' blocks (for
     // assembleRows); empty when no actuator can be in a block.
-    std::span<const JointDriveGains> gains() const { return mGains; }
+    std::span<const JointDriveGains> gains() const { return mMemory.gains; }
     // Some position or velocity actuator: solves are measured and may be taken again.
     bool hasDriveRows() const { return mDriveActuators > 0; }
 
@@ -97,14 +97,7 @@ class Actuation
     bool finishStep(double dt);
 
     // Per Model::actuators entry, after finishStep.
-    std::span<const ActuatorEffort> efforts() const { return mEfforts; }
-
-    // What carries over from one step to the next (core/step_memory.h): the targets given to
-    // setTarget, which actuators are out of their blocks and the gains that follows from, the last
-    // step's efforts and the external wrenches waiting for the next step.
-    struct Memory;
-    Memory memory() const;
-    void restore(const Memory& memory); // the memory of an Actuation of the same model
+    std::span<const ActuatorEffort> efforts() const { return mMemory.efforts; }
 
     // An out-of-block actuator returns to its block when its impulse fell below this fraction of its
     // bound (a margin, so one near its limit does not go in and out every step).
@@ -117,6 +110,24 @@ class Actuation
         Vec3 force = Vec3::Zero();  // N, through the centre of mass
         Vec3 torque = Vec3::Zero(); // N m
     };
+
+  public:
+    // What carries over from one step to the next (core/step_memory.h), kept in one member: a
+    // field added here is saved and restored with the rest.
+    struct Memory
+    {
+        std::vector<std::uint8_t> bounded;   // per actuator: out of its block (a bounded extra row)
+        std::vector<JointDriveGains> gains;  // per joint; empty without drive actuators
+        std::vector<double> lastFraction;    // per actuator: |impulse| / bound in its last solve
+        std::vector<ActuatorEffort> efforts; // the last finished step
+        // Per actuator: the target given to setTarget, or none (the model's).
+        std::vector<std::optional<TimeFunction>> targets;
+        std::vector<Wrench> wrenches; // for the next step, one per body, in the order first given
+    };
+    const Memory& memory() const { return mMemory; }
+    void restore(const Memory& memory); // the memory of an Actuation of the same model
+
+  private:
     void clearStepImpulses();
     void updateGains();
     // f0 (N or N m) and the targets of a servo or motor for a solve ending at tEnd, at `state`.
@@ -130,31 +141,15 @@ class Actuation
     const TimeFunction& targetOf(std::size_t a) const;
 
     const Model& mModel;
-    std::vector<int> mRow;               // per actuator: its drive row in the joint's block
-    std::vector<std::uint8_t> mLoop;     // per actuator: its joint closes a loop (always bounded)
-    std::vector<std::uint8_t> mBounded;  // per actuator: out of its block (a bounded extra row)
-    std::vector<JointDriveGains> mGains; // per joint; empty without drive actuators
-    int mDriveActuators = 0;             // position and velocity actuators
-    std::vector<double> mStepImpulse;    // per actuator, this step (N s or N m s)
+    std::vector<int> mRow;            // per actuator: its drive row in the joint's block
+    std::vector<std::uint8_t> mLoop;  // per actuator: its joint closes a loop (always bounded)
+    int mDriveActuators = 0;          // position and velocity actuators
+    std::vector<double> mStepImpulse; // per actuator, this step (N s or N m s)
     std::vector<std::uint8_t> mStepAtLimit;
-    std::vector<double> mLastFraction;    // per actuator: |impulse| / bound in its last solve
-    std::vector<double> mSolveImpulse;    // scratch of acceptSolve
-    std::vector<ActuatorEffort> mEfforts; // the last finished step
-    // Per actuator: the target given to setTarget, or none (the model's).
-    std::vector<std::optional<TimeFunction>> mTargets;
-    std::vector<Wrench> mWrenches; // for the next step, one per body, in the order first given
-    double mStepFrom = 0.0;        // the step under way: [mStepFrom, mStepTo) (s)
+    std::vector<double> mSolveImpulse; // scratch of acceptSolve
+    Memory mMemory;                    // what carries over to the next step
+    double mStepFrom = 0.0;            // the step under way: [mStepFrom, mStepTo) (s)
     double mStepTo = 0.0;
-};
-
-struct Actuation::Memory
-{
-    std::vector<std::uint8_t> bounded;
-    std::vector<JointDriveGains> gains;
-    std::vector<double> lastFraction;
-    std::vector<ActuatorEffort> efforts;
-    std::vector<std::optional<TimeFunction>> targets;
-    std::vector<Wrench> wrenches;
 };
 
 } // namespace frontier::core

@@ -512,6 +512,51 @@ class StallWatch
 // residual after it.
 constexpr double cMeasureBelow = 4.0;
 
+namespace
+{
+
+// Gauss-Seidel sweeps over one island until its residual (m/s, left in `residual`) is within
+// `tolerance`, the sweeps stop moving it, it stalls, or settings.maxSweeps; `sweeps` counts them.
+inline ExtraSolveScratch::IslandEnd sweepIsland(IslandSweeper& sweeper, const DelassusMatrix& G,
+                                                const ExtraSolveSettings& settings, int island,
+                                                double tolerance, int& sweeps, double& residual)
+{
+    using IslandEnd = ExtraSolveScratch::IslandEnd;
+    sweeper.start(island);
+    StallWatch stall(settings);
+    IslandEnd end = IslandEnd::Stopped;
+    for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
+    {
+        const SweepChange moved = sweeper.sweep(settings.settledRatio * tolerance);
+        ++sweeps;
+        // The blocks' residuals before their updates bound nothing once a block moved, but far
+        // above the tolerance they say the sweeps go on: the residual after the sweep (a second
+        // pass over the blocks) is measured only near it, or for a lone block (whose update may
+        // be exact).
+        const bool measure = moved.updated > 0 && (!(moved.residualBefore > cMeasureBelow * tolerance) ||
+                                                   G.islandBlocks(island).size() == 1);
+        residual = measure ? sweeper.residual() : moved.residualBefore;
+        if (residual <= tolerance)
+        {
+            end = IslandEnd::Converged;
+            break;
+        }
+        if (moved.change <= settings.tolerance * moved.largest || moved.change < 1e-14)
+        {
+            break;
+        }
+        if (stall.stalled(residual))
+        {
+            end = IslandEnd::Stalled;
+            break;
+        }
+    }
+    sweeper.finish();
+    return end;
+}
+
+} // namespace
+
 ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const DelassusMatrix& G,
                                    const ExtraSolveSettings& settings, Eigen::VectorXd& lambda,
                                    ExtraSolveScratch& scratch, std::span<const double> islandTolerance)
@@ -547,37 +592,8 @@ ExtraSolveStats solveExtraRowsFrom(const std::vector<ExtraBlock>& blocks, const 
         {
             continue;
         }
-        sweeper.start(island);
-        StallWatch stall(settings);
-        IslandEnd end = IslandEnd::Stopped;
         double residual = 0.0;
-        for (int sweep = 0; sweep < settings.maxSweeps; ++sweep)
-        {
-            const SweepChange moved = sweeper.sweep(settings.settledRatio * tolerance);
-            ++stats.sweeps;
-            // The blocks' residuals before their updates bound nothing once a block moved, but
-            // far above the tolerance they say the sweeps go on: the residual after the sweep
-            // (a second pass over the blocks) is measured only near it, or for a lone block
-            // (whose update may be exact).
-            const bool measure = moved.updated > 0 && (!(moved.residualBefore > cMeasureBelow * tolerance) ||
-                                                       G.islandBlocks(island).size() == 1);
-            residual = measure ? sweeper.residual() : moved.residualBefore;
-            if (residual <= tolerance)
-            {
-                end = IslandEnd::Converged;
-                break;
-            }
-            if (moved.change <= settings.tolerance * moved.largest || moved.change < 1e-14)
-            {
-                break;
-            }
-            if (stall.stalled(residual))
-            {
-                end = IslandEnd::Stalled;
-                break;
-            }
-        }
-        sweeper.finish();
+        const IslandEnd end = sweepIsland(sweeper, G, settings, island, tolerance, stats.sweeps, residual);
         scratch.islandEnd[static_cast<std::size_t>(island)] = end;
         scratch.islandResidual[static_cast<std::size_t>(island)] = residual;
         stats.converged = stats.converged && end == IslandEnd::Converged;

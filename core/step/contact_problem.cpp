@@ -54,6 +54,61 @@ ContactProblem::ContactProblem(const StepContext& step)
     }
 }
 
+namespace
+{
+
+// A gap that the bodies cannot close within cSpeculativeSteps steps of dt (s), even moving
+// straight at each other at their relative speed plus this step's gravity, needs no row: only the
+// rows a scene needs are built (resting bodies near each other add none).
+inline bool outOfReach(const Model& model, const std::vector<BodyState>& start, const Contact& contact,
+                       double dt)
+{
+    constexpr double cSpeculativeSteps = 3.0;
+    if (contact.depth >= 0.0)
+    {
+        return false;
+    }
+    Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
+    const BodyState& a = start[static_cast<std::size_t>(contact.bodyA)];
+    relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
+    if (contact.bodyB >= 0 && !model.bodies[static_cast<std::size_t>(contact.bodyB)].isStatic)
+    {
+        const BodyState& b = start[static_cast<std::size_t>(contact.bodyB)];
+        relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
+    }
+    const double closing = relative.norm() + model.simulation.gravity.norm() * dt;
+    return closing * dt * cSpeculativeSteps < -contact.depth;
+}
+
+// The target normal velocity of a contact row (m/s): a speculative row's gap over dt (s), or
+// Newton restitution of the start-of-step approach.
+inline void setContactTarget(const Model& model, const StepOptions& options,
+                             const std::vector<BodyState>& start, const Contact& contact, double dt,
+                             ExtraBlock& block)
+{
+    // Normal velocity before this step's gravity (m/s); < 0 approaching.
+    double approach = block.J_A.row(0).dot((Vec6() << start[static_cast<std::size_t>(block.bodyA)].velocity_W,
+                                            start[static_cast<std::size_t>(block.bodyA)].angularVelocity_W)
+                                               .finished());
+    if (block.bodyB >= 0)
+    {
+        const BodyState& b = start[static_cast<std::size_t>(block.bodyB)];
+        approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
+    }
+    const bool closes = contact.depth >= 0.0 || approach * dt <= contact.depth;
+    if (!closes)
+    {
+        block.target(0) = contact.depth / dt; // speculative: may approach by the gap, no more
+    }
+    else if (approach < -options.restitutionSpeed)
+    {
+        // Newton restitution
+        block.target(0) = -contactRestitution(model, contact.bodyA, contact.bodyB) * approach;
+    }
+}
+
+} // namespace
+
 int ContactProblem::build(const StepContext& step, const State& state)
 {
     const std::vector<BodyState>& start = step.start;
@@ -65,49 +120,14 @@ int ContactProblem::build(const StepContext& step, const State& state)
     for (std::size_t c = 0; c < mContacts.size(); ++c)
     {
         const Contact& contact = mContacts[c];
-        // A gap that the bodies cannot close within cSpeculativeSteps steps, even moving straight
-        // at each other at their relative speed plus this step's gravity, needs no row: only the
-        // rows a scene needs are built (resting bodies near each other add none).
-        constexpr double cSpeculativeSteps = 3.0;
-        if (contact.depth < 0.0)
+        if (outOfReach(mModel, start, contact, dt))
         {
-            Vec3 relative = Vec3::Zero(); // velocity of B's point relative to A's (m/s)
-            const BodyState& a = start[static_cast<std::size_t>(contact.bodyA)];
-            relative -= a.velocity_W + a.angularVelocity_W.cross(contact.point_W - a.position_W);
-            if (contact.bodyB >= 0 && !mModel.bodies[static_cast<std::size_t>(contact.bodyB)].isStatic)
-            {
-                const BodyState& b = start[static_cast<std::size_t>(contact.bodyB)];
-                relative += b.velocity_W + b.angularVelocity_W.cross(contact.point_W - b.position_W);
-            }
-            const double closing = relative.norm() + mModel.simulation.gravity.norm() * dt;
-            if (closing * dt * cSpeculativeSteps < -contact.depth)
-            {
-                continue;
-            }
+            continue;
         }
         ExtraBlock& block =
             appendContactBlock(mModel, state, contact, contactFriction(mModel, contact.bodyA, contact.bodyB),
                                static_cast<int>(c), mExtra);
-        // Normal velocity before this step's gravity (m/s); < 0 approaching.
-        double approach =
-            block.J_A.row(0).dot((Vec6() << start[static_cast<std::size_t>(block.bodyA)].velocity_W,
-                                  start[static_cast<std::size_t>(block.bodyA)].angularVelocity_W)
-                                     .finished());
-        if (block.bodyB >= 0)
-        {
-            const BodyState& b = start[static_cast<std::size_t>(block.bodyB)];
-            approach += block.J_B.row(0).dot((Vec6() << b.velocity_W, b.angularVelocity_W).finished());
-        }
-        const bool closes = contact.depth >= 0.0 || approach * dt <= contact.depth;
-        if (!closes)
-        {
-            block.target(0) = contact.depth / dt; // speculative: may approach by the gap, no more
-        }
-        else if (approach < -mOptions.restitutionSpeed)
-        {
-            // Newton restitution
-            block.target(0) = -contactRestitution(mModel, contact.bodyA, contact.bodyB) * approach;
-        }
+        setContactTarget(mModel, mOptions, start, contact, dt, block);
     }
     for (const ExtraBlock& loop : loops)
     {

@@ -33,30 +33,30 @@ void DelassusCache::layOut(const std::vector<ExtraBlock>& blocks, const std::vec
 {
     // Parts the step before did not need (their island held without a solve) take the values of
     // the step before it, when their rows still match: a resting tree keeps its part.
-    for (int p = 0; p < mG.parts(); ++p)
+    for (int p = 0; p < mMemory.g.parts(); ++p)
     {
-        if (mState[static_cast<std::size_t>(p)] == PartState::Empty)
+        if (mMemory.state[static_cast<std::size_t>(p)] == PartState::Empty)
         {
             keep(p);
         }
     }
-    std::swap(mG, mLast);
-    std::swap(mRecords, mLastRecords);
+    std::swap(mMemory.g, mMemory.last);
+    std::swap(mMemory.records, mMemory.lastRecords);
     mBlocks = &blocks;
-    mG.layOut(blocks, mLayout.treeOfBody);
-    mKeys.resize(blocks.size());
+    mMemory.g.layOut(blocks, mLayout.treeOfBody);
+    mMemory.keys.resize(blocks.size());
     for (std::size_t b = 0; b < blocks.size(); ++b)
     {
-        mKeys[b] = rowKey(blocks[b], contacts);
+        mMemory.keys[b] = rowKey(blocks[b], contacts);
     }
-    mRecords.resize(static_cast<std::size_t>(mG.parts()));
-    for (Record& record : mRecords)
+    mMemory.records.resize(static_cast<std::size_t>(mMemory.g.parts()));
+    for (Record& record : mMemory.records)
     {
         record.builtStep = -1;
     }
-    mState.assign(static_cast<std::size_t>(mG.parts()), PartState::Empty);
+    mMemory.state.assign(static_cast<std::size_t>(mMemory.g.parts()), PartState::Empty);
     mBuiltAny = false;
-    ++mStep;
+    ++mMemory.step;
 }
 
 bool DelassusCache::flagged(std::span<const std::uint8_t> islands, int part) const
@@ -65,38 +65,39 @@ bool DelassusCache::flagged(std::span<const std::uint8_t> islands, int part) con
     {
         return true;
     }
-    const int block = mG.part(part).blocks.front();
-    return islands[static_cast<std::size_t>(mG.islandOfBlock(block))] != 0;
+    const int block = mMemory.g.part(part).blocks.front();
+    return islands[static_cast<std::size_t>(mMemory.g.islandOfBlock(block))] != 0;
 }
 
 // The last step's part of the same tree, when it has values for the same rows (in the same order)
 // and is recent: its values move into this step's part.
 bool DelassusCache::keep(int p)
 {
-    DelassusMatrix::Part& part = mG.part(p);
-    const int q = mLast.partOfTree(part.tree);
+    DelassusMatrix::Part& part = mMemory.g.part(p);
+    const int q = mMemory.last.partOfTree(part.tree);
     if (q < 0)
     {
         return false;
     }
-    Record& last = mLastRecords[static_cast<std::size_t>(q)];
-    if (last.builtStep < 0 || mStep - last.builtStep > cMaxAge || last.keys.size() != part.blocks.size())
+    Record& last = mMemory.lastRecords[static_cast<std::size_t>(q)];
+    if (last.builtStep < 0 || mMemory.step - last.builtStep > cMaxAge ||
+        last.keys.size() != part.blocks.size())
     {
         return false;
     }
     for (std::size_t k = 0; k < part.blocks.size(); ++k)
     {
-        if (!sameRow(mKeys[static_cast<std::size_t>(part.blocks[k])], last.keys[k], cReuseDistance,
+        if (!sameRow(mMemory.keys[static_cast<std::size_t>(part.blocks[k])], last.keys[k], cReuseDistance,
                      cReuseTurn))
         {
             return false;
         }
     }
-    std::swap(part.G, mLast.part(q).G); // the same rows: the same size
-    std::swap(part.free, mLast.part(q).free);
-    std::swap(mRecords[static_cast<std::size_t>(p)], last);
+    std::swap(part.G, mMemory.last.part(q).G); // the same rows: the same size
+    std::swap(part.free, mMemory.last.part(q).free);
+    std::swap(mMemory.records[static_cast<std::size_t>(p)], last);
     last.builtStep = -1; // its values have moved
-    mState[static_cast<std::size_t>(p)] = PartState::Kept;
+    mMemory.state[static_cast<std::size_t>(p)] = PartState::Kept;
     return true;
 }
 
@@ -107,18 +108,18 @@ void DelassusCache::build(std::span<const int> parts)
     {
         return;
     }
-    mSolver.delassusParts(*mBlocks, mG, parts);
+    mSolver.delassusParts(*mBlocks, mMemory.g, parts);
     for (int p : parts)
     {
-        Record& record = mRecords[static_cast<std::size_t>(p)];
-        const DelassusMatrix::Part& part = mG.part(p);
+        Record& record = mMemory.records[static_cast<std::size_t>(p)];
+        const DelassusMatrix::Part& part = mMemory.g.part(p);
         record.keys.resize(part.blocks.size());
         for (std::size_t k = 0; k < part.blocks.size(); ++k)
         {
-            record.keys[k] = mKeys[static_cast<std::size_t>(part.blocks[k])];
+            record.keys[k] = mMemory.keys[static_cast<std::size_t>(part.blocks[k])];
         }
-        record.builtStep = mStep;
-        mState[static_cast<std::size_t>(p)] = PartState::Built;
+        record.builtStep = mMemory.step;
+        mMemory.state[static_cast<std::size_t>(p)] = PartState::Built;
     }
     mBuiltAny = true;
 }
@@ -127,9 +128,9 @@ void DelassusCache::prepare(std::span<const std::uint8_t> islands, bool reuse)
 {
     mToBuild.clear();
     bool kept = false;
-    for (int p = 0; p < mG.parts(); ++p)
+    for (int p = 0; p < mMemory.g.parts(); ++p)
     {
-        if (mState[static_cast<std::size_t>(p)] != PartState::Empty || !flagged(islands, p))
+        if (mMemory.state[static_cast<std::size_t>(p)] != PartState::Empty || !flagged(islands, p))
         {
             continue;
         }
@@ -143,16 +144,16 @@ void DelassusCache::prepare(std::span<const std::uint8_t> islands, bool reuse)
     build(mToBuild);
     if (kept)
     {
-        mG.touch(); // kept values arrived after the layout
+        mMemory.g.touch(); // kept values arrived after the layout
     }
 }
 
 void DelassusCache::rebuild(std::span<const std::uint8_t> islands)
 {
     mToBuild.clear();
-    for (int p = 0; p < mG.parts(); ++p)
+    for (int p = 0; p < mMemory.g.parts(); ++p)
     {
-        if (mState[static_cast<std::size_t>(p)] == PartState::Kept && flagged(islands, p))
+        if (mMemory.state[static_cast<std::size_t>(p)] == PartState::Kept && flagged(islands, p))
         {
             mToBuild.push_back(p);
         }
@@ -162,9 +163,9 @@ void DelassusCache::rebuild(std::span<const std::uint8_t> islands)
 
 bool DelassusCache::exact(int island) const
 {
-    for (int p : mG.islandParts(island))
+    for (int p : mMemory.g.islandParts(island))
     {
-        if (mState[static_cast<std::size_t>(p)] != PartState::Built)
+        if (mMemory.state[static_cast<std::size_t>(p)] != PartState::Built)
         {
             return false;
         }
@@ -172,26 +173,16 @@ bool DelassusCache::exact(int island) const
     return true;
 }
 
-DelassusCache::Memory DelassusCache::memory() const
-{
-    return {mG, mLast, mRecords, mLastRecords, mState, mKeys, mStep};
-}
-
 void DelassusCache::restore(const Memory& memory)
 {
-    mG = memory.g;
-    mLast = memory.last;
-    mRecords = memory.records;
-    mLastRecords = memory.lastRecords;
-    mState = memory.state;
-    mKeys = memory.keys;
-    mStep = memory.step;
+    mMemory = memory;
     mBuiltAny = false;
 }
 
 bool DelassusCache::complete() const
 {
-    return std::none_of(mState.begin(), mState.end(), [](PartState s) { return s == PartState::Empty; });
+    return std::none_of(mMemory.state.begin(), mMemory.state.end(),
+                        [](PartState s) { return s == PartState::Empty; });
 }
 
 } // namespace frontier::core

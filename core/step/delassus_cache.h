@@ -43,13 +43,7 @@ class DelassusCache
     // True when every part has values (after prepare() of every island).
     bool complete() const;
 
-    const DelassusMatrix& matrix() const { return mG; }
-
-    // What carries over from one step to the next (core/step_memory.h): the last two steps' parts
-    // with what they were built for, and the steps counted.
-    struct Memory;
-    Memory memory() const;
-    void restore(const Memory& memory);
+    const DelassusMatrix& matrix() const { return mMemory.g; }
 
   private:
     enum class PartState : std::uint8_t
@@ -63,6 +57,22 @@ class DelassusCache
         std::vector<RowKey> keys; // its blocks' keys, in the part's order
         long builtStep = -1;      // the step it was built in, -1: no values
     };
+
+  public:
+    // What carries over from one step to the next (core/step_memory.h), kept in one member: a
+    // field added here is saved and restored with the rest.
+    struct Memory
+    {
+        DelassusMatrix g, last; // this step's, the last step's
+        std::vector<Record> records, lastRecords;
+        std::vector<PartState> state;
+        std::vector<RowKey> keys; // this step's, per block
+        long step = 0;            // layOut() calls
+    };
+    const Memory& memory() const { return mMemory; }
+    void restore(const Memory& memory);
+
+  private:
     bool keep(int part);
     void build(std::span<const int> parts);
     bool flagged(std::span<const std::uint8_t> islands, int part) const;
@@ -73,23 +83,10 @@ class DelassusCache
 
     const FrontierLayout& mLayout;
     ImpulseSolver& mSolver;
-    DelassusMatrix mG, mLast; // this step's, the last step's
-    std::vector<Record> mRecords, mLastRecords;
-    std::vector<PartState> mState;
+    Memory mMemory;
     const std::vector<ExtraBlock>* mBlocks = nullptr; // this step's (the caller's, stable through the step)
-    std::vector<RowKey> mKeys;                        // this step's, per block
     std::vector<int> mToBuild;                        // scratch
-    long mStep = 0;                                   // layOut() calls
     bool mBuiltAny = false;
-};
-
-struct DelassusCache::Memory
-{
-    DelassusMatrix g, last;
-    std::vector<Record> records, lastRecords;
-    std::vector<PartState> state;
-    std::vector<RowKey> keys;
-    long step = 0;
 };
 
 } // namespace frontier::core
