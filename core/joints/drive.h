@@ -21,9 +21,9 @@
 // gain) is E = 0, c = v*. Joint damping and an actuator on one coordinate share its row (their k
 // and d add), so a block never exceeds 6 rows; the right-hand side c is the actuator's
 // (core::Actuation), the projections (drift correction, penetration) give drive rows c = 0.
-// Over no time (h = 0: an instantaneous collision, as tests/support/collision_response.h computes one) a drive gives no
-// impulse. E is then infinite; the row is written divided by E (J = 0, E = 1, c = 0), its limit as
-// E grows, so lambda = 0 exactly and the block keeps its size. A row with k = d = 0 is the same.
+// Over no time (h = 0: an instantaneous collision, as tests/support/collision_response.h computes one) a
+// drive gives no impulse. E is then infinite; the row is written divided by E (J = 0, E = 1, c = 0), its
+// limit as E grows, so lambda = 0 exactly and the block keeps its size. A row with k = d = 0 is the same.
 //
 // A row whose impulse is bounded, |lambda| <= b, is one-sided like a contact (Coulomb joint friction:
 // b = f h, target 0; an actuator at its effort limit: b = limit h): it is an extra row
